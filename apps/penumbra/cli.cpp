@@ -1,0 +1,164 @@
+#include "cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace penumbra::cli {
+namespace {
+
+// Raw option values as typed; converted after parsing so errors can name the flag.
+struct RawRenderOptions {
+    std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits;
+};
+
+glm::vec3 parse_vec3(const std::string& text, const std::string& flag) {
+    std::stringstream stream(text);
+    glm::vec3 value{0.0f};
+    char separator = 0;
+    if (!(stream >> value.x >> separator) || separator != ',' || !(stream >> value.y >> separator) ||
+        separator != ',' || !(stream >> value.z) || !(stream >> std::ws).eof()) {
+        throw InputError(flag + ": expected three comma-separated numbers x,y,z, got \"" + text + "\"");
+    }
+    return value;
+}
+
+std::vector<float> parse_float_list(const std::string& text, const std::string& flag) {
+    std::vector<float> values;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        try {
+            size_t used = 0;
+            values.push_back(std::stof(item, &used));
+            if (used != item.size()) throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw InputError(flag + ": expected comma-separated numbers, got \"" + text + "\"");
+        }
+    }
+    return values;
+}
+
+template <typename Enum>
+Enum parse_choice(const std::string& text, const std::string& flag, const std::map<std::string, Enum>& choices) {
+    const auto found = choices.find(text);
+    if (found != choices.end()) return found->second;
+    std::string names;
+    for (const auto& [name, value] : choices) names += (names.empty() ? "" : ", ") + name;
+    throw InputError(flag + ": unknown value \"" + text + "\" (expected " + names + ")");
+}
+
+void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptions& raw) {
+    render.add_option("--width", o.width, "Image width in pixels (1..16384, default 1280)")
+        ->check(CLI::Range(1u, kMaxImageSize));
+    render.add_option("--height", o.height, "Image height in pixels (1..16384, default 720)")
+        ->check(CLI::Range(1u, kMaxImageSize));
+    render.add_option("--eye", raw.eye, "Camera position x,y,z (overrides the scene)");
+    render.add_option("--target", raw.target, "Camera target x,y,z");
+    render.add_option("--up", raw.up, "Camera up vector x,y,z");
+    render.add_option("--fov", o.fov, "Vertical field of view in degrees (0 < fov < 180)");
+    render.add_option("--near", o.near_plane, "Camera near plane (> 0)");
+    render.add_option("--far", o.far_plane, "Camera far plane (> near)");
+    render.add_option("--light-dir", raw.light_dir, "Direction the sunlight travels x,y,z");
+    render.add_option("--cascades", o.cascades, "Number of shadow cascades (1..8, default 4)")->check(CLI::Range(1, 8));
+    render.add_option("--shadow-resolution", o.shadow_resolution, "Shadow map texels per side (512..8192)")
+        ->check(CLI::Range(512u, 8192u));
+    render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: uniform|log|practical|manual");
+    render.add_option("--split-lambda", o.split_lambda, "Practical split blend: 0 uniform .. 1 log (default 0.75)")
+        ->check(CLI::Range(0.0f, 1.0f));
+    render.add_option("--splits", raw.splits, "Manual split distances a,b,c (cascades - 1 values)");
+    render.add_option("--max-distance", o.max_distance, "Shadow distance in metres (> 0)");
+    render.add_option("--fit", raw.fit, "Cascade fitting: stable|tight");
+    render.add_option("--slope-bias", o.slope_bias, "Slope-scaled depth bias factor (0..20)")
+        ->check(CLI::Range(0.0f, 20.0f));
+    render.add_option("--constant-bias", o.constant_bias, "Constant depth bias factor (>= 0)");
+    render.add_option("--bias-clamp", o.bias_clamp, "Maximum depth bias (0..0.1)")->check(CLI::Range(0.0f, 0.1f));
+    render.add_option("--normal-offset", o.normal_offset, "Normal offset in shadow texels (0..10)")
+        ->check(CLI::Range(0.0f, 10.0f));
+    render.add_option("--blend-width", o.blend_width, "Cascade blend band as a fraction (0..0.5)")
+        ->check(CLI::Range(0.0f, 0.5f));
+    render.add_option("--shadow-strategy", raw.strategy, "Shadow rendering: per-cascade|multiview");
+}
+
+void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
+    SettingsOverrides& o = job.overrides;
+    if (!raw.eye.empty()) o.eye = parse_vec3(raw.eye, "--eye");
+    if (!raw.target.empty()) o.target = parse_vec3(raw.target, "--target");
+    if (!raw.up.empty()) o.up = parse_vec3(raw.up, "--up");
+    if (!raw.light_dir.empty()) o.light_direction = parse_vec3(raw.light_dir, "--light-dir");
+    if (!raw.splits.empty()) o.splits = parse_float_list(raw.splits, "--splits");
+    if (!raw.split_scheme.empty()) {
+        o.split_scheme = parse_choice<SplitScheme>(raw.split_scheme, "--split-scheme",
+                                                   {{"uniform", SplitScheme::Uniform},
+                                                    {"log", SplitScheme::Logarithmic},
+                                                    {"practical", SplitScheme::Practical},
+                                                    {"manual", SplitScheme::Manual}});
+    }
+    if (!raw.fit.empty()) {
+        o.fit = parse_choice<FitMode>(raw.fit, "--fit", {{"stable", FitMode::Stable}, {"tight", FitMode::Tight}});
+    }
+    if (!raw.strategy.empty()) {
+        o.strategy = parse_choice<ShadowStrategy>(
+            raw.strategy, "--shadow-strategy",
+            {{"per-cascade", ShadowStrategy::PerCascade}, {"multiview", ShadowStrategy::Multiview}});
+    }
+    if (!raw.aov.empty()) {
+        job.aov = parse_choice<Aov>(raw.aov, "--aov", {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}});
+    }
+    if (!raw.debug.empty()) {
+        job.debug = parse_choice<DebugView>(raw.debug, "--debug", {{"cascades", DebugView::Cascades}});
+    }
+}
+
+}  // namespace
+
+Command parse_command_line(int argc, char** argv) {
+    CLI::App app{"penumbra: real-time shadows with Vulkan (cascaded shadow maps), rendered headlessly to PNG"};
+    app.require_subcommand(0, 1);
+    app.set_version_flag("--version", "penumbra 0.1.0");
+
+    CLI::App* devices = app.add_subcommand("devices", "List Vulkan devices (index, name, type, driver, API version)");
+
+    RenderJob job;
+    RawRenderOptions raw;
+    bool no_cull = false;
+    std::string config;
+    CLI::App* render = app.add_subcommand("render", "Render a scene with a sun shadow to a PNG");
+    render->add_option("scene", job.scene, "Scene file (.toml) or builtin:NAME (default builtin:default)");
+    render->add_option("-o,--output", job.output, "Output PNG (default penumbra.png)");
+    render->add_option("--config", config, "Config file (.toml) with [output], [shadow], [camera], [sun] settings");
+    render->add_option("--aov", raw.aov, "Write an AOV instead of colour: shadow (16-bit visibility) | cascade");
+    render->add_option("--debug", raw.debug, "Debug view of the colour image: cascades");
+    render->add_flag("--validate", job.device.validation,
+                     "Enable the Khronos validation layer (with synchronization validation); any message fails");
+    render->add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");
+    render->add_flag("--no-cull", no_cull, "Disable per-cascade caster culling");
+    add_settings_options(*render, job.overrides, raw);
+
+    try {
+        app.parse(argc, argv);
+        if (devices->parsed()) return DevicesCommand{};
+        if (!render->parsed()) {
+            std::printf("%s", app.help().c_str());
+            return ExitNow{0};
+        }
+        convert_raw_options(raw, job);
+        if (!config.empty()) job.config = config;
+        if (no_cull) job.overrides.cull_casters = false;
+        return RenderCommand{job};
+    } catch (const CLI::ParseError& error) {
+        // --help and --version arrive as "errors" with exit code 0; CLI11 prints them.
+        if (error.get_exit_code() == 0) return ExitNow{app.exit(error)};
+        std::fprintf(stderr, "penumbra: %s\n", error.what());
+        return ExitNow{2};
+    } catch (const InputError& error) {
+        std::fprintf(stderr, "penumbra: %s\n", error.what());
+        return ExitNow{2};
+    }
+}
+
+}  // namespace penumbra::cli

@@ -1,0 +1,99 @@
+// Stable and tight fitting of cascade shadow volumes.
+//
+// Stable fitting follows Valient, "Stable Rendering of Cascaded Shadow Maps" (ShaderX6,
+// 2008) and the Microsoft "Common Techniques to Improve Shadow Depth Maps" article: a
+// rotation-invariant bounding sphere fixes the size of the shadow map footprint, and
+// snapping its origin to whole texels makes camera translation move the footprint by
+// whole texels only, so rasterised shadow edges do not shimmer.
+#include "core/cascade_fitting.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+float round_up_to_sixteenth(float metres) { return std::ceil(metres * 16.0f) / 16.0f; }
+
+}  // namespace
+
+BoundingSphere frustum_slice_bounding_sphere(const CameraView& camera, float slice_near, float slice_far) {
+    // 1. In view space the slice is symmetric about the view axis: the corners at view
+    //    distance d lie at squared distance d^2 * k from the axis, k = tan_x^2 + tan_y^2.
+    const double tan_half_y = std::tan(static_cast<double>(camera.fov_y_radians) * 0.5);
+    const double tan_half_x = tan_half_y * camera.aspect;
+    const double k = tan_half_x * tan_half_x + tan_half_y * tan_half_y;
+    const double n = slice_near;
+    const double f = slice_far;
+    // 2. A centre at distance z on the axis needs radius^2 = max((z - n)^2 + k n^2,
+    //    (f - z)^2 + k f^2). The two terms are equal at z = (f + n)(1 + k) / 2; past the far
+    //    plane (wide or thin slices) the far term alone rules, minimal at z = f.
+    const double center_distance = std::min((f + n) * (1.0 + k) * 0.5, f);
+    const double radius_squared = std::max((center_distance - n) * (center_distance - n) + k * n * n,
+                                           (f - center_distance) * (f - center_distance) + k * f * f);
+    // 3. Back to the world through the same inverse view that frustum_slice_corners uses.
+    const glm::vec4 view_center(0.0f, 0.0f, -static_cast<float>(center_distance), 1.0f);
+    BoundingSphere sphere;
+    sphere.center = glm::vec3(glm::inverse(camera.view) * view_center);
+    sphere.radius = static_cast<float>(std::sqrt(radius_squared));
+    return sphere;
+}
+
+LightOrthoBox fit_stable_box(const BoundingSphere& light_space_sphere, uint32_t resolution) {
+    const float texels = static_cast<float>(resolution);
+    // 1. Snapping moves the square by at most half a texel (radius / resolution) per
+    //    axis; pad for it before rounding up to 1/16 m. The rounding keeps the footprint
+    //    size constant while the sphere's radius wobbles in the last float bits.
+    const float radius = round_up_to_sixteenth(light_space_sphere.radius * texels / (texels - 1.0f));
+    const float texel = 2.0f * radius / texels;
+    // 2. Snap the light-space origin of the square to whole texels of the world-fixed grid
+    //    (the light view is a pure rotation, so the grid does not move with the camera).
+    //    With an even resolution the square's edges then lie on the grid as well.
+    LightOrthoBox box;
+    box.center = glm::round(glm::vec2(light_space_sphere.center) / texel) * texel;
+    box.half_size = glm::vec2(radius);
+    // 3. The sphere's own depth range; extend_depth_to_scene adds the casters.
+    const float center_distance = -light_space_sphere.center.z;
+    box.near_distance = center_distance - radius;
+    box.far_distance = center_distance + radius;
+    return box;
+}
+
+LightOrthoBox fit_tight_box(const std::array<glm::vec3, 8>& light_space_points, uint32_t resolution,
+                            float padding_texels) {
+    // 1. Light-space bounds of the points.
+    Aabb bounds;
+    for (const glm::vec3& point : light_space_points) bounds.expand(point);
+    // 2. Texel size such that the bounds, the padding on both sides and one texel of
+    //    snapping slack fill the map exactly: resolution * texel = size + (2 p + 1) texel.
+    const float usable_texels = static_cast<float>(resolution) - 2.0f * padding_texels - 1.0f;
+    const glm::vec2 size(bounds.extent());
+    const glm::vec2 texel = glm::max(size, glm::vec2(1e-4f)) / usable_texels;
+    // 3. Snap the padded minimum down to the texel grid; the maximum follows at exactly
+    //    resolution texels, which covers the padded maximum thanks to the slack texel.
+    const glm::vec2 padded_min = glm::vec2(bounds.min) - padding_texels * texel;
+    LightOrthoBox box;
+    box.half_size = 0.5f * static_cast<float>(resolution) * texel;
+    box.center = glm::floor(padded_min / texel) * texel + box.half_size;
+    box.near_distance = -bounds.max.z;
+    box.far_distance = -bounds.min.z;
+    return box;
+}
+
+LightOrthoBox extend_depth_to_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds) {
+    if (light_space_scene_bounds.empty()) return box;
+    LightOrthoBox extended = box;
+    // Toward the light: casters between the sun and the slice. Away from it: receivers
+    // beyond the slice that still fall into its rectangle (cascade blending reads them).
+    extended.near_distance = std::min(box.near_distance, -light_space_scene_bounds.max.z);
+    extended.far_distance = std::max(box.far_distance, -light_space_scene_bounds.min.z);
+    return extended;
+}
+
+glm::mat4 light_projection(const LightOrthoBox& box) {
+    const glm::vec2 low = box.center - box.half_size;
+    const glm::vec2 high = box.center + box.half_size;
+    return orthographic_reverse_z(low.x, high.x, low.y, high.y, box.near_distance, box.far_distance);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,26 @@
+#pragma once
+// Everything that configures a rendered frame besides the scene: output size, shadow
+// settings and debug views. Filled from (in increasing priority) the scene file's
+// [output]/[shadow] tables, a --config file, and command-line flags.
+#include <cstdint>
+#include <string>
+
+#include "core/shadow_settings.hpp"
+
+namespace penumbra {
+
+enum class DebugView { None, Cascades };
+
+constexpr uint32_t kMaxImageSize = 16384;
+
+struct RenderSettings {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    ShadowSettings shadow;
+    DebugView debug = DebugView::None;
+};
+
+// Throws InputError naming `origin` and the setting for out-of-range values.
+void validate_render_settings(const RenderSettings& settings, const std::string& origin);
+
+}  // namespace penumbra

@@ -1,0 +1,89 @@
+#pragma once
+// The in-memory scene: what a scene file, a glTF model or a built-in scene
+// becomes once loaded. Pure data, no Vulkan: the renderer uploads it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/bounds.hpp"
+#include "core/glm_config.hpp"
+
+namespace penumbra {
+
+struct Camera {
+    glm::vec3 eye{0.0f, 6.0f, 12.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fov_y_degrees = 60.0f;  // vertical field of view
+    float near_plane = 0.1f;
+    float far_plane = 200.0f;
+};
+
+enum class LightType { Directional, Spot, Point };
+
+struct Light {
+    LightType type = LightType::Directional;
+    glm::vec3 direction{-0.4f, -1.0f, -0.3f};  // travel direction (sun -> ground); normalised
+    glm::vec3 position{0.0f};                  // spot and point lights
+    glm::vec3 color{1.0f};
+    float intensity = 3.0f;
+    float angular_diameter_degrees = 0.53f;  // directional: the sun's disk
+    bool cast_shadows = true;
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Texture {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba8;  // width * height * 4, sRGB-encoded colour, linear alpha
+};
+
+struct Material {
+    glm::vec4 base_color{1.0f};       // linear RGB + alpha
+    int32_t base_color_texture = -1;  // index into Scene::textures, -1 for none
+    AlphaMode alpha_mode = AlphaMode::Opaque;
+    float alpha_cutoff = 0.5f;  // used by Mask; Blend casts as Mask with 0.5 (docs/techniques.md)
+    bool double_sided = false;
+    float roughness = 0.6f;
+    float metallic = 0.0f;
+};
+
+struct Vertex {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};
+    glm::vec2 uv{0.0f};
+};
+
+// One triangle list with a single material, in its own model space.
+struct Mesh {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    uint32_t material = 0;
+    Aabb bounds;  // model-space bounds of the vertices
+};
+
+// A mesh placed in the world.
+struct Instance {
+    uint32_t mesh = 0;
+    glm::mat4 world{1.0f};
+};
+
+struct Scene {
+    Camera camera;
+    std::vector<Light> lights;
+    glm::vec3 ambient{0.25f, 0.3f, 0.35f};
+    std::vector<Texture> textures;
+    std::vector<Material> materials;
+    std::vector<Mesh> meshes;
+    std::vector<Instance> instances;
+
+    // World-space bounds of every instance.
+    Aabb world_bounds() const;
+    // The first directional light, or nullptr when the scene has none.
+    const Light* sun() const;
+    // Triangles submitted when every instance is drawn once.
+    uint64_t triangle_count() const;
+};
+
+}  // namespace penumbra

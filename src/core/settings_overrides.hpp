@@ -1,0 +1,50 @@
+#pragma once
+// Partial settings from one source (scene file, config file or command line). Sources
+// are applied in increasing priority: scene file, then --config file, then flags.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/render_settings.hpp"
+#include "core/scene.hpp"
+
+namespace penumbra {
+
+struct SettingsOverrides {
+    // [output]
+    std::optional<uint32_t> width;
+    std::optional<uint32_t> height;
+    // [shadow]
+    std::optional<int> cascades;
+    std::optional<uint32_t> shadow_resolution;
+    std::optional<SplitScheme> split_scheme;
+    std::optional<float> split_lambda;
+    std::optional<std::vector<float>> splits;
+    std::optional<float> max_distance;
+    std::optional<FitMode> fit;
+    std::optional<float> constant_bias;
+    std::optional<float> slope_bias;
+    std::optional<float> bias_clamp;
+    std::optional<float> normal_offset;
+    std::optional<float> blend_width;
+    std::optional<ShadowStrategy> strategy;
+    std::optional<bool> cull_casters;
+    // [camera] and [sun]
+    std::optional<glm::vec3> eye;
+    std::optional<glm::vec3> target;
+    std::optional<glm::vec3> up;
+    std::optional<float> fov;
+    std::optional<float> near_plane;
+    std::optional<float> far_plane;
+    std::optional<glm::vec3> light_direction;
+};
+
+void apply_overrides(const SettingsOverrides& overrides, RenderSettings& settings);
+// Camera and sun overrides; a sun override on a scene without a sun adds one.
+void apply_overrides(const SettingsOverrides& overrides, Scene& scene);
+
+// Throws InputError naming `origin` when the scene's camera or sun is invalid:
+// eye equal to target, fov outside (0, 180), near <= 0, far <= near, zero light direction.
+void validate_camera_and_sun(const Scene& scene, const std::string& origin);
+
+}  // namespace penumbra

@@ -1,0 +1,82 @@
+// Range checks of the user-facing shadow settings. Every message names the origin, the
+// setting as the user writes it, the offending value and the allowed range, on one line.
+#include "core/shadow_settings.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/cascades.hpp"
+#include "core/errors.hpp"
+
+namespace penumbra {
+namespace {
+
+[[noreturn]] void reject(const std::string& origin, const char* key, const std::string& problem) {
+    throw InputError(origin + ": " + key + ": " + problem);
+}
+
+template <typename Value>
+void require_in_range(const std::string& origin, const char* key, Value value, Value lowest, Value highest) {
+    // Written as !(inside) so that NaN, which fails every comparison, is rejected.
+    if (!(value >= lowest && value <= highest)) {
+        std::ostringstream problem;
+        problem << value << " is outside the allowed range [" << lowest << ", " << highest << "]";
+        reject(origin, key, problem.str());
+    }
+}
+
+void require_positive_finite(const std::string& origin, const char* key, float value) {
+    if (!(value > 0.0f) || !std::isfinite(value)) {
+        std::ostringstream problem;
+        problem << value << " must be a finite number greater than 0";
+        reject(origin, key, problem.str());
+    }
+}
+
+void validate_manual_splits(const CascadeSettings& cascades, const std::string& origin) {
+    const char* key = shadow_keys::kSplits;
+    const size_t expected = static_cast<size_t>(cascades.count - 1);
+    if (cascades.manual_splits.size() != expected) {
+        std::ostringstream problem;
+        problem << cascades.manual_splits.size() << " values given, " << cascades.count << " cascades need exactly "
+                << expected;
+        reject(origin, key, problem.str());
+    }
+    float previous = 0.0f;
+    for (const float split : cascades.manual_splits) {
+        if (!(split > previous) || !(split < cascades.max_distance)) {
+            std::ostringstream problem;
+            problem << split << " must be greater than the previous split (" << previous
+                    << ") and less than max_distance (" << cascades.max_distance
+                    << "); splits are strictly increasing view distances";
+            reject(origin, key, problem.str());
+        }
+        previous = split;
+    }
+}
+
+void validate_cascade_settings(const CascadeSettings& cascades, const std::string& origin) {
+    require_in_range(origin, shadow_keys::kCascades, cascades.count, 1, kMaxCascades);
+    require_in_range(origin, shadow_keys::kResolution, cascades.resolution, 512u, 8192u);
+    require_in_range(origin, shadow_keys::kSplitLambda, cascades.split_lambda, 0.0f, 1.0f);
+    require_positive_finite(origin, shadow_keys::kMaxDistance, cascades.max_distance);
+    require_in_range(origin, shadow_keys::kFilterPadding, cascades.filter_padding_texels, 0.0f, 64.0f);
+    if (cascades.scheme == SplitScheme::Manual) validate_manual_splits(cascades, origin);
+}
+
+void validate_bias_settings(const BiasSettings& bias, const std::string& origin) {
+    require_in_range(origin, shadow_keys::kSlopeBias, bias.slope, 0.0f, 20.0f);
+    require_in_range(origin, shadow_keys::kConstantBias, bias.constant, 0.0f, 1.0e5f);
+    require_in_range(origin, shadow_keys::kBiasClamp, bias.clamp, 0.0f, 0.1f);
+    require_in_range(origin, shadow_keys::kNormalOffset, bias.normal_offset, 0.0f, 10.0f);
+}
+
+}  // namespace
+
+void validate_shadow_settings(const ShadowSettings& settings, const std::string& origin) {
+    validate_cascade_settings(settings.cascades, origin);
+    validate_bias_settings(settings.bias, origin);
+    require_in_range(origin, shadow_keys::kBlendWidth, settings.blend_width, 0.0f, 0.5f);
+}
+
+}  // namespace penumbra

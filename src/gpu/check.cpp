@@ -1,0 +1,54 @@
+#include "gpu/check.hpp"
+
+#include <filesystem>
+
+namespace penumbra::gpu {
+
+const char* result_name(VkResult result) {
+    switch (result) {
+#define PENUMBRA_RESULT_CASE(name) \
+    case name:                     \
+        return #name;
+        PENUMBRA_RESULT_CASE(VK_SUCCESS)
+        PENUMBRA_RESULT_CASE(VK_NOT_READY)
+        PENUMBRA_RESULT_CASE(VK_TIMEOUT)
+        PENUMBRA_RESULT_CASE(VK_EVENT_SET)
+        PENUMBRA_RESULT_CASE(VK_EVENT_RESET)
+        PENUMBRA_RESULT_CASE(VK_INCOMPLETE)
+        PENUMBRA_RESULT_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        PENUMBRA_RESULT_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        PENUMBRA_RESULT_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        PENUMBRA_RESULT_CASE(VK_ERROR_DEVICE_LOST)
+        PENUMBRA_RESULT_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        PENUMBRA_RESULT_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        PENUMBRA_RESULT_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        PENUMBRA_RESULT_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        PENUMBRA_RESULT_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        PENUMBRA_RESULT_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        PENUMBRA_RESULT_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        PENUMBRA_RESULT_CASE(VK_ERROR_FRAGMENTED_POOL)
+        PENUMBRA_RESULT_CASE(VK_ERROR_UNKNOWN)
+        PENUMBRA_RESULT_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        PENUMBRA_RESULT_CASE(VK_ERROR_INVALID_EXTERNAL_HANDLE)
+        PENUMBRA_RESULT_CASE(VK_ERROR_FRAGMENTATION)
+        PENUMBRA_RESULT_CASE(VK_ERROR_INVALID_OPAQUE_CAPTURE_ADDRESS)
+        PENUMBRA_RESULT_CASE(VK_PIPELINE_COMPILE_REQUIRED)
+        PENUMBRA_RESULT_CASE(VK_ERROR_SURFACE_LOST_KHR)
+        PENUMBRA_RESULT_CASE(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+        PENUMBRA_RESULT_CASE(VK_SUBOPTIMAL_KHR)
+        PENUMBRA_RESULT_CASE(VK_ERROR_OUT_OF_DATE_KHR)
+        PENUMBRA_RESULT_CASE(VK_ERROR_VALIDATION_FAILED_EXT)
+#undef PENUMBRA_RESULT_CASE
+        default:
+            return "VK_RESULT_UNKNOWN";
+    }
+}
+
+void throw_vk_failure(const char* expression, VkResult result, const char* file, int line) {
+    const std::string where = std::filesystem::path(file).filename().string() + ":" + std::to_string(line);
+    throw GpuError(std::string("Vulkan call failed: ") + expression + " returned " + result_name(result) + " (" +
+                       where + ")",
+                   result);
+}
+
+}  // namespace penumbra::gpu

@@ -1,0 +1,33 @@
+#pragma once
+// Checked Vulkan calls. PENUMBRA_VK_CHECK(expr) throws GpuError naming the failing
+// expression, the file and line, and the VkResult's name. Calls whose non-success
+// results are expected (timeouts, VK_INCOMPLETE) are handled at the call site instead.
+#include <vulkan/vulkan.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace penumbra::gpu {
+
+class GpuError : public std::runtime_error {
+public:
+    GpuError(const std::string& message, VkResult result) : std::runtime_error(message), result_(result) {}
+    VkResult result() const { return result_; }
+
+private:
+    VkResult result_;
+};
+
+const char* result_name(VkResult result);
+
+[[noreturn]] void throw_vk_failure(const char* expression, VkResult result, const char* file, int line);
+
+}  // namespace penumbra::gpu
+
+#define PENUMBRA_VK_CHECK(expression)                                                       \
+    do {                                                                                    \
+        const VkResult penumbra_vk_result_ = (expression);                                  \
+        if (penumbra_vk_result_ != VK_SUCCESS) {                                            \
+            ::penumbra::gpu::throw_vk_failure(#expression, penumbra_vk_result_, __FILE__, __LINE__); \
+        }                                                                                   \
+    } while (false)

@@ -1,0 +1,205 @@
+#include "gpu/pipeline.hpp"
+
+#include "gpu/check.hpp"
+
+namespace penumbra::gpu {
+
+UniqueShaderModule create_shader_module(const Context& context, std::span<const uint32_t> spirv) {
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = spirv.size_bytes();
+    info.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
+    return UniqueShaderModule(context.device(), module);
+}
+
+namespace {
+
+// Specialization data must outlive vkCreateGraphicsPipelines; one per stage.
+struct StageSpecialization {
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<uint32_t> values;
+    VkSpecializationInfo info{};
+};
+
+void fill_specialization(const ShaderStage& stage, StageSpecialization& out) {
+    for (const SpecializationValue& value : stage.specialization) {
+        const auto offset = static_cast<uint32_t>(out.values.size() * sizeof(uint32_t));
+        out.entries.push_back({value.constant_id, offset, sizeof(uint32_t)});
+        out.values.push_back(value.value);
+    }
+    out.info.mapEntryCount = static_cast<uint32_t>(out.entries.size());
+    out.info.pMapEntries = out.entries.data();
+    out.info.dataSize = out.values.size() * sizeof(uint32_t);
+    out.info.pData = out.values.data();
+}
+
+}  // namespace
+
+UniquePipeline create_graphics_pipeline(const Context& context, const GraphicsPipelineDesc& desc) {
+    std::vector<UniqueShaderModule> modules;
+    std::vector<StageSpecialization> specializations(desc.stages.size());
+    std::vector<VkPipelineShaderStageCreateInfo> stages;
+    for (size_t i = 0; i < desc.stages.size(); ++i) {
+        modules.push_back(create_shader_module(context, desc.stages[i].spirv));
+        fill_specialization(desc.stages[i], specializations[i]);
+        VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        stage.stage = desc.stages[i].stage;
+        stage.module = modules.back();
+        stage.pName = "main";
+        stage.pSpecializationInfo = specializations[i].entries.empty() ? nullptr : &specializations[i].info;
+        stages.push_back(stage);
+    }
+
+    const VkVertexInputBindingDescription binding{0, desc.vertex_layout.stride, VK_VERTEX_INPUT_RATE_VERTEX};
+    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertex_input.vertexBindingDescriptionCount = 1;
+    vertex_input.pVertexBindingDescriptions = &binding;
+    vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(desc.vertex_layout.attributes.size());
+    vertex_input.pVertexAttributeDescriptions = desc.vertex_layout.attributes.data();
+
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.depthClampEnable = desc.depth_clamp ? VK_TRUE : VK_FALSE;
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = desc.cull_mode;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.depthBiasEnable = desc.depth_bias ? VK_TRUE : VK_FALSE;
+    raster.lineWidth = 1.0f;
+
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = desc.depth_format != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE;
+    depth.depthWriteEnable = desc.depth_write ? VK_TRUE : VK_FALSE;
+    depth.depthCompareOp = desc.depth_compare;
+
+    std::vector<VkPipelineColorBlendAttachmentState> blend_attachments(desc.color_formats.size());
+    for (auto& attachment : blend_attachments) {
+        attachment.colorWriteMask =
+            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    }
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = static_cast<uint32_t>(blend_attachments.size());
+    blend.pAttachments = blend_attachments.data();
+
+    std::vector<VkDynamicState> dynamic_states = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    if (desc.depth_bias) dynamic_states.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = static_cast<uint32_t>(dynamic_states.size());
+    dynamic.pDynamicStates = dynamic_states.data();
+
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.viewMask = desc.view_mask;
+    rendering.colorAttachmentCount = static_cast<uint32_t>(desc.color_formats.size());
+    rendering.pColorAttachmentFormats = desc.color_formats.data();
+    rendering.depthAttachmentFormat = desc.depth_format;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+    info.stageCount = static_cast<uint32_t>(stages.size());
+    info.pStages = stages.data();
+    info.pVertexInputState = &vertex_input;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = desc.layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    return UniquePipeline(context.device(), pipeline);
+}
+
+UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<const VkDescriptorSetLayout> set_layouts,
+                                            std::span<const VkPushConstantRange> push_constants) {
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = static_cast<uint32_t>(set_layouts.size());
+    info.pSetLayouts = set_layouts.data();
+    info.pushConstantRangeCount = static_cast<uint32_t>(push_constants.size());
+    info.pPushConstantRanges = push_constants.data();
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkCreatePipelineLayout(context.device(), &info, nullptr, &layout));
+    return UniquePipelineLayout(context.device(), layout);
+}
+
+UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
+                                                       std::span<const VkDescriptorSetLayoutBinding> bindings) {
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = static_cast<uint32_t>(bindings.size());
+    info.pBindings = bindings.data();
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkCreateDescriptorSetLayout(context.device(), &info, nullptr, &layout));
+    return UniqueDescriptorSetLayout(context.device(), layout);
+}
+
+UniqueDescriptorPool create_descriptor_pool(const Context& context, uint32_t max_sets,
+                                            std::span<const VkDescriptorPoolSize> sizes) {
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = max_sets;
+    info.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkCreateDescriptorPool(context.device(), &info, nullptr, &pool));
+    return UniqueDescriptorPool(context.device(), pool);
+}
+
+VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = pool;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkAllocateDescriptorSets(context.device(), &info, &set));
+    return set;
+}
+
+void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                          VkDeviceSize size) {
+    const VkDescriptorBufferInfo buffer_info{buffer, 0, size};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    write.pBufferInfo = &buffer_info;
+    vkUpdateDescriptorSets(context.device(), 1, &write, 0, nullptr);
+}
+
+void write_combined_image_sampler(const Context& context, VkDescriptorSet set, uint32_t binding, VkImageView view,
+                                  VkSampler sampler) {
+    const VkDescriptorImageInfo image_info{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = &image_info;
+    vkUpdateDescriptorSets(context.device(), 1, &write, 0, nullptr);
+}
+
+UniqueSampler create_sampler(const Context& context, const SamplerDesc& desc) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = desc.filter;
+    info.minFilter = desc.filter;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = desc.address;
+    info.addressModeV = desc.address;
+    info.addressModeW = desc.address;
+    info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
+    info.compareOp = desc.compare_op;
+    info.borderColor = desc.border;
+    info.maxLod = 0.0f;
+    VkSampler sampler = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler));
+    return UniqueSampler(context.device(), sampler);
+}
+
+}  // namespace penumbra::gpu

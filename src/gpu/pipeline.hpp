@@ -1,0 +1,75 @@
+#pragma once
+// Graphics pipelines for dynamic rendering, shader modules from embedded SPIR-V,
+// descriptor-set layouts, pools and samplers.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+
+namespace penumbra::gpu {
+
+UniqueShaderModule create_shader_module(const Context& context, std::span<const uint32_t> spirv);
+
+struct SpecializationValue {
+    uint32_t constant_id;
+    uint32_t value;  // 32-bit int/uint/bool (VK_TRUE/VK_FALSE) or float bits
+};
+
+struct ShaderStage {
+    VkShaderStageFlagBits stage;
+    std::span<const uint32_t> spirv;
+    std::vector<SpecializationValue> specialization;
+};
+
+struct VertexLayout {
+    uint32_t stride = 0;
+    std::vector<VkVertexInputAttributeDescription> attributes;
+};
+
+struct GraphicsPipelineDesc {
+    std::vector<ShaderStage> stages;  // a depth-only pipeline has no fragment stage
+    VertexLayout vertex_layout;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    std::vector<VkFormat> color_formats;
+    VkFormat depth_format = VK_FORMAT_UNDEFINED;
+    VkCompareOp depth_compare = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reverse-Z
+    bool depth_write = true;
+    VkCullModeFlags cull_mode = VK_CULL_MODE_BACK_BIT;
+    bool depth_bias = false;   // dynamic depth bias (vkCmdSetDepthBias)
+    bool depth_clamp = false;  // flatten geometry in front of the near plane onto it
+    uint32_t view_mask = 0;    // multiview: one bit per rendered layer
+};
+
+UniquePipeline create_graphics_pipeline(const Context& context, const GraphicsPipelineDesc& desc);
+
+UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<const VkDescriptorSetLayout> set_layouts,
+                                            std::span<const VkPushConstantRange> push_constants);
+
+UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
+                                                       std::span<const VkDescriptorSetLayoutBinding> bindings);
+
+UniqueDescriptorPool create_descriptor_pool(const Context& context, uint32_t max_sets,
+                                            std::span<const VkDescriptorPoolSize> sizes);
+
+VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+
+void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                          VkDeviceSize size);
+void write_combined_image_sampler(const Context& context, VkDescriptorSet set, uint32_t binding, VkImageView view,
+                                  VkSampler sampler);
+
+struct SamplerDesc {
+    VkFilter filter = VK_FILTER_LINEAR;
+    VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    bool compare = false;  // depth comparison sampler (sampler2DArrayShadow)
+    VkCompareOp compare_op = VK_COMPARE_OP_GREATER_OR_EQUAL;
+    VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+};
+
+UniqueSampler create_sampler(const Context& context, const SamplerDesc& desc);
+
+}  // namespace penumbra::gpu

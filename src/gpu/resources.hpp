@@ -1,0 +1,63 @@
+#pragma once
+// Buffers and images with their memory, as move-only RAII values, plus the factory
+// helpers for the kinds Penumbra uses (vertex/index/uniform buffers, readback
+// buffers, colour and depth render targets, layered shadow maps, textures).
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+
+namespace penumbra::gpu {
+
+enum class MemoryKind {
+    DeviceLocal,  // GPU-only; filled through a staging copy
+    HostUpload,   // host-visible and coherent, persistently mapped (uniforms, staging)
+    HostReadback  // host-visible, cached where possible, persistently mapped (readback)
+};
+
+struct Buffer {
+    UniqueBuffer buffer;
+    UniqueMemory memory;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;  // non-null for host-visible kinds
+
+    VkBuffer get() const { return buffer.get(); }
+};
+
+Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind);
+
+// Creates a device-local buffer holding `bytes` (copied through a staging buffer).
+Buffer create_buffer_with_data(const Context& context, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+
+struct ImageDesc {
+    VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+    uint32_t width = 1;
+    uint32_t height = 1;
+    uint32_t layers = 1;
+    VkImageUsageFlags usage = 0;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    bool array_view = false;  // view the image as a 2D array even with one layer
+};
+
+struct Image {
+    UniqueImage image;
+    UniqueMemory memory;
+    UniqueImageView view;                     // all layers
+    std::vector<UniqueImageView> layer_views;  // one 2D view per layer (when layers > 1 or array_view)
+    ImageDesc desc;
+
+    VkImage get() const { return image.get(); }
+    VkExtent2D extent() const { return {desc.width, desc.height}; }
+};
+
+Image create_image(const Context& context, const ImageDesc& desc);
+
+// An RGBA8 sRGB texture with the given pixels, ready for sampling (SHADER_READ_ONLY).
+Image create_texture_rgba8(const Context& context, uint32_t width, uint32_t height, std::span<const uint8_t> rgba);
+
+}  // namespace penumbra::gpu

@@ -1,0 +1,52 @@
+#include "passes/draw_recording.hpp"
+
+#include <cstddef>
+
+#include "core/scene.hpp"
+
+namespace penumbra::passes {
+
+gpu::VertexLayout scene_vertex_layout(VertexAttributes attributes) {
+    gpu::VertexLayout layout;
+    layout.stride = sizeof(Vertex);
+    layout.attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))});
+    if (attributes == VertexAttributes::PositionNormalUv) {
+        layout.attributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))});
+    }
+    layout.attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv))});
+    return layout;
+}
+
+shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBinding& material, uint32_t cascade) {
+    shader::DrawPushConstants constants{};
+    constants.model = draw.model;
+    constants.base_color = material.base_color;
+    constants.material = {material.alpha_cutoff, material.roughness, material.metallic, 0.0f};
+    constants.flags = {cascade, material.has_texture ? 1u : 0u,
+                       material.alpha_masked ? PENUMBRA_ALPHA_MASK : PENUMBRA_ALPHA_OPAQUE, 0u};
+    return constants;
+}
+
+void set_viewport_and_scissor(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+    const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, const Draw& draw,
+                 uint32_t cascade) {
+    const MaterialBinding& material = data.materials[draw.material];
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, PENUMBRA_SET_MATERIAL, 1,
+                            &material.descriptor_set, 0, nullptr);
+    const shader::DrawPushConstants constants = draw_push_constants(draw, material, cascade);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants),
+                       &constants);
+    vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+}
+
+VkPushConstantRange draw_push_constant_range() {
+    return {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(shader::DrawPushConstants)};
+}
+
+}  // namespace penumbra::passes

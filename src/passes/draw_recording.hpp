@@ -1,0 +1,29 @@
+#pragma once
+// Helpers shared by the passes for recording draws: push constants from a draw and
+// its material, vertex layout, viewport and scissor.
+#include <vulkan/vulkan.h>
+
+#include "gpu/pipeline.hpp"
+#include "passes/draw_data.hpp"
+#include "passes/shader_interface.hpp"
+
+namespace penumbra::passes {
+
+enum class VertexAttributes {
+    PositionNormalUv,  // locations 0, 1, 2
+    PositionUv,        // locations 0 and 2 (depth passes need no normal)
+};
+
+gpu::VertexLayout scene_vertex_layout(VertexAttributes attributes);
+
+shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBinding& material, uint32_t cascade);
+
+void set_viewport_and_scissor(VkCommandBuffer cmd, uint32_t width, uint32_t height);
+
+// Binds the material's descriptor set and push constants, then issues the indexed draw.
+void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, const Draw& draw,
+                 uint32_t cascade);
+
+VkPushConstantRange draw_push_constant_range();
+
+}  // namespace penumbra::passes

@@ -1,0 +1,47 @@
+#pragma once
+// Forward lighting pass: shades the scene with the sun, ambient and the cascaded
+// shadow map, writing three colour targets (tone-mapped sRGB colour, the sun's exact
+// visibility, the cascade index) and a reverse-Z depth buffer.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+#include "gpu/context.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "passes/draw_data.hpp"
+
+namespace penumbra::passes {
+
+struct LightingTargets {
+    gpu::Image color;       // R8G8B8A8_SRGB
+    gpu::Image visibility;  // R16_UNORM, 1 where no geometry
+    gpu::Image cascade;     // R8_UINT, PENUMBRA_NO_CASCADE where none applies
+    gpu::Image depth;       // D32_SFLOAT, reverse-Z
+};
+
+class LightingPass {
+public:
+    LightingPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
+                 uint32_t height);
+
+    // Set 0: binding 0 = frame uniforms, binding 1 = the shadow map (sampler2DArrayShadow).
+    VkDescriptorSetLayout frame_set_layout() const { return frame_set_layout_; }
+    const LightingTargets& targets() const { return targets_; }
+
+    // Renders every draw; leaves the colour targets in TRANSFER_SRC for readback.
+    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const;
+
+private:
+    void begin_rendering(VkCommandBuffer cmd) const;
+
+    uint32_t width_;
+    uint32_t height_;
+    LightingTargets targets_;
+    gpu::UniqueDescriptorSetLayout frame_set_layout_;
+    gpu::UniquePipelineLayout pipeline_layout_;
+    gpu::UniquePipeline single_sided_;  // back faces culled
+    gpu::UniquePipeline double_sided_;  // no culling
+};
+
+}  // namespace penumbra::passes

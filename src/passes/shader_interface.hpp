@@ -1,0 +1,33 @@
+#pragma once
+// The C++ side of shaders/include/penumbra_shared.h: the same structs, checked member
+// by member against std140 offsets so that C++ and GLSL cannot disagree.
+#include <cstddef>
+#include <cstdint>
+
+#include "core/glm_config.hpp"
+
+namespace penumbra::shader {
+
+using mat4 = glm::mat4;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+
+#include "penumbra_shared.h"
+
+static_assert(sizeof(mat4) == 64 && sizeof(vec4) == 16 && sizeof(uvec4) == 16);
+static_assert(offsetof(FrameUniforms, view) == 64);
+static_assert(offsetof(FrameUniforms, cascade_view_projection) == 128);
+static_assert(offsetof(FrameUniforms, camera_position) == 128 + 64 * PENUMBRA_MAX_CASCADES);
+static_assert(offsetof(FrameUniforms, cascade_split_far) == offsetof(FrameUniforms, camera_position) + 16 * 4);
+static_assert(offsetof(FrameUniforms, shadow_params) ==
+              offsetof(FrameUniforms, cascade_split_far) + 16 * (PENUMBRA_MAX_CASCADES / 2));
+static_assert(offsetof(FrameUniforms, options) == offsetof(FrameUniforms, shadow_params) + 32);
+static_assert(sizeof(FrameUniforms) == offsetof(FrameUniforms, options) + 16);
+
+static_assert(offsetof(DrawPushConstants, base_color) == 64);
+static_assert(offsetof(DrawPushConstants, material) == 80);
+static_assert(offsetof(DrawPushConstants, flags) == 96);
+static_assert(sizeof(DrawPushConstants) == 112);
+static_assert(sizeof(DrawPushConstants) <= 128, "Vulkan guarantees only 128 bytes of push constants");
+
+}  // namespace penumbra::shader

@@ -1,0 +1,61 @@
+#pragma once
+// Shadow-map depth pass for the directional light's cascades. Owns the layered D32
+// shadow map (one layer per cascade) and two pipelines per strategy: opaque casters
+// with no fragment shader, and alpha-masked casters whose fragment shader discards
+// below the material's cutoff. Per-cascade strategy: one rendering pass per layer with
+// that cascade's culled draws. Multiview strategy: one pass whose view mask covers
+// every cascade; the vertex shader picks the cascade matrix by gl_ViewIndex.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "core/shadow_settings.hpp"
+#include "gpu/context.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "passes/draw_data.hpp"
+
+namespace penumbra::passes {
+
+// Indices into DrawData::draws to render into one cascade.
+using CascadeDrawList = std::vector<uint32_t>;
+
+class ShadowPass {
+public:
+    ShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
+               uint32_t cascade_count);
+
+    // Set 0 of the shadow pipelines: binding 0 = the frame uniform buffer.
+    VkDescriptorSetLayout frame_set_layout() const { return frame_set_layout_; }
+    const gpu::Image& shadow_map() const { return shadow_map_; }
+    uint32_t cascade_count() const { return cascade_count_; }
+
+    // Records the depth rendering of every cascade and leaves the shadow map ready for
+    // fragment-shader sampling. draw_lists[c] are the draws for cascade c.
+    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data,
+                const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias,
+                ShadowStrategy strategy) const;
+
+private:
+    void record_per_cascade(VkCommandBuffer cmd, const DrawData& data, const std::vector<CascadeDrawList>& lists,
+                            const BiasSettings& bias) const;
+    void record_multiview(VkCommandBuffer cmd, const DrawData& data, const std::vector<CascadeDrawList>& lists,
+                          const BiasSettings& bias) const;
+    void record_draws(VkCommandBuffer cmd, const DrawData& data, const CascadeDrawList& list, uint32_t cascade,
+                      VkPipeline opaque, VkPipeline masked) const;
+    void begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias) const;
+
+    const gpu::Context& context_;
+    uint32_t resolution_;
+    uint32_t cascade_count_;
+    gpu::Image shadow_map_;
+    gpu::UniqueDescriptorSetLayout frame_set_layout_;
+    gpu::UniquePipelineLayout pipeline_layout_;
+    gpu::UniquePipeline opaque_per_cascade_;
+    gpu::UniquePipeline masked_per_cascade_;
+    gpu::UniquePipeline opaque_multiview_;
+    gpu::UniquePipeline masked_multiview_;
+};
+
+}  // namespace penumbra::passes

@@ -1,0 +1,83 @@
+#include "renderer/render_job.hpp"
+
+#include "core/errors.hpp"
+#include "image/png_io.hpp"
+#include "renderer/renderer.hpp"
+#include "scene/scene_loader.hpp"
+#include "scene/settings_toml.hpp"
+
+namespace penumbra {
+namespace {
+
+struct PreparedJob {
+    Scene scene;
+    RenderSettings settings;
+};
+
+// Scene file < config file < command line; each source is validated under its own name.
+PreparedJob prepare(const RenderJob& job) {
+    const std::string scene_spec = job.scene.empty() ? std::string(kDefaultSceneName) : job.scene;
+    PreparedJob prepared{load_scene(scene_spec), RenderSettings{}};
+    if (!scene_spec.starts_with(kBuiltinPrefix)) {
+        const SettingsOverrides from_scene = load_settings_from_scene_file(scene_spec);
+        apply_overrides(from_scene, prepared.settings);
+        validate_render_settings(prepared.settings, scene_spec);
+    }
+    if (job.config) {
+        const SettingsOverrides from_config = load_settings_file(*job.config);
+        apply_overrides(from_config, prepared.settings);
+        apply_overrides(from_config, prepared.scene);
+        validate_render_settings(prepared.settings, job.config->string());
+        validate_camera_and_sun(prepared.scene, job.config->string());
+    }
+    apply_overrides(job.overrides, prepared.settings);
+    apply_overrides(job.overrides, prepared.scene);
+    prepared.settings.debug = job.debug;
+    validate_render_settings(prepared.settings, "command line");
+    validate_camera_and_sun(prepared.scene, "command line");
+    return prepared;
+}
+
+void check_validation(const gpu::ValidationLog& log) {
+    const size_t count = log.messages.size();
+    if (count > 0) {
+        throw ValidationFailure("the validation layer reported " + std::to_string(count) +
+                                " message(s); no output was written");
+    }
+}
+
+void write_output(const RenderJob& job, const renderer::FrameImages& images) {
+    switch (job.aov) {
+        case Aov::None:
+            write_png_rgba8(job.output, images.width, images.height, images.color_rgba8);
+            break;
+        case Aov::Shadow:
+            write_png_gray16(job.output, images.width, images.height, images.visibility);
+            break;
+        case Aov::Cascade:
+            write_png_gray8(job.output, images.width, images.height, images.cascade);
+            break;
+    }
+}
+
+}  // namespace
+
+RenderSummary run_render_job(const RenderJob& job) {
+    const PreparedJob prepared = prepare(job);
+    gpu::ContextOptions device_options = job.device;
+    device_options.log = std::make_shared<gpu::ValidationLog>();
+    renderer::FrameImages images;
+    std::string device_name;
+    {
+        gpu::Context context(device_options);
+        device_name = context.info().name;
+        renderer::Renderer renderer(context, prepared.scene, prepared.settings);
+        images = renderer.render(prepared.scene.camera);
+    }
+    // Checked after the device and instance are gone, so leak reports count too.
+    check_validation(*device_options.log);
+    write_output(job, images);
+    return {job.output, device_name, images.width, images.height};
+}
+
+}  // namespace penumbra

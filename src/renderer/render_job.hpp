@@ -1,0 +1,46 @@
+#pragma once
+// The library entry point behind `penumbra render`: load a scene, merge settings from
+// the scene file, a config file and explicit overrides, render one frame and write the
+// requested image atomically. Errors throw InputError (bad input), DeviceError (no
+// usable Vulkan device) or ValidationFailure (the validation layer reported problems).
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/settings_overrides.hpp"
+#include "gpu/context.hpp"
+
+namespace penumbra {
+
+enum class Aov {
+    None,     // the tone-mapped colour image (8-bit sRGB RGBA)
+    Shadow,   // the sun's visibility, 16-bit gray: 65535 lit, 0 shadowed or facing away
+    Cascade,  // the cascade index, 8-bit gray: 0 nearest, 255 none
+};
+
+struct RenderJob {
+    std::string scene;  // a .toml path or "builtin:NAME"; empty = the default scene
+    std::filesystem::path output = "penumbra.png";
+    std::optional<std::filesystem::path> config;
+    SettingsOverrides overrides;  // from the command line: highest priority
+    DebugView debug = DebugView::None;
+    Aov aov = Aov::None;
+    gpu::ContextOptions device;
+};
+
+class ValidationFailure : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct RenderSummary {
+    std::filesystem::path output;
+    std::string device_name;
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+
+RenderSummary run_render_job(const RenderJob& job);
+
+}  // namespace penumbra

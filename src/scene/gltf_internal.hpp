@@ -1,0 +1,47 @@
+#pragma once
+// Pieces of the glTF loader (gltf_loader.cpp) shared by its source files. tinygltf parses
+// the JSON and decodes buffers and images but does not check that accessors, buffer views
+// and indices stay inside their buffers, so everything read from a model goes through the
+// checked readers below: a malformed file is an InputError, never an out-of-bounds read.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "core/scene.hpp"
+
+namespace penumbra {
+
+// The loaded model and the name used in its error messages.
+struct GltfSource {
+    const tinygltf::Model& model;
+    std::string origin;
+
+    // Throws InputError("<origin>: <where>: <problem>"); `where` is a JSON path such as
+    // "meshes[0].primitives[1].indices".
+    [[noreturn]] void fail(const std::string& where, const std::string& problem) const;
+};
+
+// Reads the whole accessor, converting to the requested type. Each throws unless the
+// accessor's component type and element type are among those glTF allows for the use.
+std::vector<glm::vec3> read_float_vec3_accessor(const GltfSource& source, int accessor, const std::string& where);
+// TEXCOORD: float, or normalized unsigned byte/short.
+std::vector<glm::vec2> read_texcoord_accessor(const GltfSource& source, int accessor, const std::string& where);
+// Indices: unsigned byte, short or int scalars.
+std::vector<uint32_t> read_index_accessor(const GltfSource& source, int accessor, const std::string& where);
+// Number of elements of a checked accessor (throws like the readers when malformed).
+size_t accessor_count(const GltfSource& source, int accessor, const std::string& where);
+
+// Converts one glTF primitive to a triangle-list Mesh (material left 0 for the caller).
+// Returns nullopt for points and lines, which cast no shadow, and for primitives without
+// triangles; strips and fans become lists.
+std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinygltf::Primitive& primitive,
+                                           const std::string& where);
+
+// Converts a decoded image (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
+// image holds no pixels (it failed to decode) or its size does not match its header.
+Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, const std::string& where);
+
+}  // namespace penumbra

@@ -1,0 +1,19 @@
+#pragma once
+// glTF 2.0 (.gltf with external or embedded buffers, and .glb) into a penumbra::Scene:
+// node hierarchy and transforms, triangle meshes with 16/32-bit indices, positions,
+// normals (computed when missing), UV0, base colour factor and texture, alphaMode with
+// alphaCutoff, doubleSided.
+#include <filesystem>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace penumbra {
+
+// Appends the model's meshes, materials and textures to `scene` and one Instance per
+// (mesh primitive, placement): instance.world = placement * node world transform.
+// Throws InputError naming the file and the problem (missing file, malformed JSON,
+// out-of-range accessor or index, missing buffer, unsupported primitive mode...).
+void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements);
+
+}  // namespace penumbra

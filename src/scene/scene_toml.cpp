@@ -1,0 +1,148 @@
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "scene/scene_loader.hpp"
+#include "scene/scene_objects.hpp"
+#include "scene/toml_fields.hpp"
+
+namespace penumbra {
+namespace {
+
+std::string format_vec3(const glm::vec3& value) {
+    return "[" + format_number(value.x) + ", " + format_number(value.y) + ", " + format_number(value.z) + "]";
+}
+
+toml::table parse_toml_text(std::string_view text, const std::string& origin) {
+    try {
+        return toml::parse(text, origin);
+    } catch (const toml::parse_error& error) {
+        std::string description(error.description());
+        for (char& c : description) {
+            if (c == '\n' || c == '\r') c = ' ';
+        }
+        const toml::source_position where = error.source().begin;
+        throw InputError(origin + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
+                         ": malformed TOML: " + description);
+    }
+}
+
+void require_non_negative(TomlTableReader& reader, std::string_view key, const glm::vec3& color) {
+    if (color.r < 0.0f || color.g < 0.0f || color.b < 0.0f) {
+        reader.fail(key, "components must be >= 0, got " + format_vec3(color));
+    }
+}
+
+Camera read_camera(TomlTableReader reader) {
+    Camera camera;
+    camera.eye = reader.vec3_or("eye", camera.eye);
+    camera.target = reader.vec3_or("target", camera.target);
+    camera.up = reader.vec3_or("up", camera.up);
+    camera.fov_y_degrees = reader.number_or("fov", camera.fov_y_degrees);
+    camera.near_plane = reader.number_or("near", camera.near_plane);
+    camera.far_plane = reader.number_or("far", camera.far_plane);
+    reader.reject_unknown_keys();
+
+    if (camera.eye == camera.target) {
+        reader.fail("target", "equals eye " + format_vec3(camera.eye) + ", so the camera has no view direction");
+    }
+    if (glm::length(camera.up) == 0.0f) reader.fail("up", "zero-length vector " + format_vec3(camera.up));
+    // An up parallel to the view direction is legal here: make_camera_view() picks another.
+    camera.up = glm::normalize(camera.up);
+    if (camera.fov_y_degrees <= 0.0f || camera.fov_y_degrees >= 180.0f) {
+        reader.fail("fov", "must be between 0 and 180 degrees (exclusive), got " + format_number(camera.fov_y_degrees));
+    }
+    if (camera.near_plane <= 0.0f) reader.fail("near", "must be > 0, got " + format_number(camera.near_plane));
+    if (camera.far_plane <= camera.near_plane) {
+        reader.fail("far", "must be greater than near (" + format_number(camera.near_plane) + "), got " +
+                               format_number(camera.far_plane));
+    }
+    return camera;
+}
+
+LightType read_light_type(TomlTableReader& reader) {
+    const std::string type = reader.optional_string("type").value_or("directional");
+    if (type == "directional") return LightType::Directional;
+    if (type == "spot" || type == "point") {
+        reader.fail("type", "light type \"" + type + "\" is not supported yet (only \"directional\" is)");
+    }
+    reader.fail("type", "unknown light type \"" + type + "\" (expected directional)");
+}
+
+Light read_light(TomlTableReader reader) {
+    Light light;
+    light.type = read_light_type(reader);
+    light.direction = reader.vec3_or("direction", light.direction);
+    light.color = reader.vec3_or("color", light.color);
+    light.intensity = reader.number_or("intensity", light.intensity);
+    light.angular_diameter_degrees = reader.number_or("angular_diameter", light.angular_diameter_degrees);
+    light.cast_shadows = reader.boolean_or("cast_shadows", light.cast_shadows);
+    reader.reject_unknown_keys();
+
+    if (glm::length(light.direction) == 0.0f) {
+        reader.fail("direction", "zero-length vector " + format_vec3(light.direction));
+    }
+    light.direction = glm::normalize(light.direction);
+    require_non_negative(reader, "color", light.color);
+    if (light.intensity < 0.0f) reader.fail("intensity", "must be >= 0, got " + format_number(light.intensity));
+    if (light.angular_diameter_degrees < 0.0f || light.angular_diameter_degrees > 45.0f) {
+        reader.fail("angular_diameter",
+                    "must be between 0 and 45 degrees, got " + format_number(light.angular_diameter_degrees));
+    }
+    return light;
+}
+
+glm::vec3 read_ambient(TomlTableReader reader, const glm::vec3& fallback) {
+    const glm::vec3 color = reader.vec3_or("color", fallback);
+    reader.reject_unknown_keys();
+    require_non_negative(reader, "color", color);
+    return color;
+}
+
+std::string read_text_file(const std::filesystem::path& file, const std::string& origin) {
+    std::error_code error;
+    if (!std::filesystem::exists(file, error)) throw InputError(origin + ": scene file not found");
+    if (!std::filesystem::is_regular_file(file, error)) throw InputError(origin + ": not a regular file");
+    std::ifstream stream(file, std::ios::binary);
+    std::ostringstream text;
+    text << stream.rdbuf();
+    if (!stream) throw InputError(origin + ": cannot read the scene file");
+    return text.str();
+}
+
+}  // namespace
+
+Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory) {
+    const toml::table root = parse_toml_text(text, origin);
+    TomlTableReader reader(root, origin, "");
+    // [shadow] and [output] are render settings, parsed by the layer that owns them.
+    reader.accept("shadow");
+    reader.accept("output");
+    Scene scene;
+    if (const toml::table* camera = reader.optional_table("camera")) {
+        scene.camera = read_camera(TomlTableReader(*camera, origin, "camera"));
+    }
+    const std::vector<const toml::table*> lights = reader.table_array("lights");
+    for (size_t i = 0; i < lights.size(); ++i) {
+        scene.lights.push_back(read_light(TomlTableReader(*lights[i], origin, "lights[" + std::to_string(i) + "]")));
+    }
+    if (const toml::table* ambient = reader.optional_table("ambient")) {
+        scene.ambient = read_ambient(TomlTableReader(*ambient, origin, "ambient"), scene.ambient);
+    }
+    reader.contains("objects");
+    // Unknown top-level tables are reported before the (possibly slow) model loading.
+    reader.reject_unknown_keys();
+    append_scene_objects(reader, scene, base_directory);
+    return scene;
+}
+
+Scene load_scene(const std::string& path_or_builtin) {
+    if (path_or_builtin.starts_with(kBuiltinPrefix)) {
+        return builtin_scene(path_or_builtin.substr(kBuiltinPrefix.size()));
+    }
+    const std::filesystem::path file(path_or_builtin);
+    const std::string text = read_text_file(file, path_or_builtin);
+    return parse_scene_toml(text, path_or_builtin, file.parent_path());
+}
+
+}  // namespace penumbra

@@ -1,0 +1,220 @@
+#include "scene/toml_fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "core/errors.hpp"
+
+namespace penumbra {
+namespace {
+
+std::string quoted(std::string_view text) {
+    std::string result = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') result += '\\';
+        // Control characters (a newline inside a value) would break the one-line message.
+        result += (static_cast<unsigned char>(c) < 0x20) ? '?' : c;
+    }
+    return result + "\"";
+}
+
+std::string join_keys(const std::vector<std::string>& keys) {
+    std::string result;
+    for (size_t i = 0; i < keys.size(); ++i) result += (i == 0 ? "" : ", ") + keys[i];
+    return result;
+}
+
+std::string value_text(const toml::node& node) {
+    if (const auto* text = node.as_string()) return quoted(text->get());
+    if (const auto* integer = node.as_integer()) return std::to_string(integer->get());
+    if (const auto* floating = node.as_floating_point()) return format_number(floating->get());
+    if (const auto* boolean = node.as_boolean()) return boolean->get() ? "true" : "false";
+    if (const auto* array = node.as_array()) {
+        std::string result = "[";
+        for (size_t i = 0; i < array->size(); ++i) result += (i == 0 ? "" : ", ") + value_text(*array->get(i));
+        return result + "]";
+    }
+    if (node.is_table()) return "{...}";
+    std::ostringstream text;
+    if (const auto* date = node.as_date()) text << *date;
+    if (const auto* time = node.as_time()) text << *time;
+    if (const auto* date_time = node.as_date_time()) text << *date_time;
+    return text.str();
+}
+
+std::string type_name(const toml::node& node) {
+    switch (node.type()) {
+        case toml::node_type::string: return "a string";
+        case toml::node_type::integer:
+        case toml::node_type::floating_point: return "a number";
+        case toml::node_type::boolean: return "a boolean";
+        case toml::node_type::array: return "an array";
+        case toml::node_type::table: return "a table";
+        default: return "a date/time";
+    }
+}
+
+}  // namespace
+
+void throw_scene_error(const std::string& origin, const std::string& key_path, const std::string& problem) {
+    throw InputError(origin + ": " + key_path + ": " + problem);
+}
+
+std::string format_number(double value) {
+    std::ostringstream text;
+    // Values end up as floats: 7 significant digits print 0.1f as "0.1", not "0.100000001".
+    text.precision(7);
+    text << value;
+    return text.str();
+}
+
+std::string describe_toml_value(const toml::node& node) {
+    if (node.is_table()) return "a table";
+    return type_name(node) + " " + value_text(node);
+}
+
+TomlTableReader::TomlTableReader(const toml::table& table, std::string origin, std::string path)
+    : table_(table), origin_(std::move(origin)), path_(std::move(path)) {}
+
+std::string TomlTableReader::key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+void TomlTableReader::fail(std::string_view key, const std::string& problem) const {
+    throw_scene_error(origin_, key_path(key), problem);
+}
+
+const toml::node* TomlTableReader::find(std::string_view key) {
+    accept(key);
+    return table_.get(key);
+}
+
+bool TomlTableReader::contains(std::string_view key) { return find(key) != nullptr; }
+
+void TomlTableReader::accept(std::string_view key) {
+    if (std::find(known_keys_.begin(), known_keys_.end(), key) == known_keys_.end()) known_keys_.emplace_back(key);
+}
+
+std::optional<std::string> TomlTableReader::optional_string(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_string()) fail(key, "expected a string, got " + describe_toml_value(*node));
+    return node->as_string()->get();
+}
+
+std::string TomlTableReader::required_string(std::string_view key) {
+    std::optional<std::string> text = optional_string(key);
+    if (!text) fail(key, "missing (a string is required)");
+    return *text;
+}
+
+std::optional<double> TomlTableReader::optional_number(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_number()) fail(key, "expected a number, got " + describe_toml_value(*node));
+    const double value = *node->value<double>();
+    if (!std::isfinite(value)) fail(key, "expected a finite number, got " + value_text(*node));
+    return value;
+}
+
+float TomlTableReader::number_or(std::string_view key, float fallback) {
+    return static_cast<float>(optional_number(key).value_or(fallback));
+}
+
+bool TomlTableReader::boolean_or(std::string_view key, bool fallback) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return fallback;
+    if (!node->is_boolean()) fail(key, "expected true or false, got " + describe_toml_value(*node));
+    return node->as_boolean()->get();
+}
+
+std::vector<double> TomlTableReader::number_array(std::string_view key, const toml::array& array, size_t min_size,
+                                                  size_t max_size) const {
+    const std::string expected = min_size == max_size
+                                     ? "an array of " + std::to_string(min_size) + " numbers"
+                                     : "an array of " + std::to_string(min_size) + " to " +
+                                           std::to_string(max_size) + " numbers";
+    if (array.size() < min_size || array.size() > max_size) {
+        fail(key, "expected " + expected + ", got " + describe_toml_value(array));
+    }
+    std::vector<double> values;
+    for (const toml::node& element : array) {
+        const std::optional<double> value = element.is_number() ? element.value<double>() : std::nullopt;
+        if (!value || !std::isfinite(*value)) fail(key, "expected " + expected + ", got " + describe_toml_value(array));
+        values.push_back(*value);
+    }
+    return values;
+}
+
+std::optional<glm::vec2> TomlTableReader::optional_vec2(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_array()) fail(key, "expected an array of 2 numbers, got " + describe_toml_value(*node));
+    const std::vector<double> values = number_array(key, *node->as_array(), 2, 2);
+    return glm::vec2{values[0], values[1]};
+}
+
+std::optional<glm::vec3> TomlTableReader::optional_vec3(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_array()) fail(key, "expected an array of 3 numbers, got " + describe_toml_value(*node));
+    const std::vector<double> values = number_array(key, *node->as_array(), 3, 3);
+    return glm::vec3{values[0], values[1], values[2]};
+}
+
+glm::vec3 TomlTableReader::vec3_or(std::string_view key, const glm::vec3& fallback) {
+    return optional_vec3(key).value_or(fallback);
+}
+
+std::optional<glm::vec3> TomlTableReader::optional_vec3_or_scalar(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node != nullptr && node->is_number()) return glm::vec3{static_cast<float>(*optional_number(key))};
+    if (node != nullptr && !node->is_array()) {
+        fail(key, "expected a number or an array of 3 numbers, got " + describe_toml_value(*node));
+    }
+    return optional_vec3(key);
+}
+
+glm::vec4 TomlTableReader::color_or(std::string_view key, const glm::vec4& fallback) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return fallback;
+    if (!node->is_array()) fail(key, "expected an array of 3 or 4 numbers, got " + describe_toml_value(*node));
+    const std::vector<double> values = number_array(key, *node->as_array(), 3, 4);
+    return glm::vec4{values[0], values[1], values[2], values.size() == 4 ? values[3] : 1.0};
+}
+
+const toml::table* TomlTableReader::optional_table(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return nullptr;
+    if (!node->is_table()) fail(key, "expected a table, got " + describe_toml_value(*node));
+    return node->as_table();
+}
+
+std::vector<const toml::table*> TomlTableReader::table_array(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return {};
+    const toml::array* array = node->as_array();
+    if (array == nullptr) fail(key, "expected an array of tables ([[" + std::string(key) + "]]), got " + describe_toml_value(*node));
+    std::vector<const toml::table*> tables;
+    for (size_t i = 0; i < array->size(); ++i) {
+        const toml::node& element = *array->get(i);
+        if (!element.is_table()) {
+            throw_scene_error(origin_, key_path(key) + "[" + std::to_string(i) + "]",
+                              "expected a table, got " + describe_toml_value(element));
+        }
+        tables.push_back(element.as_table());
+    }
+    return tables;
+}
+
+void TomlTableReader::reject_unknown_keys() const {
+    for (const auto& [key, node] : table_) {
+        const std::string_view name = key.str();
+        if (std::find(known_keys_.begin(), known_keys_.end(), name) != known_keys_.end()) continue;
+        fail(name, "unknown key " + quoted(name) + " (expected " + join_keys(known_keys_) + ")");
+    }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,74 @@
+#pragma once
+// Checked, typed reads from one table of a TOML scene file. Every problem becomes one
+// InputError line "<origin>: <key path>: <problem, with the offending value>", and every
+// key the parser asks about is remembered, so that reject_unknown_keys() turns a typo
+// ("colour", or "radius" on a box) into an error instead of a silently ignored setting.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "core/glm_config.hpp"
+
+namespace penumbra {
+
+// Throws InputError("<origin>: <key_path>: <problem>").
+[[noreturn]] void throw_scene_error(const std::string& origin, const std::string& key_path,
+                                    const std::string& problem);
+
+// `value` with up to 7 significant digits, as a user would write it ("0.1", "180", "-2.5").
+std::string format_number(double value);
+
+// "a string \"cone\"", "an array [1, 2]"...: the offending value for an error message.
+std::string describe_toml_value(const toml::node& node);
+
+class TomlTableReader {
+public:
+    // `path` is the table's key path ("camera", "objects[2]"), empty for the root.
+    TomlTableReader(const toml::table& table, std::string origin, std::string path);
+
+    const std::string& origin() const { return origin_; }
+    // "camera.fov", or "fov" at the root.
+    std::string key_path(std::string_view key) const;
+    [[noreturn]] void fail(std::string_view key, const std::string& problem) const;
+
+    bool contains(std::string_view key);
+    // Marks a key as valid without reading it (tables parsed by another layer).
+    void accept(std::string_view key);
+
+    std::optional<std::string> optional_string(std::string_view key);
+    std::string required_string(std::string_view key);
+    std::optional<double> optional_number(std::string_view key);  // integers accepted; finite only
+    float number_or(std::string_view key, float fallback);
+    bool boolean_or(std::string_view key, bool fallback);
+    // An array of exactly N numbers.
+    std::optional<glm::vec2> optional_vec2(std::string_view key);
+    std::optional<glm::vec3> optional_vec3(std::string_view key);
+    glm::vec3 vec3_or(std::string_view key, const glm::vec3& fallback);
+    // A number s (meaning [s, s, s]) or an array of 3 numbers.
+    std::optional<glm::vec3> optional_vec3_or_scalar(std::string_view key);
+    // [r, g, b] (alpha 1) or [r, g, b, a].
+    glm::vec4 color_or(std::string_view key, const glm::vec4& fallback);
+
+    const toml::table* optional_table(std::string_view key);
+    // An array whose elements are all tables ([[objects]] or inline tables); empty if absent.
+    std::vector<const toml::table*> table_array(std::string_view key);
+
+    // Throws for the first key of the table that no read or accept() asked about,
+    // listing the keys this table understands.
+    void reject_unknown_keys() const;
+
+private:
+    const toml::node* find(std::string_view key);
+    std::vector<double> number_array(std::string_view key, const toml::array& array, size_t min_size,
+                                     size_t max_size) const;
+
+    const toml::table& table_;
+    std::string origin_;
+    std::string path_;
+    std::vector<std::string> known_keys_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,87 @@
+// Malformed glTF files are InputErrors naming the file and the offending part, never a
+// crash or an out-of-bounds read (tests/data/gltf/make_fixtures.py writes these files).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "scene/gltf_loader.hpp"
+#include "scene_test_support.hpp"
+
+namespace penumbra {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+using testing::input_error_message;
+using testing::test_data;
+
+std::string gltf_error(const std::string& name) {
+    const std::string path = test_data("gltf/" + name).string();
+    const std::string message = input_error_message([&] {
+        Scene scene;
+        append_gltf(scene, path, {glm::mat4{1.0f}});
+    });
+    EXPECT_THAT(message, StartsWith(path + ": "));
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    return message;
+}
+
+struct GltfErrorCase {
+    const char* file;
+    const char* expected;  // a distinctive part of the message
+};
+
+void PrintTo(const GltfErrorCase& error_case, std::ostream* out) { *out << error_case.file; }
+
+class GltfError : public ::testing::TestWithParam<GltfErrorCase> {};
+
+TEST_P(GltfError, IsAnInputErrorNamingTheProblem) {
+    EXPECT_THAT(gltf_error(GetParam().file), HasSubstr(GetParam().expected));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    GltfErrors, GltfError,
+    ::testing::Values(
+        GltfErrorCase{"does_not_exist.gltf", "file not found"},
+        GltfErrorCase{"malformed.gltf", "cannot load glTF: "},
+        GltfErrorCase{"truncated.glb", "cannot load glTF: Invalid glTF binary"},
+        GltfErrorCase{"truncated_buffer.gltf", "truncated.bin, requestedBytes 140, but got 70"},
+        GltfErrorCase{"missing_buffer.gltf", "does_not_exist.bin"},
+        GltfErrorCase{"accessor_out_of_range.gltf",
+                      "attributes.POSITION (accessors[0]): 1000 elements of 12 bytes at offset 0 (stride 12) overrun "
+                      "bufferViews[0] of 48 bytes"},
+        GltfErrorCase{"accessor_offset_out_of_range.gltf", "attributes.NORMAL (accessors[1]): 4 elements"},
+        GltfErrorCase{"buffer_view_out_of_range.gltf", "bufferViews[3] spans bytes 128..4224 of a buffer of 140 bytes"},
+        GltfErrorCase{"index_out_of_range.gltf",
+                      "meshes[0].primitives[0].indices: index 7 at position 5 is out of range (the primitive has 4 "
+                      "vertices)"},
+        GltfErrorCase{"missing_accessor.gltf", "accessor 42 does not exist"},
+        GltfErrorCase{"no_position.gltf", "no POSITION attribute"},
+        GltfErrorCase{"wrong_position_type.gltf", "expected VEC3 of FLOAT, got 3 components of UNSIGNED_SHORT"},
+        GltfErrorCase{"unknown_mode.gltf", "meshes[0].primitives[0].mode: unknown primitive mode 9"},
+        GltfErrorCase{"node_cycle.gltf", "the node hierarchy has a cycle"},
+        GltfErrorCase{"missing_material.gltf", "material 5 does not exist"},
+        GltfErrorCase{"bad_alpha_mode.gltf", "unknown alphaMode \"CUTOUT\""},
+        GltfErrorCase{"partial_triangle.gltf", "5 vertex indices do not form whole triangles"}),
+    [](const auto& test_info) {
+        std::string name = test_info.param.file;
+        return name.substr(0, name.find('.'));
+    });
+
+TEST(GltfErrors, UnsupportedExtension) {
+    EXPECT_THAT(gltf_error("make_fixtures.py"), HasSubstr("unsupported model extension \".py\""));
+}
+
+TEST(GltfErrors, FailedLoadLeavesTheSceneUntouched) {
+    Scene scene;
+    append_gltf(scene, test_data("gltf/quad.gltf"), {glm::mat4{1.0f}});
+    // The first mesh, material and instance of this file load before its second mesh fails.
+    const std::string message =
+        input_error_message([&] { append_gltf(scene, test_data("gltf/second_mesh_broken.gltf"), {glm::mat4{1.0f}}); });
+    EXPECT_THAT(message, HasSubstr("meshes[1].primitives[0].material: material 5 does not exist"));
+    EXPECT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(scene.instances.size(), 1u);
+}
+
+}  // namespace
+}  // namespace penumbra
