@@ -9,7 +9,11 @@
 
 namespace penumbra {
 
-enum class DebugView { None, Cascades };
+enum class DebugView {
+    None,
+    Cascades,   // tint the colour image by cascade index
+    ShadowMap,  // also read back the shadow map so its layers can be written side by side
+};
 
 constexpr uint32_t kMaxImageSize = 16384;
 

@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 #include "image/png_io.hpp"
+#include "renderer/debug_images.hpp"
 #include "renderer/renderer.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/settings_toml.hpp"
@@ -47,6 +48,11 @@ void check_validation(const gpu::ValidationLog& log) {
 }
 
 void write_output(const RenderJob& job, const renderer::FrameImages& images) {
+    if (job.debug == DebugView::ShadowMap) {
+        const renderer::GrayImage strip = renderer::shadow_map_strip(images);
+        write_png_gray8(job.output, strip.width, strip.height, strip.pixels);
+        return;
+    }
     switch (job.aov) {
         case Aov::None:
             write_png_rgba8(job.output, images.width, images.height, images.color_rgba8);

@@ -24,7 +24,7 @@ struct RenderJob {
     std::filesystem::path output = "penumbra.png";
     std::optional<std::filesystem::path> config;
     SettingsOverrides overrides;  // from the command line: highest priority
-    DebugView debug = DebugView::None;
+    DebugView debug = DebugView::None;  // ShadowMap writes the map's layers instead of the image
     Aov aov = Aov::None;
     gpu::ContextOptions device;
 };

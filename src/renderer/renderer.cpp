@@ -17,19 +17,29 @@ struct Readback {
     gpu::Buffer color;
     gpu::Buffer visibility;
     gpu::Buffer cascade;
+    gpu::Buffer shadow_map;  // only with DebugView::ShadowMap
 };
 
-Readback create_readback(const gpu::Context& context, uint32_t width, uint32_t height) {
-    const VkDeviceSize pixels = VkDeviceSize{width} * height;
-    const auto make = [&](VkDeviceSize bytes) {
-        return gpu::create_buffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryKind::HostReadback);
-    };
-    return {make(pixels * 4), make(pixels * 2), make(pixels)};
+gpu::Buffer create_readback_buffer(const gpu::Context& context, VkDeviceSize bytes) {
+    return gpu::create_buffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryKind::HostReadback);
 }
 
+Readback create_readback(const gpu::Context& context, const RenderSettings& settings) {
+    const VkDeviceSize pixels = VkDeviceSize{settings.width} * settings.height;
+    Readback readback{create_readback_buffer(context, pixels * 4), create_readback_buffer(context, pixels * 2),
+                      create_readback_buffer(context, pixels), {}};
+    if (settings.debug == DebugView::ShadowMap) {
+        const VkDeviceSize texels = VkDeviceSize{settings.shadow.cascades.resolution} *
+                                    settings.shadow.cascades.resolution * settings.shadow.cascades.count;
+        readback.shadow_map = create_readback_buffer(context, texels * sizeof(float));
+    }
+    return readback;
+}
+
+// Copies every layer of `image` (tightly packed, layer after layer) into `buffer`.
 void copy_image_to_buffer(VkCommandBuffer cmd, const gpu::Image& image, const gpu::Buffer& buffer) {
     VkBufferImageCopy region{};
-    region.imageSubresource = {image.desc.aspect, 0, 0, 1};
+    region.imageSubresource = {image.desc.aspect, 0, 0, image.desc.layers};
     region.imageExtent = {image.desc.width, image.desc.height, 1};
     vkCmdCopyImageToBuffer(cmd, image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
 }
@@ -61,7 +71,7 @@ struct Renderer::Resources {
           lighting_pass(context, gpu_scene.draw_data().material_set_layout, settings.width, settings.height),
           frame_uniforms(gpu::create_buffer(context, sizeof(shader::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                             gpu::MemoryKind::HostUpload)),
-          readback(create_readback(context, settings.width, settings.height)) {
+          readback(create_readback(context, settings)) {
         // Hardware depth comparison with bilinear filtering. Clamp-to-edge rather than a
         // border: the shader already treats lookups outside the map as lit, and lavapipe
         // (Mesa 22.3) returns the border colour for in-range taps of linear-compare array
@@ -116,6 +126,11 @@ FrameImages Renderer::render(const Camera& camera) {
         copy_image_to_buffer(cmd, targets.color, resources_->readback.color);
         copy_image_to_buffer(cmd, targets.visibility, resources_->readback.visibility);
         copy_image_to_buffer(cmd, targets.cascade, resources_->readback.cascade);
+        if (settings_.debug == DebugView::ShadowMap) {
+            const gpu::Image& shadow_map = resources_->shadow_pass.shadow_map();
+            gpu::transition(cmd, shadow_map, gpu::ImageState::FragmentSampled, gpu::ImageState::TransferSrc);
+            copy_image_to_buffer(cmd, shadow_map, resources_->readback.shadow_map);
+        }
         gpu::transfer_to_host_barrier(cmd);
     });
 
@@ -126,6 +141,12 @@ FrameImages Renderer::render(const Camera& camera) {
     images.color_rgba8 = read_buffer<uint8_t>(resources_->readback.color, pixels * 4);
     images.visibility = read_buffer<uint16_t>(resources_->readback.visibility, pixels);
     images.cascade = read_buffer<uint8_t>(resources_->readback.cascade, pixels);
+    if (settings_.debug == DebugView::ShadowMap) {
+        images.shadow_map_resolution = settings_.shadow.cascades.resolution;
+        images.shadow_map_layers = static_cast<uint32_t>(settings_.shadow.cascades.count);
+        images.shadow_map = read_buffer<float>(resources_->readback.shadow_map,
+                                               resources_->readback.shadow_map.size / sizeof(float));
+    }
     return images;
 }
 

@@ -22,6 +22,10 @@ struct FrameImages {
     std::vector<uint8_t> color_rgba8;  // sRGB, row 0 at the top
     std::vector<uint16_t> visibility;  // sun visibility, 65535 = fully lit
     std::vector<uint8_t> cascade;      // cascade index, 255 = none
+    // With DebugView::ShadowMap: the reverse-Z depth of every layer, layer after layer.
+    std::vector<float> shadow_map;
+    uint32_t shadow_map_resolution = 0;
+    uint32_t shadow_map_layers = 0;
 };
 
 struct FrameInfo {

@@ -20,14 +20,22 @@ struct AccessorBytes {
 
 std::string component_type_name(int component_type) {
     switch (component_type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-        case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-        case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-        default: return "component type " + std::to_string(component_type);
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            return "BYTE";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return "UNSIGNED_BYTE";
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            return "SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return "UNSIGNED_SHORT";
+        case TINYGLTF_COMPONENT_TYPE_INT:
+            return "INT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return "UNSIGNED_INT";
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return "FLOAT";
+        default:
+            return "component type " + std::to_string(component_type);
     }
 }
 
@@ -66,8 +74,8 @@ AccessorBytes checked_accessor(const GltfSource& source, int index, const std::s
     const int component_size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
     const int component_count = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
     if (component_size <= 0 || component_count <= 0) {
-        source.fail(accessor_where, "invalid componentType " + std::to_string(accessor.componentType) +
-                                        " or type " + std::to_string(accessor.type));
+        source.fail(accessor_where, "invalid componentType " + std::to_string(accessor.componentType) + " or type " +
+                                        std::to_string(accessor.type));
     }
     const tinygltf::BufferView& view = checked_buffer_view(source, accessor, accessor_where);
     const size_t element_size = static_cast<size_t>(component_size) * static_cast<size_t>(component_count);
@@ -76,8 +84,7 @@ AccessorBytes checked_accessor(const GltfSource& source, int index, const std::s
         source.fail(accessor_where, "byteStride " + std::to_string(stride) + " is smaller than the element size " +
                                         std::to_string(element_size));
     }
-    AccessorBytes bytes{nullptr, accessor.count, stride, accessor.componentType, component_count,
-                        accessor.normalized};
+    AccessorBytes bytes{nullptr, accessor.count, stride, accessor.componentType, component_count, accessor.normalized};
     if (accessor.count == 0) return bytes;
     // count <= byteLength keeps (count - 1) * stride from overflowing (stride <= 255 in valid
     // files, but a malformed one may say anything, hence the division).
@@ -86,8 +93,8 @@ AccessorBytes checked_accessor(const GltfSource& source, int index, const std::s
                       (accessor.count - 1) * stride + element_size <= view.byteLength - accessor.byteOffset;
     if (!fits) {
         source.fail(accessor_where, std::to_string(accessor.count) + " elements of " + std::to_string(element_size) +
-                                        " bytes at offset " + std::to_string(accessor.byteOffset) +
-                                        " (stride " + std::to_string(stride) + ") overrun bufferViews[" +
+                                        " bytes at offset " + std::to_string(accessor.byteOffset) + " (stride " +
+                                        std::to_string(stride) + ") overrun bufferViews[" +
                                         std::to_string(accessor.bufferView) + "] of " +
                                         std::to_string(view.byteLength) + " bytes");
     }
@@ -106,11 +113,14 @@ T read_unaligned(const unsigned char* bytes) {
 float read_normalized_component(const AccessorBytes& bytes, size_t element, int component) {
     const unsigned char* at = bytes.first + element * bytes.stride;
     switch (bytes.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return read_unaligned<float>(at + 4 * component);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return static_cast<float>(at[component]) / 255.0f;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return read_unaligned<float>(at + 4 * component);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return static_cast<float>(at[component]) / 255.0f;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
             return static_cast<float>(read_unaligned<uint16_t>(at + 2 * component)) / 65535.0f;
-        default: return 0.0f;  // excluded by the callers' type checks
+        default:
+            return 0.0f;  // excluded by the callers' type checks
     }
 }
 

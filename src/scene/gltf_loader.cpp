@@ -107,7 +107,9 @@ private:
         std::vector<bool> is_child(model().nodes.size(), false);
         for (const tinygltf::Node& node : model().nodes) {
             for (int child : node.children) {
-                if (child >= 0 && static_cast<size_t>(child) < is_child.size()) is_child[static_cast<size_t>(child)] = true;
+                if (child >= 0 && static_cast<size_t>(child) < is_child.size()) {
+                    is_child[static_cast<size_t>(child)] = true;
+                }
             }
         }
         std::vector<int> roots;
@@ -120,7 +122,8 @@ private:
     void collect_node(int index, const glm::mat4& parent_transform, std::vector<int>& ancestors) {
         const std::string where = "nodes[" + std::to_string(index) + "]";
         if (index < 0 || static_cast<size_t>(index) >= model().nodes.size()) {
-            source_.fail(where, "node does not exist (the file has " + std::to_string(model().nodes.size()) + " nodes)");
+            source_.fail(where,
+                         "node does not exist (the file has " + std::to_string(model().nodes.size()) + " nodes)");
         }
         if (std::find(ancestors.begin(), ancestors.end(), index) != ancestors.end()) {
             source_.fail(where, "node is its own ancestor (the node hierarchy has a cycle)");
@@ -145,12 +148,14 @@ private:
             return matrix;
         }
         if (!node.matrix.empty() || (node.translation.size() != 0 && node.translation.size() != 3) ||
-            (node.rotation.size() != 0 && node.rotation.size() != 4) || (node.scale.size() != 0 && node.scale.size() != 3)) {
+            (node.rotation.size() != 0 && node.rotation.size() != 4) ||
+            (node.scale.size() != 0 && node.scale.size() != 3)) {
             source_.fail(where, "matrix, translation, rotation or scale has the wrong number of elements");
         }
         glm::mat4 transform{1.0f};
         if (!node.translation.empty()) {
-            transform = glm::translate(transform, glm::vec3{node.translation[0], node.translation[1], node.translation[2]});
+            transform =
+                glm::translate(transform, glm::vec3{node.translation[0], node.translation[1], node.translation[2]});
         }
         if (!node.rotation.empty()) {
             // glTF stores quaternions as (x, y, z, w); glm's constructor takes w first.
@@ -158,14 +163,15 @@ private:
                                      static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2])};
             if (glm::length(rotation) > 0.0f) transform *= glm::mat4_cast(glm::normalize(rotation));
         }
-        if (!node.scale.empty()) transform = glm::scale(transform, glm::vec3{node.scale[0], node.scale[1], node.scale[2]});
+        if (!node.scale.empty())
+            transform = glm::scale(transform, glm::vec3{node.scale[0], node.scale[1], node.scale[2]});
         return transform;
     }
 
     void place_mesh(int mesh, const glm::mat4& world) {
         if (mesh < 0 || static_cast<size_t>(mesh) >= model().meshes.size()) {
-            source_.fail("meshes[" + std::to_string(mesh) + "]", "mesh does not exist (the file has " +
-                                                                       std::to_string(model().meshes.size()) + " meshes)");
+            source_.fail("meshes[" + std::to_string(mesh) + "]",
+                         "mesh does not exist (the file has " + std::to_string(model().meshes.size()) + " meshes)");
         }
         // A mirroring transform turns counter-clockwise triangles clockwise; such placements
         // get a copy of the mesh with reversed winding so front faces stay CCW in the world.
@@ -182,7 +188,8 @@ private:
         if (const auto found = converted_meshes_.find(key); found != converted_meshes_.end()) return found->second;
         const tinygltf::Primitive& primitive =
             model().meshes[static_cast<size_t>(mesh)].primitives[static_cast<size_t>(primitive_index)];
-        const std::string where = "meshes[" + std::to_string(mesh) + "].primitives[" + std::to_string(primitive_index) + "]";
+        const std::string where =
+            "meshes[" + std::to_string(mesh) + "].primitives[" + std::to_string(primitive_index) + "]";
         std::optional<Mesh> converted = convert_gltf_primitive(source_, primitive, where);
         std::optional<uint32_t> scene_index;
         if (converted) {
@@ -196,7 +203,8 @@ private:
     }
 
     uint32_t convert_material(int index, const std::string& where) {
-        if (const auto found = converted_materials_.find(index); found != converted_materials_.end()) return found->second;
+        if (const auto found = converted_materials_.find(index); found != converted_materials_.end())
+            return found->second;
         Material material;  // glTF's default material for primitives without one
         if (index >= 0) material = read_material(index, where);
         const auto scene_index = static_cast<uint32_t>(scene_.materials.size());
@@ -219,8 +227,8 @@ private:
         material.base_color = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
                                pbr.baseColorFactor[3]};
         if (pbr.baseColorTexture.index >= 0) {
-            material.base_color_texture = convert_texture(pbr.baseColorTexture.index,
-                                                          material_where + ".pbrMetallicRoughness.baseColorTexture");
+            material.base_color_texture =
+                convert_texture(pbr.baseColorTexture.index, material_where + ".pbrMetallicRoughness.baseColorTexture");
         }
         material.alpha_mode = read_alpha_mode(gltf.alphaMode, material_where + ".alphaMode");
         material.alpha_cutoff = static_cast<float>(gltf.alphaCutoff);
@@ -248,8 +256,8 @@ private:
         }
         if (const auto found = converted_images_.find(image); found != converted_images_.end()) return found->second;
         const auto scene_index = static_cast<int32_t>(scene_.textures.size());
-        scene_.textures.push_back(
-            convert_gltf_image(source_, model().images[static_cast<size_t>(image)], "images[" + std::to_string(image) + "]"));
+        scene_.textures.push_back(convert_gltf_image(source_, model().images[static_cast<size_t>(image)],
+                                                     "images[" + std::to_string(image) + "]"));
         converted_images_.emplace(image, scene_index);
         return scene_index;
     }

@@ -97,7 +97,8 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
         compute_smooth_normals(mesh.vertices, mesh.indices);
     }
     if (const int uv_accessor = find_attribute(primitive, "TEXCOORD_0"); uv_accessor >= 0) {
-        const std::vector<glm::vec2> uvs = read_texcoord_accessor(source, uv_accessor, where + ".attributes.TEXCOORD_0");
+        const std::vector<glm::vec2> uvs =
+            read_texcoord_accessor(source, uv_accessor, where + ".attributes.TEXCOORD_0");
         require_same_count(source, uvs.size(), positions.size(), where + ".attributes.TEXCOORD_0");
         for (size_t i = 0; i < uvs.size(); ++i) mesh.vertices[i].uv = uvs[i];
     }
@@ -112,7 +113,8 @@ Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& imag
     const size_t bytes_per_channel = image.bits == 16 ? 2 : 1;
     const size_t channels = sane_header ? static_cast<size_t>(image.component) : 0;
     if (!sane_header || image.image.size() != texel_count * channels * bytes_per_channel) {
-        source.fail(where, "image \"" + image.uri + "\" holds no decoded pixels (unsupported or unreadable format?)");
+        source.fail(where,
+                    "image \"" + image.uri + "\" could not be read or decoded (missing file or unsupported format)");
     }
     Texture texture;
     texture.width = static_cast<uint32_t>(image.width);
@@ -120,7 +122,9 @@ Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& imag
     texture.rgba8.resize(texel_count * 4);
     for (size_t texel = 0; texel < texel_count; ++texel) {
         // 16-bit channels are little-endian; their high byte is the 8-bit value.
-        auto channel = [&](size_t c) { return image.image[(texel * channels + c) * bytes_per_channel + bytes_per_channel - 1]; };
+        auto channel = [&](size_t c) {
+            return image.image[(texel * channels + c) * bytes_per_channel + bytes_per_channel - 1];
+        };
         uint8_t* out = &texture.rgba8[texel * 4];
         const bool grey = channels <= 2;
         out[0] = channel(0);

@@ -15,8 +15,8 @@ constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 // Appends a quad whose corners p0..p3 run counter-clockwise when seen from the side that
 // `normal` points to, with UVs (0,0), (1,0), (1,1), (0,1).
 void add_quad(Mesh& mesh, const std::array<glm::vec3, 4>& corners, const glm::vec3& normal) {
-    static constexpr std::array<glm::vec2, 4> kCornerUvs{
-        glm::vec2{0.0f, 0.0f}, glm::vec2{1.0f, 0.0f}, glm::vec2{1.0f, 1.0f}, glm::vec2{0.0f, 1.0f}};
+    static constexpr std::array<glm::vec2, 4> kCornerUvs{glm::vec2{0.0f, 0.0f}, glm::vec2{1.0f, 0.0f},
+                                                         glm::vec2{1.0f, 1.0f}, glm::vec2{0.0f, 1.0f}};
     const auto base = static_cast<uint32_t>(mesh.vertices.size());
     for (size_t i = 0; i < 4; ++i) mesh.vertices.push_back({corners[i], normal, kCornerUvs[i]});
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
@@ -80,8 +80,24 @@ Mesh make_plane(float size_x, float size_z) {
     const float x = 0.5f * size_x;
     const float z = 0.5f * size_z;
     // Counter-clockwise seen from +Y: (-x,+z) -> (+x,+z) -> (+x,-z) -> (-x,-z).
-    add_quad(mesh, {glm::vec3{-x, 0.0f, z}, glm::vec3{x, 0.0f, z}, glm::vec3{x, 0.0f, -z}, glm::vec3{-x, 0.0f, -z}},
-             {0.0f, 1.0f, 0.0f});
+    // A grid of cells of at most 2 m rather than one quad: Mesa's lavapipe (22.3) writes
+    // triangles that cover whole raster tiles into layer 0 during multiview rendering, so a
+    // two-triangle ground would break the multiview shadow strategy there (docs/techniques.md).
+    const int cells_x = std::clamp(static_cast<int>(std::ceil(size_x / 2.0f)), 1, 64);
+    const int cells_z = std::clamp(static_cast<int>(std::ceil(size_z / 2.0f)), 1, 64);
+    for (int i = 0; i < cells_x; ++i) {
+        for (int j = 0; j < cells_z; ++j) {
+            const float x0 = -x + size_x * i / cells_x, x1 = -x + size_x * (i + 1) / cells_x;
+            const float z0 = -z + size_z * j / cells_z, z1 = -z + size_z * (j + 1) / cells_z;
+            add_quad(mesh, {glm::vec3{x0, 0.0f, z1}, glm::vec3{x1, 0.0f, z1}, glm::vec3{x1, 0.0f, z0},
+                            glm::vec3{x0, 0.0f, z0}},
+                     {0.0f, 1.0f, 0.0f});
+        }
+    }
+    // One texture over the whole plane: (-x,+z) is UV (0,0) and (+x,-z) is (1,1).
+    for (Vertex& vertex : mesh.vertices) {
+        vertex.uv = {(vertex.position.x + x) / size_x, (z - vertex.position.z) / size_z};
+    }
     mesh.bounds = compute_mesh_bounds(mesh.vertices);
     return mesh;
 }
@@ -110,7 +126,8 @@ Mesh make_sphere(float radius, uint32_t segments, uint32_t rings) {
         const float polar = v * std::numbers::pi_v<float>;
         for (uint32_t segment = 0; segment <= segments; ++segment) {
             const float u = static_cast<float>(segment) / static_cast<float>(segments);
-            const glm::vec3 normal = circle_point(u * kTwoPi) * std::sin(polar) + glm::vec3{0.0f, std::cos(polar), 0.0f};
+            const glm::vec3 normal =
+                circle_point(u * kTwoPi) * std::sin(polar) + glm::vec3{0.0f, std::cos(polar), 0.0f};
             mesh.vertices.push_back({normal * radius, normal, {u, v}});
         }
     }

@@ -21,8 +21,10 @@ struct Rgba {
 Rgba pattern_texel(ProceduralPattern pattern, float u, float v) {
     const bool odd_cell = (static_cast<int>(u) + static_cast<int>(v)) % 2 == 1;
     switch (pattern) {
-        case ProceduralPattern::Checker: return odd_cell ? Rgba{90, 90, 90, 255} : Rgba{200, 200, 200, 255};
-        case ProceduralPattern::CheckerHoles: return odd_cell ? Rgba{255, 255, 255, 0} : Rgba{255, 255, 255, 255};
+        case ProceduralPattern::Checker:
+            return odd_cell ? Rgba{90, 90, 90, 255} : Rgba{200, 200, 200, 255};
+        case ProceduralPattern::CheckerHoles:
+            return odd_cell ? Rgba{255, 255, 255, 0} : Rgba{255, 255, 255, 255};
         case ProceduralPattern::RoundHoles: {
             // Hole radius 0.35 cell: the holes cover ~38% of the area and leave solid bars.
             const float du = u - std::floor(u) - 0.5f;

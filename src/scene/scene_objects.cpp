@@ -65,8 +65,8 @@ std::optional<ProceduralPattern> read_texture_pattern(TomlTableReader& reader) {
     if (!name) return std::nullopt;
     const std::optional<ProceduralPattern> pattern = procedural_pattern_from_name(*name);
     if (!pattern) {
-        reader.fail("texture", "unknown procedural texture \"" + *name + "\" (expected " +
-                                   procedural_pattern_names() + ")");
+        reader.fail("texture",
+                    "unknown procedural texture \"" + *name + "\" (expected " + procedural_pattern_names() + ")");
     }
     return pattern;
 }
@@ -78,7 +78,8 @@ Mesh read_primitive_shape(TomlTableReader& reader, const std::string& type) {
         return make_plane(extent.x, extent.y);
     }
     if (type == "box") {
-        return make_box(positive_components(reader, "size", reader.optional_vec3_or_scalar("size").value_or(glm::vec3{1.0f})));
+        return make_box(
+            positive_components(reader, "size", reader.optional_vec3_or_scalar("size").value_or(glm::vec3{1.0f})));
     }
     if (type == "sphere") return make_sphere(positive_number(reader, "radius", 0.5f));
     const float radius = positive_number(reader, "radius", 0.5f);
@@ -153,8 +154,9 @@ private:
         std::vector<glm::mat4> placements;
         const bool has_instances = reader.contains("instances");
         for (const toml::table* instance : reader.table_array("instances")) {
-            TomlTableReader instance_reader(*instance, reader.origin(),
-                                            reader.key_path("instances") + "[" + std::to_string(placements.size()) + "]");
+            TomlTableReader instance_reader(
+                *instance, reader.origin(),
+                reader.key_path("instances") + "[" + std::to_string(placements.size()) + "]");
             // The object's own transform acts as the parent of every instance.
             placements.push_back(object_transform * read_transform(instance_reader));
             instance_reader.reject_unknown_keys();

@@ -129,7 +129,7 @@ Scene parse_scene_toml(std::string_view text, const std::string& origin, const s
     if (const toml::table* ambient = reader.optional_table("ambient")) {
         scene.ambient = read_ambient(TomlTableReader(*ambient, origin, "ambient"), scene.ambient);
     }
-    reader.contains("objects");
+    reader.accept("objects");  // read last, by append_scene_objects()
     // Unknown top-level tables are reported before the (possibly slow) model loading.
     reader.reject_unknown_keys();
     append_scene_objects(reader, scene, base_directory);

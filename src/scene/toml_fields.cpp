@@ -46,13 +46,19 @@ std::string value_text(const toml::node& node) {
 
 std::string type_name(const toml::node& node) {
     switch (node.type()) {
-        case toml::node_type::string: return "a string";
+        case toml::node_type::string:
+            return "a string";
         case toml::node_type::integer:
-        case toml::node_type::floating_point: return "a number";
-        case toml::node_type::boolean: return "a boolean";
-        case toml::node_type::array: return "an array";
-        case toml::node_type::table: return "a table";
-        default: return "a date/time";
+        case toml::node_type::floating_point:
+            return "a number";
+        case toml::node_type::boolean:
+            return "a boolean";
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::table:
+            return "a table";
+        default:
+            return "a date/time";
     }
 }
 
@@ -132,10 +138,9 @@ bool TomlTableReader::boolean_or(std::string_view key, bool fallback) {
 
 std::vector<double> TomlTableReader::number_array(std::string_view key, const toml::array& array, size_t min_size,
                                                   size_t max_size) const {
-    const std::string expected = min_size == max_size
-                                     ? "an array of " + std::to_string(min_size) + " numbers"
-                                     : "an array of " + std::to_string(min_size) + " to " +
-                                           std::to_string(max_size) + " numbers";
+    const std::string expected = min_size == max_size ? "an array of " + std::to_string(min_size) + " numbers"
+                                                      : "an array of " + std::to_string(min_size) + " to " +
+                                                            std::to_string(max_size) + " numbers";
     if (array.size() < min_size || array.size() > max_size) {
         fail(key, "expected " + expected + ", got " + describe_toml_value(array));
     }
@@ -196,7 +201,8 @@ std::vector<const toml::table*> TomlTableReader::table_array(std::string_view ke
     const toml::node* node = find(key);
     if (node == nullptr) return {};
     const toml::array* array = node->as_array();
-    if (array == nullptr) fail(key, "expected an array of tables ([[" + std::string(key) + "]]), got " + describe_toml_value(*node));
+    if (array == nullptr)
+        fail(key, "expected an array of tables ([[" + std::string(key) + "]]), got " + describe_toml_value(*node));
     std::vector<const toml::table*> tables;
     for (size_t i = 0; i < array->size(); ++i) {
         const toml::node& element = *array->get(i);

@@ -15,8 +15,7 @@
 namespace penumbra {
 
 // Throws InputError("<origin>: <key_path>: <problem>").
-[[noreturn]] void throw_scene_error(const std::string& origin, const std::string& key_path,
-                                    const std::string& problem);
+[[noreturn]] void throw_scene_error(const std::string& origin, const std::string& key_path, const std::string& problem);
 
 // `value` with up to 7 significant digits, as a user would write it ("0.1", "180", "-2.5").
 std::string format_number(double value);

@@ -30,7 +30,9 @@ std::string input_error_message(Action&& action) {
     return {};
 }
 
-inline Scene parse_scene_text(std::string_view text) { return parse_scene_toml(text, "scene.toml", test_data("scenes")); }
+inline Scene parse_scene_text(std::string_view text) {
+    return parse_scene_toml(text, "scene.toml", test_data("scenes"));
+}
 
 // The InputError message of parsing `text` as "scene.toml".
 inline std::string scene_error(std::string_view text) {

@@ -10,8 +10,8 @@ namespace penumbra {
 namespace {
 
 using ::testing::HasSubstr;
-using ::testing::StartsWith;
 using testing::input_error_message;
+using ::testing::StartsWith;
 using testing::test_data;
 
 std::string gltf_error(const std::string& name) {
@@ -41,8 +41,7 @@ TEST_P(GltfError, IsAnInputErrorNamingTheProblem) {
 INSTANTIATE_TEST_SUITE_P(
     GltfErrors, GltfError,
     ::testing::Values(
-        GltfErrorCase{"does_not_exist.gltf", "file not found"},
-        GltfErrorCase{"malformed.gltf", "cannot load glTF: "},
+        GltfErrorCase{"does_not_exist.gltf", "file not found"}, GltfErrorCase{"malformed.gltf", "cannot load glTF: "},
         GltfErrorCase{"truncated.glb", "cannot load glTF: Invalid glTF binary"},
         GltfErrorCase{"truncated_buffer.gltf", "truncated.bin, requestedBytes 140, but got 70"},
         GltfErrorCase{"missing_buffer.gltf", "does_not_exist.bin"},
@@ -61,7 +60,8 @@ INSTANTIATE_TEST_SUITE_P(
         GltfErrorCase{"node_cycle.gltf", "the node hierarchy has a cycle"},
         GltfErrorCase{"missing_material.gltf", "material 5 does not exist"},
         GltfErrorCase{"bad_alpha_mode.gltf", "unknown alphaMode \"CUTOUT\""},
-        GltfErrorCase{"partial_triangle.gltf", "5 vertex indices do not form whole triangles"}),
+        GltfErrorCase{"partial_triangle.gltf", "5 vertex indices do not form whole triangles"},
+        GltfErrorCase{"missing_image.gltf", "images[0]: image \"missing.png\" could not be read or decoded"}),
     [](const auto& test_info) {
         std::string name = test_info.param.file;
         return name.substr(0, name.find('.'));

@@ -162,8 +162,8 @@ TEST(GltfLoader, DecodesTheBaseColourTextureAsRgba8) {
 TEST(GltfLoader, ConvertsSixteenBitGreyAlphaToRgba8) {
     const Scene scene = load_fixture("textured_grey_alpha16.gltf");
     ASSERT_EQ(scene.textures.size(), 1u);
-    EXPECT_EQ(scene.textures[0].rgba8, (std::vector<uint8_t>{255, 255, 255, 0x80, 0x12, 0x12, 0x12, 0, 0, 0, 0, 255,
-                                                             0x80, 0x80, 0x80, 0x40}));
+    EXPECT_EQ(scene.textures[0].rgba8,
+              (std::vector<uint8_t>{255, 255, 255, 0x80, 0x12, 0x12, 0x12, 0, 0, 0, 0, 255, 0x80, 0x80, 0x80, 0x40}));
 }
 
 }  // namespace

@@ -19,8 +19,14 @@ struct PrimitiveCase {
 
 std::vector<PrimitiveCase> primitive_cases() {
     return {
-        {"plane", [] { return make_plane(4.0f, 2.0f); }, 2, {{-2.0f, 0.0f, -1.0f}, {2.0f, 0.0f, 1.0f}}},
-        {"box", [] { return make_box({1.0f, 2.0f, 3.0f}); }, 12, {{-0.5f, -1.0f, -1.5f}, {0.5f, 1.0f, 1.5f}}},
+        // A 4 x 2 m plane is a grid of 2 m cells: 2 x 1 cells, 2 triangles each.
+        {"plane", [] { return make_plane(4.0f, 2.0f); }, 4, {{-2.0f, 0.0f, -1.0f}, {2.0f, 0.0f, 1.0f}}},
+        {"box",
+         [] {
+             return make_box({1.0f, 2.0f, 3.0f});
+         },
+         12,
+         {{-0.5f, -1.0f, -1.5f}, {0.5f, 1.0f, 1.5f}}},
         {"sphere", [] { return make_sphere(2.0f); }, 32 * (2 * 16 - 2), {glm::vec3{-2.0f}, glm::vec3{2.0f}}},
         {"coarse_sphere", [] { return make_sphere(1.0f, 8, 4); }, 8 * (2 * 4 - 2), {glm::vec3{-1.0f}, glm::vec3{1.0f}}},
         {"cylinder", [] { return make_cylinder(0.5f, 3.0f); }, 4 * 32, {{-0.5f, -1.5f, -0.5f}, {0.5f, 1.5f, 0.5f}}},

@@ -10,9 +10,9 @@ namespace penumbra {
 namespace {
 
 using ::testing::HasSubstr;
-using ::testing::StartsWith;
 using testing::input_error_message;
 using testing::scene_error;
+using ::testing::StartsWith;
 using testing::test_data;
 
 TEST(SceneErrors, MissingFile) {
@@ -68,12 +68,14 @@ TEST(SceneErrors, NonFiniteNumber) {
 }
 
 TEST(SceneErrors, UnknownObjectType) {
-    EXPECT_EQ(scene_error("[[objects]]\ntype = \"box\"\n[[objects]]\ntype = \"box\"\n[[objects]]\ntype = \"cone\"\n"),
-              "scene.toml: objects[2].type: unknown object type \"cone\" (expected plane, box, sphere, cylinder or gltf)");
+    EXPECT_EQ(
+        scene_error("[[objects]]\ntype = \"box\"\n[[objects]]\ntype = \"box\"\n[[objects]]\ntype = \"cone\"\n"),
+        "scene.toml: objects[2].type: unknown object type \"cone\" (expected plane, box, sphere, cylinder or gltf)");
 }
 
 TEST(SceneErrors, MissingObjectType) {
-    EXPECT_EQ(scene_error("[[objects]]\nsize = [1, 1, 1]\n"), "scene.toml: objects[0].type: missing (a string is required)");
+    EXPECT_EQ(scene_error("[[objects]]\nsize = [1, 1, 1]\n"),
+              "scene.toml: objects[0].type: missing (a string is required)");
 }
 
 TEST(SceneErrors, UnknownTopLevelTable) {
@@ -83,7 +85,8 @@ TEST(SceneErrors, UnknownTopLevelTable) {
 
 TEST(SceneErrors, UnknownKeyInEveryTable) {
     EXPECT_THAT(scene_error("[camera]\nfovy = 60\n"), StartsWith("scene.toml: camera.fovy: unknown key \"fovy\""));
-    EXPECT_THAT(scene_error("[[lights]]\ncolour = [1, 1, 1]\n"), StartsWith("scene.toml: lights[0].colour: unknown key"));
+    EXPECT_THAT(scene_error("[[lights]]\ncolour = [1, 1, 1]\n"),
+                StartsWith("scene.toml: lights[0].colour: unknown key"));
     EXPECT_THAT(scene_error("[ambient]\nintensity = 2\n"), StartsWith("scene.toml: ambient.intensity: unknown key"));
     // A key that belongs to another object type is unknown too.
     EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\nradius = 1\n"),
@@ -127,8 +130,10 @@ TEST(SceneErrors, NearNotPositive) {
 }
 
 TEST(SceneErrors, FarNotBeyondNear) {
-    EXPECT_EQ(scene_error("[camera]\nnear = 5\nfar = 5\n"), "scene.toml: camera.far: must be greater than near (5), got 5");
-    EXPECT_EQ(scene_error("[camera]\nfar = 0.05\n"), "scene.toml: camera.far: must be greater than near (0.1), got 0.05");
+    EXPECT_EQ(scene_error("[camera]\nnear = 5\nfar = 5\n"),
+              "scene.toml: camera.far: must be greater than near (5), got 5");
+    EXPECT_EQ(scene_error("[camera]\nfar = 0.05\n"),
+              "scene.toml: camera.far: must be greater than near (0.1), got 0.05");
 }
 
 struct ObjectErrorCase {
@@ -141,9 +146,7 @@ void PrintTo(const ObjectErrorCase& error_case, std::ostream* out) { *out << err
 
 class ObjectError : public ::testing::TestWithParam<ObjectErrorCase> {};
 
-TEST_P(ObjectError, IsRejectedWithTheOffendingValue) {
-    EXPECT_EQ(scene_error(GetParam().toml), GetParam().message);
-}
+TEST_P(ObjectError, IsRejectedWithTheOffendingValue) { EXPECT_EQ(scene_error(GetParam().toml), GetParam().message); }
 
 INSTANTIATE_TEST_SUITE_P(
     SceneErrors, ObjectError,
@@ -162,9 +165,10 @@ INSTANTIATE_TEST_SUITE_P(
                         "scene.toml: objects[0].scale: every component must be > 0, got [1, 0, 1]"},
         ObjectErrorCase{"negative_scale", "[[objects]]\ntype = \"box\"\nscale = -2\n",
                         "scene.toml: objects[0].scale: every component must be > 0, got [-2, -2, -2]"},
-        ObjectErrorCase{"instance_scale",
-                        "[[objects]]\ntype = \"gltf\"\nfile = \"../gltf/quad.gltf\"\ninstances = [{}, { scale = [1, 1, 0] }]\n",
-                        "scene.toml: objects[0].instances[1].scale: every component must be > 0, got [1, 1, 0]"},
+        ObjectErrorCase{
+            "instance_scale",
+            "[[objects]]\ntype = \"gltf\"\nfile = \"../gltf/quad.gltf\"\ninstances = [{}, { scale = [1, 1, 0] }]\n",
+            "scene.toml: objects[0].instances[1].scale: every component must be > 0, got [1, 1, 0]"},
         ObjectErrorCase{"texture", "[[objects]]\ntype = \"box\"\ntexture = \"bricks\"\n",
                         "scene.toml: objects[0].texture: unknown procedural texture \"bricks\" (expected checker, "
                         "checker_holes or round_holes)"},
@@ -179,7 +183,8 @@ INSTANTIATE_TEST_SUITE_P(
                         "scene.toml: objects[0].color: components must be >= 0 and alpha at most 1, got [1, -1, 1, 1]"},
         ObjectErrorCase{"gltf_without_file", "[[objects]]\ntype = \"gltf\"\n",
                         "scene.toml: objects[0].file: missing (a string is required)"},
-        ObjectErrorCase{"empty_instances", "[[objects]]\ntype = \"gltf\"\nfile = \"../gltf/quad.gltf\"\ninstances = []\n",
+        ObjectErrorCase{"empty_instances",
+                        "[[objects]]\ntype = \"gltf\"\nfile = \"../gltf/quad.gltf\"\ninstances = []\n",
                         "scene.toml: objects[0].instances: empty array (leave the key out for one instance at the "
                         "object's transform)"}),
     [](const auto& test_info) { return std::string(test_info.param.name); });
@@ -215,7 +220,8 @@ TEST(SceneErrors, GltfWithUnsupportedExtension) {
 }
 
 TEST(SceneErrors, BrokenGltfIsReportedThroughTheObject) {
-    const std::string message = scene_error("[[objects]]\ntype = \"gltf\"\nfile = \"../gltf/index_out_of_range.gltf\"\n");
+    const std::string message =
+        scene_error("[[objects]]\ntype = \"gltf\"\nfile = \"../gltf/index_out_of_range.gltf\"\n");
     EXPECT_THAT(message, StartsWith("scene.toml: objects[0].file: "));
     EXPECT_THAT(message, HasSubstr("index 7"));
 }

@@ -228,6 +228,10 @@ def write_malformed_fixtures():
 
     variant("second_mesh_broken.gltf", second_mesh_broken)
 
+    missing_image = textured(embed(document, data), b"")
+    missing_image["images"] = [{"uri": "missing.png"}]
+    write_json("missing_image.gltf", missing_image)
+
 
 if __name__ == "__main__":
     write_valid_fixtures()

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# README command 2 (and CI): install dependencies, build, check formatting, and run the
+# whole test suite. GPU tests run on whatever Vulkan device is present (lavapipe on CI)
+# with the Khronos validation layer; any validation message fails them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+bash scripts/check-format.sh
+ctest --test-dir build --output-on-failure -j "$(nproc)"

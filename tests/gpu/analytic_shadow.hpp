@@ -1,0 +1,36 @@
+#pragma once
+// Ground truth for image tests, computed from geometry alone: which pixels see the
+// ground plane y = 0, and which of those lie in the shadow of an axis-aligned box lit
+// by a directional light (the convex hull of the box corners projected along the
+// light onto the plane).
+#include <optional>
+#include <vector>
+
+#include "core/bounds.hpp"
+#include "core/scene.hpp"
+
+namespace penumbra::testing {
+
+struct PixelRay {
+    glm::vec3 origin;
+    glm::vec3 direction;  // normalised
+};
+
+// The primary ray through the centre of pixel (x, y), row 0 at the top.
+PixelRay pixel_ray(const Camera& camera, uint32_t width, uint32_t height, uint32_t x, uint32_t y);
+
+// Distance along the ray to the box, if it hits.
+std::optional<float> intersect_box(const PixelRay& ray, const Aabb& box);
+
+// Distance along the ray to the plane y = 0 within |x|, |z| <= half_size.
+std::optional<float> intersect_ground(const PixelRay& ray, float half_size);
+
+// The box's shadow on y = 0: corners projected along light_direction, as a convex polygon.
+std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_direction);
+
+bool inside_convex_polygon(const std::vector<glm::vec2>& polygon, const glm::vec2& point);
+
+// Distance from a point to the polygon's boundary.
+float distance_to_polygon_edge(const std::vector<glm::vec2>& polygon, const glm::vec2& point);
+
+}  // namespace penumbra::testing

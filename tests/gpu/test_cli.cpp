@@ -1,0 +1,219 @@
+// The `penumbra` command line: exit codes, one-line error messages naming the problem
+// and its origin, and no output file left behind on failure.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "image/png_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+    std::ifstream file(path);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / (std::string("penumbra_cli_") + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    RunResult run(const std::string& arguments, const std::string& environment = "") const {
+        const fs::path out = dir_ / "stdout.txt";
+        const fs::path err = dir_ / "stderr.txt";
+        const std::string command = "cd '" + dir_.string() + "' && " + environment + " '" + PENUMBRA_BINARY + "' " +
+                                    arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
+        const int status = std::system(command.c_str());
+        RunResult result;
+        result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        result.out = read_text(out);
+        result.err = read_text(err);
+        return result;
+    }
+
+    fs::path write_file(const std::string& name, const std::string& text) const {
+        const fs::path path = dir_ / name;
+        std::ofstream(path) << text;
+        return path;
+    }
+
+    // The failure contract: exit code, exactly one stderr line containing `needle`, no output.
+    void expect_failure(const RunResult& result, int code, const std::string& needle) const {
+        EXPECT_EQ(result.exit_code, code) << result.err;
+        EXPECT_NE(result.err.find(needle), std::string::npos) << "stderr: " << result.err;
+        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "stderr: " << result.err;
+        EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+        for (const auto& entry : fs::directory_iterator(dir_)) {
+            EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "left " << entry.path();
+        }
+    }
+
+    fs::path dir_;
+};
+
+constexpr const char* kValidScene = R"(
+[camera]
+eye = [0.0, 6.0, 12.0]
+target = [0.0, 0.0, 0.0]
+fov = 60.0
+near = 0.1
+far = 200.0
+
+[[lights]]
+type = "directional"
+direction = [-0.4, -1.0, -0.3]
+
+[[objects]]
+type = "plane"
+size = [40.0, 40.0]
+
+[[objects]]
+type = "box"
+size = [2.0, 2.0, 2.0]
+translation = [0.0, 3.0, 0.0]
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+TEST_F(Cli, RendersTheDefaultSceneValidationClean) {
+    const RunResult result = run("render --validate --width 96 --height 54 -o out.png");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(result.err.empty()) << result.err;
+    EXPECT_NE(result.out.find("out.png"), std::string::npos);
+    const penumbra::PngImage image = penumbra::read_png(dir_ / "out.png");
+    EXPECT_EQ(image.width, 96u);
+    EXPECT_EQ(image.height, 54u);
+    EXPECT_EQ(image.channels, 4u);
+}
+
+TEST_F(Cli, ShadowAovIsSixteenBitGray) {
+    write_file("scene.toml", kValidScene);
+    const RunResult result = run("render scene.toml --validate --aov shadow --width 64 --height 48 -o out.png");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const penumbra::PngImage image = penumbra::read_png(dir_ / "out.png");
+    EXPECT_EQ(image.channels, 1u);
+    EXPECT_EQ(image.bit_depth, 16u);
+    EXPECT_EQ(image.samples.front(), 65535) << "sky pixels (no geometry) are fully lit";
+}
+
+TEST_F(Cli, CommandLineOverridesConfigFileWhichOverridesSceneFile) {
+    write_file("scene.toml", std::string(kValidScene) + "\n[output]\nwidth = 40\nheight = 30\n");
+    write_file("config.toml", "[output]\nwidth = 50\n");
+    RunResult result = run("render scene.toml --config config.toml -o out.png");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    penumbra::PngImage image = penumbra::read_png(dir_ / "out.png");
+    EXPECT_EQ(image.width, 50u);
+    EXPECT_EQ(image.height, 30u);
+    result = run("render scene.toml --config config.toml --width 20 -o out.png");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    image = penumbra::read_png(dir_ / "out.png");
+    EXPECT_EQ(image.width, 20u);
+}
+
+TEST_F(Cli, DevicesListsAtLeastOneDevice) {
+    const RunResult result = run("devices");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("index"), std::string::npos);
+    EXPECT_NE(result.out.find("1.3"), std::string::npos);
+}
+
+TEST_F(Cli, MissingSceneFile) { expect_failure(run("render missing.toml -o out.png"), 2, "missing.toml"); }
+
+TEST_F(Cli, MalformedToml) {
+    write_file("scene.toml", "[camera\neye = [0, 1");
+    expect_failure(run("render scene.toml -o out.png"), 2, "scene.toml");
+}
+
+TEST_F(Cli, UnknownObjectType) {
+    write_file("scene.toml", replace(kValidScene, "\"box\"", "\"cone\""));
+    expect_failure(run("render scene.toml -o out.png"), 2, "cone");
+}
+
+TEST_F(Cli, UnknownKey) {
+    write_file("scene.toml", replace(kValidScene, "fov = 60.0", "fov = 60.0\nzoom = 2.0"));
+    expect_failure(run("render scene.toml -o out.png"), 2, "zoom");
+}
+
+TEST_F(Cli, WrongValueType) {
+    write_file("scene.toml", replace(kValidScene, "fov = 60.0", "fov = \"wide\""));
+    expect_failure(run("render scene.toml -o out.png"), 2, "fov");
+}
+
+TEST_F(Cli, ZeroLengthLightDirection) {
+    write_file("scene.toml", replace(kValidScene, "[-0.4, -1.0, -0.3]", "[0.0, 0.0, 0.0]"));
+    expect_failure(run("render scene.toml -o out.png"), 2, "direction");
+}
+
+TEST_F(Cli, EyeEqualToTarget) { expect_failure(run("render --eye 1,2,3 --target 1,2,3 -o out.png"), 2, "eye"); }
+
+TEST_F(Cli, FieldOfViewOutOfRange) {
+    expect_failure(run("render --fov 0 -o out.png"), 2, "fov");
+    expect_failure(run("render --fov 180 -o out.png"), 2, "fov");
+}
+
+TEST_F(Cli, NearAndFarPlanes) {
+    expect_failure(run("render --near 0 -o out.png"), 2, "near");
+    expect_failure(run("render --near 5 --far 5 -o out.png"), 2, "far");
+}
+
+TEST_F(Cli, ImageSizeOutOfRange) {
+    expect_failure(run("render --width 0 -o out.png"), 2, "--width");
+    expect_failure(run("render --height 16385 -o out.png"), 2, "--height");
+}
+
+TEST_F(Cli, ImageSizeOutOfRangeInSceneFile) {
+    write_file("scene.toml", std::string(kValidScene) + "\n[output]\nwidth = 0\n");
+    expect_failure(run("render scene.toml -o out.png"), 2, "output.width");
+}
+
+TEST_F(Cli, UnknownFlag) { expect_failure(run("render --shadows-please -o out.png"), 2, "--shadows-please"); }
+
+TEST_F(Cli, MalformedVectorFlag) { expect_failure(run("render --eye 1,2 -o out.png"), 2, "--eye"); }
+
+TEST_F(Cli, UnknownAov) { expect_failure(run("render --aov depth -o out.png"), 2, "--aov"); }
+
+TEST_F(Cli, MissingGltfFile) {
+    write_file("scene.toml", std::string(kValidScene) + "\n[[objects]]\ntype = \"gltf\"\nfile = \"nope.gltf\"\n");
+    expect_failure(run("render scene.toml -o out.png"), 2, "nope.gltf");
+}
+
+TEST_F(Cli, TruncatedGltf) {
+    write_file("model.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [");
+    write_file("scene.toml", std::string(kValidScene) + "\n[[objects]]\ntype = \"gltf\"\nfile = \"model.gltf\"\n");
+    expect_failure(run("render scene.toml -o out.png"), 2, "model.gltf");
+}
+
+TEST_F(Cli, OutputFolderMissing) { expect_failure(run("render --width 32 --height 32 -o nowhere/out.png"), 2, "nowhere"); }
+
+TEST_F(Cli, NoVulkanDevice) {
+    // Point the loader at a driver manifest that does not exist: no device can be found.
+    expect_failure(run("render -o out.png", "VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json"),
+                   3, "Vulkan");
+}
+
+TEST_F(Cli, UnknownDeviceSelector) { expect_failure(run("render --device nosuchgpu -o out.png"), 3, "nosuchgpu"); }
+
+}  // namespace
