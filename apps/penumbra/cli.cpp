@@ -110,7 +110,8 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
         job.aov = parse_choice<Aov>(raw.aov, "--aov", {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}});
     }
     if (!raw.debug.empty()) {
-        job.debug = parse_choice<DebugView>(raw.debug, "--debug", {{"cascades", DebugView::Cascades}, {"shadowmap", DebugView::ShadowMap}});
+        job.debug = parse_choice<DebugView>(raw.debug, "--debug",
+                                            {{"cascades", DebugView::Cascades}, {"shadowmap", DebugView::ShadowMap}});
     }
 }
 
@@ -132,7 +133,8 @@ Command parse_command_line(int argc, char** argv) {
     render->add_option("-o,--output", job.output, "Output PNG (default penumbra.png)");
     render->add_option("--config", config, "Config file (.toml) with [output], [shadow], [camera], [sun] settings");
     render->add_option("--aov", raw.aov, "Write an AOV instead of colour: shadow (16-bit visibility) | cascade");
-    render->add_option("--debug", raw.debug, "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side)");
+    render->add_option("--debug", raw.debug,
+                       "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side)");
     render->add_flag("--validate", job.device.validation,
                      "Enable the Khronos validation layer (with synchronization validation); any message fails");
     render->add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");

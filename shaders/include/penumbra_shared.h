@@ -33,13 +33,13 @@
 #define PENUMBRA_NO_CASCADE 255u
 
 struct FrameUniforms {
-    mat4 view_projection;  // camera: world -> clip
-    mat4 view;             // camera: world -> view (for view depth)
+    mat4 view_projection;                                 // camera: world -> clip
+    mat4 view;                                            // camera: world -> view (for view depth)
     mat4 cascade_view_projection[PENUMBRA_MAX_CASCADES];  // world -> cascade clip (reverse-Z)
-    vec4 camera_position;  // xyz
-    vec4 sun_direction;    // xyz: unit vector toward the sun; w: 1 when the scene has a sun
-    vec4 sun_radiance;     // rgb: colour * intensity; w: 1 when the sun casts shadows
-    vec4 ambient;          // rgb: ambient radiance
+    vec4 camera_position;                                 // xyz
+    vec4 sun_direction;  // xyz: unit vector toward the sun; w: 1 when the scene has a sun
+    vec4 sun_radiance;   // rgb: colour * intensity; w: 1 when the sun casts shadows
+    vec4 ambient;        // rgb: ambient radiance
     // Cascade i's far split (view distance) is element [i / 4][i % 4]; likewise its texel size.
     vec4 cascade_split_far[PENUMBRA_MAX_CASCADES / 4];
     vec4 cascade_texel_world_size[PENUMBRA_MAX_CASCADES / 4];

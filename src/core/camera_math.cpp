@@ -16,8 +16,7 @@ glm::mat4 perspective_reverse_z(float fov_y_radians, float aspect, float near_pl
     return m;
 }
 
-glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float top, float near_plane,
-                                 float far_plane) {
+glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float top, float near_plane, float far_plane) {
     glm::mat4 m(1.0f);
     m[0][0] = 2.0f / (right - left);
     m[1][1] = 2.0f / (top - bottom);

@@ -28,8 +28,7 @@ glm::mat4 perspective_reverse_z(float fov_y_radians, float aspect, float near_pl
 // Reverse-Z orthographic projection: view-space z = -near maps to depth 1, z = -far to 0.
 // x in [left, right] and y in [bottom, top] map to [-1, 1] (no Y flip: shadow maps are
 // sampled with the same matrix that rendered them, so orientation is irrelevant).
-glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float top, float near_plane,
-                                 float far_plane);
+glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float top, float near_plane, float far_plane);
 
 // Builds the camera's matrices. Requires eye != target and a non-degenerate up vector
 // (the scene loader validates both; an up parallel to the view direction is replaced).

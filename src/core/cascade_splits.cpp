@@ -30,16 +30,16 @@ double logarithmic_split(double near_plane, double far_plane, int i, int count) 
 void require_manual_splits_inside(float near_plane, float far_plane, int count, const std::vector<float>& manual) {
     if (static_cast<int>(manual.size()) != count - 1) {
         std::ostringstream message;
-        message << "splits: " << manual.size() << " manual split distances given, " << count - 1
-                << " needed for " << count << " cascades";
+        message << "splits: " << manual.size() << " manual split distances given, " << count - 1 << " needed for "
+                << count << " cascades";
         throw InputError(message.str());
     }
     float previous = near_plane;
     for (const float split : manual) {
         if (!(split > previous) || !(split < far_plane)) {
             std::ostringstream message;
-            message << "splits: manual split " << split << " must lie strictly between the previous split "
-                    << previous << " and the shadow distance " << far_plane
+            message << "splits: manual split " << split << " must lie strictly between the previous split " << previous
+                    << " and the shadow distance " << far_plane
                     << " (camera near plane .. min(camera far, max_distance))";
             throw InputError(message.str());
         }

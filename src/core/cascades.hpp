@@ -34,8 +34,8 @@ struct Cascade {
     glm::mat4 view{1.0f};        // world -> light view (light looks down -Z)
     glm::mat4 projection{1.0f};  // light view -> clip, orthographic reverse-Z
     glm::mat4 view_projection{1.0f};
-    float split_near = 0.0f;  // camera view distance where this cascade starts
-    float split_far = 0.0f;   // ... and ends
+    float split_near = 0.0f;        // camera view distance where this cascade starts
+    float split_far = 0.0f;         // ... and ends
     float texel_world_size = 0.0f;  // world metres per shadow-map texel (max of X and Y)
     glm::vec3 light_extent{0.0f};   // light-space width (X), height (Y), depth range (Z), metres
 };
@@ -43,7 +43,7 @@ struct Cascade {
 struct CascadeSet {
     std::vector<Cascade> cascades;
     glm::vec3 light_direction{0.0f, -1.0f, 0.0f};  // normalised
-    float shadow_distance = 0.0f;  // min(camera far, max_distance)
+    float shadow_distance = 0.0f;                  // min(camera far, max_distance)
 };
 
 // Fits every cascade to its slice of the camera frustum.
@@ -56,8 +56,8 @@ struct CascadeSet {
 // Requires validated settings (validate_shadow_settings); throws InputError when
 // max_distance does not exceed the camera near plane or manual splits do not fit inside
 // [near, shadow_distance].
-CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_direction,
-                            const CascadeSettings& settings, const Aabb& scene_bounds);
+CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_direction, const CascadeSettings& settings,
+                            const Aabb& scene_bounds);
 
 // Caster culling: true when a world-space box can cast a shadow into the cascade, i.e. it
 // intersects the cascade's volume extended toward the light (the box is tested in light

@@ -13,7 +13,7 @@ enum class FitMode { Stable, Tight };
 enum class ShadowStrategy { PerCascade, Multiview };
 
 struct CascadeSettings {
-    int count = 4;                               // 1..8
+    int count = 4;                                // 1..8
     SplitScheme scheme = SplitScheme::Practical;  // PSSM (Zhang et al. 2006)
     // 0 = uniform, 1 = logarithmic. Why 0.75: with the defaults (near 0.1 m, 150 m, 4
     // cascades) the logarithmic splits are 0.6 / 3.9 / 24 m, spending a whole cascade on
@@ -21,8 +21,8 @@ struct CascadeSettings {
     // viewer's feet with 38 m of map. 0.75 gives 9.9 / 22 / 46 m: mostly logarithmic
     // (resolution follows perspective aliasing) without collapsing the first cascade.
     float split_lambda = 0.75f;
-    std::vector<float> manual_splits;            // count-1 view distances, strictly increasing
-    float max_distance = 150.0f;                 // cascades cover [near, min(far, max_distance)]
+    std::vector<float> manual_splits;  // count-1 view distances, strictly increasing
+    float max_distance = 150.0f;       // cascades cover [near, min(far, max_distance)]
     FitMode fit = FitMode::Stable;
     uint32_t resolution = 2048;  // texels per side, 512..8192
     // Extra texels around a tight fit so that filter kernels never sample outside.
@@ -47,17 +47,17 @@ struct ShadowSettings {
 // The names validate_shadow_settings() uses for each setting in its messages; config and
 // CLI parsers use the same keys so that a message points at what the user wrote.
 namespace shadow_keys {
-inline constexpr const char* kCascades = "cascades";                   // CascadeSettings::count
-inline constexpr const char* kResolution = "shadow_resolution";        // 512..8192
-inline constexpr const char* kSplitLambda = "split_lambda";            // 0..1
-inline constexpr const char* kSplits = "splits";                       // manual_splits
-inline constexpr const char* kMaxDistance = "max_distance";            // > 0, finite
-inline constexpr const char* kFilterPadding = "filter_padding";        // 0..64 texels
-inline constexpr const char* kSlopeBias = "slope_bias";                // 0..20
-inline constexpr const char* kConstantBias = "constant_bias";          // 0..1e5
-inline constexpr const char* kBiasClamp = "bias_clamp";                // 0..0.1
-inline constexpr const char* kNormalOffset = "normal_offset";          // 0..10 texels
-inline constexpr const char* kBlendWidth = "blend_width";              // 0..0.5
+inline constexpr const char* kCascades = "cascades";             // CascadeSettings::count
+inline constexpr const char* kResolution = "shadow_resolution";  // 512..8192
+inline constexpr const char* kSplitLambda = "split_lambda";      // 0..1
+inline constexpr const char* kSplits = "splits";                 // manual_splits
+inline constexpr const char* kMaxDistance = "max_distance";      // > 0, finite
+inline constexpr const char* kFilterPadding = "filter_padding";  // 0..64 texels
+inline constexpr const char* kSlopeBias = "slope_bias";          // 0..20
+inline constexpr const char* kConstantBias = "constant_bias";    // 0..1e5
+inline constexpr const char* kBiasClamp = "bias_clamp";          // 0..0.1
+inline constexpr const char* kNormalOffset = "normal_offset";    // 0..10 texels
+inline constexpr const char* kBlendWidth = "blend_width";        // 0..0.5
 }  // namespace shadow_keys
 
 // Throws InputError("<origin>: <setting>: <problem>") for any out-of-range or NaN value.

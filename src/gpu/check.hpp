@@ -24,10 +24,10 @@ const char* result_name(VkResult result);
 
 }  // namespace penumbra::gpu
 
-#define PENUMBRA_VK_CHECK(expression)                                                       \
-    do {                                                                                    \
-        const VkResult penumbra_vk_result_ = (expression);                                  \
-        if (penumbra_vk_result_ != VK_SUCCESS) {                                            \
+#define PENUMBRA_VK_CHECK(expression)                                                                \
+    do {                                                                                             \
+        const VkResult penumbra_vk_result_ = (expression);                                           \
+        if (penumbra_vk_result_ != VK_SUCCESS) {                                                     \
             ::penumbra::gpu::throw_vk_failure(#expression, penumbra_vk_result_, __FILE__, __LINE__); \
-        }                                                                                   \
+        }                                                                                            \
     } while (false)

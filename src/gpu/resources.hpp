@@ -47,7 +47,7 @@ struct ImageDesc {
 struct Image {
     UniqueImage image;
     UniqueMemory memory;
-    UniqueImageView view;                     // all layers
+    UniqueImageView view;                      // all layers
     std::vector<UniqueImageView> layer_views;  // one 2D view per layer (when layers > 1 or array_view)
     ImageDesc desc;
 

@@ -11,8 +11,8 @@ namespace penumbra {
 struct PngImage {
     uint32_t width = 0;
     uint32_t height = 0;
-    uint32_t channels = 0;        // 1 (gray) or 4 (RGBA)
-    uint32_t bit_depth = 0;       // 8 or 16
+    uint32_t channels = 0;          // 1 (gray) or 4 (RGBA)
+    uint32_t bit_depth = 0;         // 8 or 16
     std::vector<uint16_t> samples;  // row-major, row 0 at the top, channels interleaved
 };
 

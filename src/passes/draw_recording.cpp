@@ -11,7 +11,8 @@ gpu::VertexLayout scene_vertex_layout(VertexAttributes attributes) {
     layout.stride = sizeof(Vertex);
     layout.attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))});
     if (attributes == VertexAttributes::PositionNormalUv) {
-        layout.attributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))});
+        layout.attributes.push_back(
+            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))});
     }
     layout.attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv))});
     return layout;

@@ -79,7 +79,7 @@ LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout ma
 
 void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
     const std::array<VkRenderingAttachmentInfo, 3> colors{
-        color_attachment(targets_.color, {{0.52f, 0.62f, 0.75f, 1.0f}}),  // sky (linear; stored as sRGB)
+        color_attachment(targets_.color, {{0.52f, 0.62f, 0.75f, 1.0f}}),    // sky (linear; stored as sRGB)
         color_attachment(targets_.visibility, {{1.0f, 0.0f, 0.0f, 0.0f}}),  // no geometry = fully lit
         color_attachment(targets_.cascade, VkClearColorValue{.uint32 = {PENUMBRA_NO_CASCADE, 0, 0, 0}}),
     };

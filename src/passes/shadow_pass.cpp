@@ -41,15 +41,14 @@ ShadowPass::ShadowPass(const gpu::Context& context, VkDescriptorSetLayout materi
     desc.width = resolution;
     desc.height = resolution;
     desc.layers = cascade_count;
-    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.usage =
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     desc.array_view = true;
     shadow_map_ = gpu::create_image(context, desc);
 
-    const VkDescriptorSetLayoutBinding frame_binding{PENUMBRA_BINDING_FRAME_UNIFORMS,
-                                                     VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
-                                                     nullptr};
+    const VkDescriptorSetLayoutBinding frame_binding{PENUMBRA_BINDING_FRAME_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                                     1, VK_SHADER_STAGE_VERTEX_BIT, nullptr};
     frame_set_layout_ = gpu::create_descriptor_set_layout(context, {&frame_binding, 1});
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout_, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
@@ -110,8 +109,8 @@ void ShadowPass::record_per_cascade(VkCommandBuffer cmd, const DrawData& data,
     }
 }
 
-void ShadowPass::record_multiview(VkCommandBuffer cmd, const DrawData& data,
-                                  const std::vector<CascadeDrawList>& lists, const BiasSettings& bias) const {
+void ShadowPass::record_multiview(VkCommandBuffer cmd, const DrawData& data, const std::vector<CascadeDrawList>& lists,
+                                  const BiasSettings& bias) const {
     // One pass renders every layer, so a draw goes in when any cascade needs it.
     CascadeDrawList union_list;
     for (const CascadeDrawList& list : lists) union_list.insert(union_list.end(), list.begin(), list.end());
@@ -123,8 +122,8 @@ void ShadowPass::record_multiview(VkCommandBuffer cmd, const DrawData& data,
     vkCmdEndRendering(cmd);
 }
 
-void ShadowPass::record_draws(VkCommandBuffer cmd, const DrawData& data, const CascadeDrawList& list,
-                              uint32_t cascade, VkPipeline opaque, VkPipeline masked) const {
+void ShadowPass::record_draws(VkCommandBuffer cmd, const DrawData& data, const CascadeDrawList& list, uint32_t cascade,
+                              VkPipeline opaque, VkPipeline masked) const {
     // Opaque casters first, then masked ones, so each pipeline is bound once.
     for (const bool masked_pass : {false, true}) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, masked_pass ? masked : opaque);

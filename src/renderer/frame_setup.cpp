@@ -47,9 +47,8 @@ shader::FrameUniforms build_frame_uniforms(const CameraView& camera, const Scene
     }
     frame.shadow_params = glm::vec4(shadowed ? static_cast<float>(count) : 0.0f, settings.shadow.bias.normal_offset,
                                     settings.shadow.blend_width, cascades.shadow_distance);
-    frame.options = glm::uvec4(settings.debug == DebugView::Cascades ? PENUMBRA_DEBUG_VIEW_CASCADES
-                                                                     : PENUMBRA_DEBUG_VIEW_NONE,
-                               0u, 0u, 0u);
+    frame.options = glm::uvec4(
+        settings.debug == DebugView::Cascades ? PENUMBRA_DEBUG_VIEW_CASCADES : PENUMBRA_DEBUG_VIEW_NONE, 0u, 0u, 0u);
     return frame;
 }
 

@@ -80,8 +80,8 @@ void GpuScene::create_materials(const gpu::Context& context, const Scene& scene)
     for (const Material& material : materials) {
         passes::MaterialBinding binding_data;
         binding_data.descriptor_set = gpu::allocate_descriptor_set(context, descriptor_pool_, material_set_layout_);
-        const bool has_texture =
-            material.base_color_texture >= 0 && material.base_color_texture < static_cast<int32_t>(scene.textures.size());
+        const bool has_texture = material.base_color_texture >= 0 &&
+                                 material.base_color_texture < static_cast<int32_t>(scene.textures.size());
         const gpu::Image& texture = has_texture ? textures_[material.base_color_texture] : textures_.back();
         gpu::write_combined_image_sampler(context, binding_data.descriptor_set, PENUMBRA_BINDING_BASE_COLOR_TEXTURE,
                                           texture.view, texture_sampler_);

@@ -23,7 +23,7 @@ struct RenderJob {
     std::string scene;  // a .toml path or "builtin:NAME"; empty = the default scene
     std::filesystem::path output = "penumbra.png";
     std::optional<std::filesystem::path> config;
-    SettingsOverrides overrides;  // from the command line: highest priority
+    SettingsOverrides overrides;        // from the command line: highest priority
     DebugView debug = DebugView::None;  // ShadowMap writes the map's layers instead of the image
     Aov aov = Aov::None;
     gpu::ContextOptions device;

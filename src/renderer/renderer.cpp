@@ -26,8 +26,10 @@ gpu::Buffer create_readback_buffer(const gpu::Context& context, VkDeviceSize byt
 
 Readback create_readback(const gpu::Context& context, const RenderSettings& settings) {
     const VkDeviceSize pixels = VkDeviceSize{settings.width} * settings.height;
-    Readback readback{create_readback_buffer(context, pixels * 4), create_readback_buffer(context, pixels * 2),
-                      create_readback_buffer(context, pixels), {}};
+    Readback readback{create_readback_buffer(context, pixels * 4),
+                      create_readback_buffer(context, pixels * 2),
+                      create_readback_buffer(context, pixels),
+                      {}};
     if (settings.debug == DebugView::ShadowMap) {
         const VkDeviceSize texels = VkDeviceSize{settings.shadow.cascades.resolution} *
                                     settings.shadow.cascades.resolution * settings.shadow.cascades.count;
@@ -83,8 +85,8 @@ struct Renderer::Resources {
         sampler.compare_op = VK_COMPARE_OP_GREATER_OR_EQUAL;
         shadow_sampler = gpu::create_sampler(context, sampler);
 
-        const std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-                                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}}};
+        const std::array<VkDescriptorPoolSize, 2> sizes{
+            {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}}};
         descriptor_pool = gpu::create_descriptor_pool(context, 2, sizes);
         shadow_frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, shadow_pass.frame_set_layout());
         lighting_frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, lighting_pass.frame_set_layout());
@@ -98,7 +100,9 @@ struct Renderer::Resources {
 };
 
 Renderer::Renderer(const gpu::Context& context, const Scene& scene, const RenderSettings& settings)
-    : context_(context), scene_(scene), settings_(settings),
+    : context_(context),
+      scene_(scene),
+      settings_(settings),
       resources_(std::make_unique<Resources>(context, scene, settings)) {}
 
 Renderer::~Renderer() {
@@ -144,8 +148,8 @@ FrameImages Renderer::render(const Camera& camera) {
     if (settings_.debug == DebugView::ShadowMap) {
         images.shadow_map_resolution = settings_.shadow.cascades.resolution;
         images.shadow_map_layers = static_cast<uint32_t>(settings_.shadow.cascades.count);
-        images.shadow_map = read_buffer<float>(resources_->readback.shadow_map,
-                                               resources_->readback.shadow_map.size / sizeof(float));
+        images.shadow_map =
+            read_buffer<float>(resources_->readback.shadow_map, resources_->readback.shadow_map.size / sizeof(float));
     }
     return images;
 }

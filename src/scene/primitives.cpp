@@ -89,9 +89,10 @@ Mesh make_plane(float size_x, float size_z) {
         for (int j = 0; j < cells_z; ++j) {
             const float x0 = -x + size_x * i / cells_x, x1 = -x + size_x * (i + 1) / cells_x;
             const float z0 = -z + size_z * j / cells_z, z1 = -z + size_z * (j + 1) / cells_z;
-            add_quad(mesh, {glm::vec3{x0, 0.0f, z1}, glm::vec3{x1, 0.0f, z1}, glm::vec3{x1, 0.0f, z0},
-                            glm::vec3{x0, 0.0f, z0}},
-                     {0.0f, 1.0f, 0.0f});
+            add_quad(
+                mesh,
+                {glm::vec3{x0, 0.0f, z1}, glm::vec3{x1, 0.0f, z1}, glm::vec3{x1, 0.0f, z0}, glm::vec3{x0, 0.0f, z0}},
+                {0.0f, 1.0f, 0.0f});
         }
     }
     // One texture over the whole plane: (-x,+z) is UV (0,0) and (+x,-z) is (1,1).

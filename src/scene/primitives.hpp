@@ -14,7 +14,6 @@ Mesh make_cylinder(float radius, float height, uint32_t segments = 32);  // axis
 
 // Euler angles in degrees applied X, then Y, then Z (R = Rz * Ry * Rx), then the
 // translation: T * R * S.
-glm::mat4 compose_transform(const glm::vec3& translation, const glm::vec3& rotation_degrees,
-                            const glm::vec3& scale);
+glm::mat4 compose_transform(const glm::vec3& translation, const glm::vec3& rotation_degrees, const glm::vec3& scale);
 
 }  // namespace penumbra

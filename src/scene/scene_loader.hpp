@@ -19,8 +19,7 @@ Scene load_scene(const std::string& path_or_builtin);
 
 // Parses scene-file text. `origin` names the source in error messages; relative glTF
 // paths are resolved against `base_directory`.
-Scene parse_scene_toml(std::string_view text, const std::string& origin,
-                       const std::filesystem::path& base_directory);
+Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory);
 
 // Names accepted after "builtin:".
 std::vector<std::string> builtin_scene_names();

@@ -206,12 +206,14 @@ TEST_F(Cli, TruncatedGltf) {
     expect_failure(run("render scene.toml -o out.png"), 2, "model.gltf");
 }
 
-TEST_F(Cli, OutputFolderMissing) { expect_failure(run("render --width 32 --height 32 -o nowhere/out.png"), 2, "nowhere"); }
+TEST_F(Cli, OutputFolderMissing) {
+    expect_failure(run("render --width 32 --height 32 -o nowhere/out.png"), 2, "nowhere");
+}
 
 TEST_F(Cli, NoVulkanDevice) {
     // Point the loader at a driver manifest that does not exist: no device can be found.
-    expect_failure(run("render -o out.png", "VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json"),
-                   3, "Vulkan");
+    expect_failure(run("render -o out.png", "VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json"), 3,
+                   "Vulkan");
 }
 
 TEST_F(Cli, UnknownDeviceSelector) { expect_failure(run("render --device nosuchgpu -o out.png"), 3, "nosuchgpu"); }

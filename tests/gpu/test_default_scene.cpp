@@ -38,8 +38,8 @@ TEST(DefaultScene, SunWithoutShadowsIsFullyLitWhereItFacesTheLight) {
     ASSERT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
     // Only surfaces facing away from the sun (N.L <= 0) may be dark: the lit ground dominates.
     const auto& visibility = frame.images.visibility;
-    const size_t partial = std::count_if(visibility.begin(), visibility.end(),
-                                         [](uint16_t v) { return v != 0 && v != 65535; });
+    const size_t partial =
+        std::count_if(visibility.begin(), visibility.end(), [](uint16_t v) { return v != 0 && v != 65535; });
     EXPECT_EQ(partial, 0u) << "without shadows visibility is exactly 0 (facing away) or 1";
 }
 

@@ -75,14 +75,42 @@ void use_manual_splits(ShadowSettings& settings, std::vector<float> splits) {
 
 std::vector<BadValue> bad_manual_splits() {
     return {
-        {"too few", [](ShadowSettings& s) { use_manual_splits(s, {5.0f, 20.0f}); s.cascades.count = 4; }, "splits",
-         "2 values given"},
-        {"not increasing", [](ShadowSettings& s) { use_manual_splits(s, {5.0f, 20.0f, 12.5f}); }, "splits", "12.5"},
-        {"repeated", [](ShadowSettings& s) { use_manual_splits(s, {5.0f, 5.0f}); }, "splits", "5"},
-        {"zero", [](ShadowSettings& s) { use_manual_splits(s, {0.0f, 5.0f}); }, "splits", "0"},
-        {"negative", [](ShadowSettings& s) { use_manual_splits(s, {-3.0f, 5.0f}); }, "splits", "-3"},
-        {"NaN", [](ShadowSettings& s) { use_manual_splits(s, {2.0f, kNaN}); }, "splits", "nan"},
-        {"beyond max_distance", [](ShadowSettings& s) { use_manual_splits(s, {2.0f, 160.0f}); }, "splits", "160"},
+        {"too few",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {5.0f, 20.0f});
+             s.cascades.count = 4;
+         },
+         "splits", "2 values given"},
+        {"not increasing",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {5.0f, 20.0f, 12.5f});
+         },
+         "splits", "12.5"},
+        {"repeated",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {5.0f, 5.0f});
+         },
+         "splits", "5"},
+        {"zero",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {0.0f, 5.0f});
+         },
+         "splits", "0"},
+        {"negative",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {-3.0f, 5.0f});
+         },
+         "splits", "-3"},
+        {"NaN",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {2.0f, kNaN});
+         },
+         "splits", "nan"},
+        {"beyond max_distance",
+         [](ShadowSettings& s) {
+             use_manual_splits(s, {2.0f, 160.0f});
+         },
+         "splits", "160"},
     };
 }
 
