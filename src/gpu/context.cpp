@@ -66,7 +66,12 @@ VkInstance create_bare_instance(const void* next, const std::vector<const char*>
         throw DeviceError("no Vulkan driver found (vkCreateInstance returned " + std::string(result_name(result)) +
                           "); install a Vulkan driver, e.g. mesa-vulkan-drivers for the lavapipe CPU device");
     }
-    PENUMBRA_VK_CHECK(result);
+    if (result == VK_ERROR_LAYER_NOT_PRESENT) {
+        throw DeviceError(std::string(kValidationLayer) +
+                          " is installed but failed to load (vkCreateInstance returned " + result_name(result) + ")");
+    }
+    if (result != VK_SUCCESS)
+        throw_vk_failure("vkCreateInstance(&info, nullptr, &instance)", result, __FILE__, __LINE__);
     return instance;
 }
 
