@@ -189,6 +189,33 @@ TEST_F(Cli, ImageSizeOutOfRangeInSceneFile) {
     expect_failure(run("render scene.toml -o out.png"), 2, "output.width");
 }
 
+TEST_F(Cli, ShadowSettingsOutOfRange) {
+    expect_failure(run("render --cascades 9 -o out.png"), 2, "--cascades");
+    expect_failure(run("render --shadow-resolution 256 -o out.png"), 2, "--shadow-resolution");
+    expect_failure(run("render --split-lambda 1.5 -o out.png"), 2, "--split-lambda");
+    expect_failure(run("render --fit loose -o out.png"), 2, "--fit");
+    expect_failure(run("render --cascades 3 --splits 10,5 -o out.png"), 2, "splits");
+    expect_failure(run("render --blend-width 0.9 -o out.png"), 2, "--blend-width");
+}
+
+TEST_F(Cli, ShadowSettingsOutOfRangeInConfigFile) {
+    write_file("config.toml", "[shadow]\ncascades = 0\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "shadow.cascades");
+    write_file("config.toml", "[shadow]\nnormal_offset = -1.0\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "normal_offset");
+    write_file("config.toml", "[shadows]\ncascades = 2\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "shadows");
+}
+
+TEST_F(Cli, HelpDocumentsTheOptions) {
+    const RunResult result = run("render --help");
+    EXPECT_EQ(result.exit_code, 0);
+    for (const char* option : {"--output", "--config", "--aov", "--eye", "--light-dir", "--cascades", "--fit",
+                               "--slope-bias", "--normal-offset", "--shadow-strategy", "--validate", "--device"}) {
+        EXPECT_NE(result.out.find(option), std::string::npos) << option;
+    }
+}
+
 TEST_F(Cli, UnknownFlag) { expect_failure(run("render --shadows-please -o out.png"), 2, "--shadows-please"); }
 
 TEST_F(Cli, MalformedVectorFlag) { expect_failure(run("render --eye 1,2 -o out.png"), 2, "--eye"); }
