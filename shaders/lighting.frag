@@ -28,23 +28,25 @@ const vec3 kCascadeTints[8] = vec3[](vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25
                                      vec3(1.0, 0.6, 0.2), vec3(0.7, 0.7, 0.7));
 
 void main() {
+    vec3 normal = normalize(in_world_normal);
+    if (!gl_FrontFacing) normal = -normal;  // double-sided materials are lit from both sides
+    const float view_depth = -(frame.view * vec4(in_world_position, 1.0)).z;
+    const bool sun_casts_shadows = frame.sun_radiance.w != 0.0 && cascade_count() > 0;
+    const int cascade = sun_casts_shadows ? select_cascade(view_depth) : -1;
+    // Before the discard and every per-pixel branch: it takes screen-space derivatives.
+    const ShadowReceiver receiver = prepare_shadow_receiver(cascade, in_world_position, normal);
+
     vec4 base_color = draw.base_color;
     if (draw.flags.y != 0u) base_color *= texture(base_color_texture, in_uv);
     if (draw.flags.z == PENUMBRA_ALPHA_MASK && base_color.a < draw.material.x) discard;
 
-    vec3 normal = normalize(in_world_normal);
-    if (!gl_FrontFacing) normal = -normal;  // double-sided materials are lit from both sides
     const vec3 to_sun = frame.sun_direction.xyz;
     const float n_dot_l = dot(normal, to_sun);
-    const float view_depth = -(frame.view * vec4(in_world_position, 1.0)).z;
-
-    const bool sun_casts_shadows = frame.sun_radiance.w != 0.0 && cascade_count() > 0;
-    const int cascade = sun_casts_shadows ? select_cascade(view_depth) : -1;
     float visibility = 1.0;
     if (frame.sun_direction.w == 0.0 || n_dot_l <= 0.0) {
         visibility = 0.0;  // no sun, or the surface faces away from it
     } else if (cascade >= 0) {
-        visibility = sun_visibility(cascade, in_world_position, normal, view_depth);
+        visibility = sun_visibility(cascade, receiver, view_depth);
     }
 
     vec3 color = shade_sun(base_color.rgb, normal, normalize(frame.camera_position.xyz - in_world_position), to_sun,

@@ -6,7 +6,10 @@
 #include <map>
 #include <sstream>
 
+#include "compare_options.hpp"
 #include "core/errors.hpp"
+#include "filter_options.hpp"
+#include "view_options.hpp"
 
 namespace penumbra::cli {
 namespace {
@@ -14,6 +17,13 @@ namespace {
 // Raw option values as typed; converted after parsing so errors can name the flag.
 struct RawRenderOptions {
     std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits;
+    std::string config;
+    bool no_cull = false;
+    RawFilterOptions filter;
+};
+
+struct RawBenchOptions {
+    std::string camera_path, light_path, ceiling, json;
 };
 
 glm::vec3 parse_vec3(const std::string& text, const std::string& flag) {
@@ -82,10 +92,12 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
     render.add_option("--blend-width", o.blend_width, "Cascade blend band as a fraction (0..0.5)")
         ->check(CLI::Range(0.0f, 0.5f));
     render.add_option("--shadow-strategy", raw.strategy, "Shadow rendering: per-cascade|multiview");
+    add_filter_options(render, o, raw.filter);
 }
 
 void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     SettingsOverrides& o = job.overrides;
+    convert_filter_options(raw.filter, o);
     if (!raw.eye.empty()) o.eye = parse_vec3(raw.eye, "--eye");
     if (!raw.target.empty()) o.target = parse_vec3(raw.target, "--target");
     if (!raw.up.empty()) o.up = parse_vec3(raw.up, "--up");
@@ -115,6 +127,57 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     }
 }
 
+// Options shared by `render` and `bench`: the scene, its settings and the device.
+void add_render_job_options(CLI::App& command, RenderJob& job, RawRenderOptions& raw) {
+    command.add_option("scene", job.scene, "Scene file (.toml) or builtin:NAME (default builtin:default)");
+    command.add_option("--config", raw.config, "Config file (.toml) with [output], [shadow], [camera], [sun] settings");
+    command.add_flag("--validate", job.device.validation,
+                     "Enable the Khronos validation layer (with synchronization validation); any message fails");
+    command.add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");
+    command.add_flag("--no-cull", raw.no_cull, "Disable per-cascade caster culling");
+    add_settings_options(command, job.overrides, raw);
+}
+
+void finish_render_job(const RawRenderOptions& raw, RenderJob& job) {
+    convert_raw_options(raw, job);
+    if (!raw.config.empty()) job.config = raw.config;
+    if (raw.no_cull) job.overrides.cull_casters = false;
+}
+
+void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& raw) {
+    bench.add_option("--frames", job.frames, "Measured frames (default 100)")->check(CLI::Range(1u, 1000000u));
+    bench.add_option("--warmup", job.warmup, "Frames rendered before measuring (default 10)")
+        ->check(CLI::Range(0u, 1000000u));
+    bench.add_option("--camera-path", raw.camera_path, "Camera path: orbit (default) | flythrough");
+    bench.add_option("--light-path", raw.light_path, "Sun path: fixed (default) | rotate");
+    bench.add_option("--json", raw.json, "Also write the results (and device, settings, scene) as JSON");
+    bench.add_option("--ceiling", raw.ceiling,
+                     "Measure a ceiling instead: triangles (shadow pass at 16x16, no culling) | taps (full-screen "
+                     "shadow-map taps)");
+    bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps (default 16)")
+        ->check(CLI::Range(1u, bench::kMaxTaps));
+    bench.add_flag("--readback", job.readback, "Read the images back every frame, as `render` does");
+}
+
+void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_raw, bench::BenchJob& job) {
+    finish_render_job(raw, job.render);
+    if (!bench_raw.camera_path.empty()) {
+        job.camera_path = parse_choice<bench::CameraPath>(
+            bench_raw.camera_path, "--camera-path",
+            {{"orbit", bench::CameraPath::Orbit}, {"flythrough", bench::CameraPath::Flythrough}});
+    }
+    if (!bench_raw.light_path.empty()) {
+        job.light_path =
+            parse_choice<bench::LightPath>(bench_raw.light_path, "--light-path",
+                                           {{"fixed", bench::LightPath::Fixed}, {"rotate", bench::LightPath::Rotate}});
+    }
+    if (!bench_raw.ceiling.empty()) {
+        job.ceiling = parse_choice<bench::Ceiling>(
+            bench_raw.ceiling, "--ceiling", {{"triangles", bench::Ceiling::Triangles}, {"taps", bench::Ceiling::Taps}});
+    }
+    if (!bench_raw.json.empty()) job.json = bench_raw.json;
+}
+
 }  // namespace
 
 Command parse_command_line(int argc, char** argv) {
@@ -126,31 +189,59 @@ Command parse_command_line(int argc, char** argv) {
 
     RenderJob job;
     RawRenderOptions raw;
-    bool no_cull = false;
-    std::string config;
     CLI::App* render = app.add_subcommand("render", "Render a scene with a sun shadow to a PNG");
-    render->add_option("scene", job.scene, "Scene file (.toml) or builtin:NAME (default builtin:default)");
+    add_render_job_options(*render, job, raw);
     render->add_option("-o,--output", job.output, "Output PNG (default penumbra.png)");
-    render->add_option("--config", config, "Config file (.toml) with [output], [shadow], [camera], [sun] settings");
     render->add_option("--aov", raw.aov, "Write an AOV instead of colour: shadow (16-bit visibility) | cascade");
     render->add_option("--debug", raw.debug,
                        "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side)");
-    render->add_flag("--validate", job.device.validation,
-                     "Enable the Khronos validation layer (with synchronization validation); any message fails");
-    render->add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");
-    render->add_flag("--no-cull", no_cull, "Disable per-cascade caster culling");
-    add_settings_options(*render, job.overrides, raw);
+
+    bench::BenchJob bench_job;
+    RawRenderOptions bench_render_raw;
+    RawBenchOptions bench_raw;
+    CLI::App* bench = app.add_subcommand(
+        "bench", "Time frames of a scene: GPU time per pass, CPU time per step, per-cascade load (docs/bench.md)");
+    add_render_job_options(*bench, bench_job.render, bench_render_raw);
+    add_bench_options(*bench, bench_job, bench_raw);
+
+    compare::CompareJob compare_job;
+    RawRenderOptions compare_render_raw;
+    std::string compare_json;
+    CLI::App* compare = app.add_subcommand(
+        "compare", "Measure shadow quality against a ray-traced reference (Embree): error images and JSON (docs/QUALITY.md)");
+    add_render_job_options(*compare, compare_job.render, compare_render_raw);
+    add_compare_options(*compare, compare_job, compare_json);
+
+    view::ViewJob view_job;
+    RawRenderOptions view_render_raw;
+    RawViewOptions view_raw;
+    CLI::App* view =
+        app.add_subcommand("view", "Open an interactive window with a live shadow debug panel (docs/viewer.md)");
+    add_render_job_options(*view, view_job.render, view_render_raw);
+    add_view_options(*view, view_job, view_raw);
 
     try {
         app.parse(argc, argv);
         if (devices->parsed()) return DevicesCommand{};
+        if (bench->parsed()) {
+            finish_bench_job(bench_render_raw, bench_raw, bench_job);
+            return BenchCommand{bench_job};
+        }
+        if (compare->parsed()) {
+            finish_render_job(compare_render_raw, compare_job.render);
+            if (!compare_json.empty()) compare_job.json = compare_json;
+            return CompareCommand{compare_job};
+        }
+        if (view->parsed()) {
+            finish_render_job(view_render_raw, view_job.render);
+            convert_view_options(view_raw, view_job);
+            return ViewCommand{view_job};
+        }
         if (!render->parsed()) {
             std::printf("%s", app.help().c_str());
             return ExitNow{0};
         }
-        convert_raw_options(raw, job);
-        if (!config.empty()) job.config = config;
-        if (no_cull) job.overrides.cull_casters = false;
+        finish_render_job(raw, job);
         return RenderCommand{job};
     } catch (const CLI::ParseError& error) {
         // --help and --version arrive as "errors" with exit code 0; CLI11 prints them.

@@ -4,7 +4,10 @@
 #include <string>
 #include <variant>
 
+#include "bench/bench_job.hpp"
+#include "compare/compare_job.hpp"
 #include "renderer/render_job.hpp"
+#include "view/view_job.hpp"
 
 namespace penumbra::cli {
 
@@ -12,11 +15,20 @@ struct DevicesCommand {};
 struct RenderCommand {
     RenderJob job;
 };
+struct BenchCommand {
+    bench::BenchJob job;
+};
+struct CompareCommand {
+    compare::CompareJob job;
+};
+struct ViewCommand {
+    view::ViewJob job;
+};
 struct ExitNow {
     int code = 0;  // --help / --version printed, or a parse error already reported
 };
 
-using Command = std::variant<DevicesCommand, RenderCommand, ExitNow>;
+using Command = std::variant<DevicesCommand, RenderCommand, BenchCommand, CompareCommand, ViewCommand, ExitNow>;
 
 // Parses arguments; usage errors are printed as one line on stderr (ExitNow{2}).
 Command parse_command_line(int argc, char** argv);

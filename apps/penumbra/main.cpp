@@ -5,10 +5,14 @@
 #include <cstdio>
 #include <variant>
 
+#include "bench/bench_report.hpp"
 #include "cli.hpp"
+#include "compare/compare_report.hpp"
 #include "core/errors.hpp"
 #include "gpu/check.hpp"
 #include "gpu/context.hpp"
+#include "progress_bar.hpp"
+#include "view/view_job.hpp"
 
 namespace {
 
@@ -31,6 +35,29 @@ int render(const penumbra::RenderJob& job) {
     return 0;
 }
 
+int bench(penumbra::bench::BenchJob job) {
+    job.progress = penumbra::cli::terminal_progress_bar();
+    const penumbra::bench::BenchResult result = penumbra::bench::run_bench_job(job);
+    std::printf("%s", penumbra::bench::format_bench_table(result).c_str());
+    if (job.json) penumbra::bench::write_bench_json(result, *job.json);
+    return 0;
+}
+
+int compare(const penumbra::compare::CompareJob& job) {
+    const penumbra::compare::CompareResult result = penumbra::compare::run_compare_job(job);
+    std::printf("%s", penumbra::compare::format_compare_summary(result).c_str());
+    const auto written = penumbra::compare::write_compare_outputs(result);
+    std::printf("penumbra: wrote %zu files to %s\n", written.size(), job.out_dir.c_str());
+    return 0;
+}
+
+int view(const penumbra::view::ViewJob& job) {
+    const penumbra::view::ViewSummary summary = penumbra::view::run_view(job);
+    if (summary.screenshot) std::printf("penumbra: wrote %s\n", summary.screenshot->c_str());
+    std::printf("penumbra: presented %u frames (%s)\n", summary.frames, summary.device_name.c_str());
+    return 0;
+}
+
 int fail(int code, const char* message) {
     std::fprintf(stderr, "penumbra: %s\n", message);
     return code;
@@ -43,6 +70,15 @@ int main(int argc, char** argv) {
         const penumbra::cli::Command command = penumbra::cli::parse_command_line(argc, argv);
         if (const auto* exit_now = std::get_if<penumbra::cli::ExitNow>(&command)) return exit_now->code;
         if (std::holds_alternative<penumbra::cli::DevicesCommand>(command)) return list_devices();
+        if (const auto* bench_command = std::get_if<penumbra::cli::BenchCommand>(&command)) {
+            return bench(bench_command->job);
+        }
+        if (const auto* compare_command = std::get_if<penumbra::cli::CompareCommand>(&command)) {
+            return compare(compare_command->job);
+        }
+        if (const auto* view_command = std::get_if<penumbra::cli::ViewCommand>(&command)) {
+            return view(view_command->job);
+        }
         return render(std::get<penumbra::cli::RenderCommand>(command).job);
     } catch (const penumbra::InputError& error) {
         return fail(2, error.what());

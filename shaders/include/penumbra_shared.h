@@ -17,7 +17,11 @@
 // Descriptor sets and bindings.
 #define PENUMBRA_SET_FRAME 0
 #define PENUMBRA_BINDING_FRAME_UNIFORMS 0
-#define PENUMBRA_BINDING_SHADOW_MAP 1
+#define PENUMBRA_BINDING_SHADOW_MAP 1      // sampler2DArrayShadow (hardware comparison)
+#define PENUMBRA_BINDING_SHADOW_DEPTH 2    // the same map, raw depth (PCSS blocker search)
+#define PENUMBRA_BINDING_SHADOW_MOMENTS 3  // filtered moments (vsm/evsm/msm), else the depth map
+// The moments blur pass: set 0 holds the image it reads.
+#define PENUMBRA_BINDING_BLUR_SOURCE 0
 #define PENUMBRA_SET_MATERIAL 1
 #define PENUMBRA_BINDING_BASE_COLOR_TEXTURE 0
 
@@ -28,6 +32,26 @@
 // DrawPushConstants.flags.z: how the material's alpha is used.
 #define PENUMBRA_ALPHA_OPAQUE 0u
 #define PENUMBRA_ALPHA_MASK 1u
+
+// Shadow filters: specialization constant PENUMBRA_SPEC_FILTER_MODE of the lighting and
+// moments fragment shaders (docs/filters.md).
+#define PENUMBRA_FILTER_HARD 0u
+#define PENUMBRA_FILTER_PCF 1u
+#define PENUMBRA_FILTER_POISSON 2u
+#define PENUMBRA_FILTER_PCSS 3u
+#define PENUMBRA_FILTER_VSM 4u
+#define PENUMBRA_FILTER_EVSM 5u
+#define PENUMBRA_FILTER_MSM 6u
+
+// Specialization constant ids (one pipeline per filter configuration).
+#define PENUMBRA_SPEC_FILTER_MODE 0
+#define PENUMBRA_SPEC_SEARCH_TAPS 1      // poisson taps, or PCSS blocker-search taps: 16 or 32
+#define PENUMBRA_SPEC_FILTER_TAPS 2      // PCSS filter taps: 16, 25 or 49
+#define PENUMBRA_SPEC_RECEIVER_PLANE 3   // bool: receiver-plane depth bias
+#define PENUMBRA_SPEC_PCSS_EARLY_OUT 4   // bool
+#define PENUMBRA_SPEC_MOMENTS_POISSON 5  // bool: 16 Poisson taps of the moments
+#define PENUMBRA_SPEC_EVSM_COMPONENTS 6  // 2 or 4
+#define PENUMBRA_SPEC_MSM_QUANTIZED 7    // bool: optimized moment quantization (RGBA16)
 
 // Cascade index written where no cascade applies (no geometry, beyond the shadow distance).
 #define PENUMBRA_NO_CASCADE 255u
@@ -50,6 +74,19 @@ struct FrameUniforms {
     vec4 camera_params;
     // x: debug view (PENUMBRA_DEBUG_VIEW_*)
     uvec4 options;
+    // Shadow filtering (shaders/include/shadow.glsl, docs/filters.md). Per cascade:
+    // xy: the light's radius in UV per unit of reverse-Z depth (depth range * tan(angular
+    // diameter / 2) / light-space width, height); zw: clamp of the receiver-plane depth
+    // gradient dz/du, dz/dv.
+    vec4 cascade_filter[PENUMBRA_MAX_CASCADES];
+    // x: pcf radius (taps), y: poisson radius (texels), z: pcss max penumbra (texels),
+    // w: one shadow-map texel in UV
+    vec4 filter_params;
+    // x: light-bleeding reduction, y: evsm positive exponent, z: evsm negative exponent
+    // (both already clamped to the moments format), w: msm moment bias
+    vec4 moment_params;
+    // x: frame index (per-frame rotation of the sampling patterns)
+    uvec4 filter_options;
 };
 
 struct DrawPushConstants {
@@ -59,6 +96,17 @@ struct DrawPushConstants {
     // x: cascade index (per-cascade shadow pass; 0 with multiview), y: 1 when the material
     // has a base colour texture, z: alpha mode (PENUMBRA_ALPHA_*)
     uvec4 flags;
+};
+
+// The sampling-rate ceiling pass (shaders/tap_ceiling.frag, `penumbra bench --ceiling taps`).
+struct TapCeilingPushConstants {
+    vec4 target_and_texel;  // xy: 1 / target size in pixels, z: one shadow-map texel in UV units
+    uvec4 counts;           // x: texture taps per pixel, y: shadow-map layers
+};
+
+// The moments blur pass (shaders/moments_blur.frag).
+struct BlurPushConstants {
+    uvec4 params;  // x: layer, y: radius in texels, z: 1 horizontal / 0 vertical
 };
 
 #endif

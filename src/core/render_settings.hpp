@@ -22,6 +22,9 @@ struct RenderSettings {
     uint32_t height = 720;
     ShadowSettings shadow;
     DebugView debug = DebugView::None;
+    // Also render and read back each pixel's world position and normal (FrameImages::
+    // world_position / world_normal), for `penumbra compare`. Off: frames pay nothing.
+    bool geometry_aovs = false;
 };
 
 // Throws InputError naming `origin` and the setting for out-of-range values.

@@ -42,6 +42,7 @@ void apply_overrides(const SettingsOverrides& overrides, RenderSettings& setting
     assign_if(overrides.blend_width, settings.shadow.blend_width);
     assign_if(overrides.strategy, settings.shadow.strategy);
     assign_if(overrides.cull_casters, settings.shadow.cull_casters);
+    apply_filter_overrides(overrides.filter, settings.shadow.filter);
 }
 
 void apply_overrides(const SettingsOverrides& overrides, Scene& scene) {
@@ -51,6 +52,11 @@ void apply_overrides(const SettingsOverrides& overrides, Scene& scene) {
     assign_if(overrides.fov, scene.camera.fov_y_degrees);
     assign_if(overrides.near_plane, scene.camera.near_plane);
     assign_if(overrides.far_plane, scene.camera.far_plane);
+    if (overrides.angular_diameter) {
+        for (Light& light : scene.lights) {
+            if (light.type == LightType::Directional) light.angular_diameter_degrees = *overrides.angular_diameter;
+        }
+    }
     if (overrides.light_direction) {
         for (Light& light : scene.lights) {
             if (light.type == LightType::Directional) {
@@ -60,6 +66,7 @@ void apply_overrides(const SettingsOverrides& overrides, Scene& scene) {
         }
         Light sun;
         sun.direction = *overrides.light_direction;
+        sun.angular_diameter_degrees = overrides.angular_diameter.value_or(sun.angular_diameter_degrees);
         scene.lights.push_back(sun);
     }
 }
@@ -84,6 +91,11 @@ void validate_camera_and_sun(const Scene& scene, const std::string& origin) {
     for (const Light& light : scene.lights) {
         if (light.type == LightType::Directional && !(glm::length(light.direction) > 1e-6f)) {
             throw InputError(origin + ": light direction: zero-length vector");
+        }
+        const float angular = light.angular_diameter_degrees;
+        if (light.type == LightType::Directional && !(angular >= 0.0f && angular <= 45.0f)) {
+            throw InputError(origin + ": angular_diameter: " + format_number(angular) +
+                             " is outside the allowed range [0, 45] degrees");
         }
     }
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/filter_overrides.hpp"
 #include "core/render_settings.hpp"
 #include "core/scene.hpp"
 
@@ -29,6 +30,7 @@ struct SettingsOverrides {
     std::optional<float> blend_width;
     std::optional<ShadowStrategy> strategy;
     std::optional<bool> cull_casters;
+    FilterOverrides filter;  // [shadow] filter keys (docs/filters.md)
     // [camera] and [sun]
     std::optional<glm::vec3> eye;
     std::optional<glm::vec3> target;
@@ -37,6 +39,7 @@ struct SettingsOverrides {
     std::optional<float> near_plane;
     std::optional<float> far_plane;
     std::optional<glm::vec3> light_direction;
+    std::optional<float> angular_diameter;  // degrees, the sun's disk (soft-shadow filters)
 };
 
 void apply_overrides(const SettingsOverrides& overrides, RenderSettings& settings);
@@ -44,7 +47,8 @@ void apply_overrides(const SettingsOverrides& overrides, RenderSettings& setting
 void apply_overrides(const SettingsOverrides& overrides, Scene& scene);
 
 // Throws InputError naming `origin` when the scene's camera or sun is invalid:
-// eye equal to target, fov outside (0, 180), near <= 0, far <= near, zero light direction.
+// eye equal to target, fov outside (0, 180), near <= 0, far <= near, zero light direction,
+// angular diameter outside [0, 45] degrees.
 void validate_camera_and_sun(const Scene& scene, const std::string& origin);
 
 }  // namespace penumbra

@@ -71,12 +71,35 @@ void validate_bias_settings(const BiasSettings& bias, const std::string& origin)
     require_in_range(origin, shadow_keys::kNormalOffset, bias.normal_offset, 0.0f, 10.0f);
 }
 
+void require_one_of(const std::string& origin, const char* key, int value, int first, int second) {
+    if (value != first && value != second) {
+        std::ostringstream problem;
+        problem << value << " must be " << first << " or " << second;
+        reject(origin, key, problem.str());
+    }
+}
+
+void validate_filter_settings(const FilterSettings& filter, const std::string& origin) {
+    require_in_range(origin, shadow_keys::kPcfRadius, filter.pcf_radius, 0, 5);
+    require_one_of(origin, shadow_keys::kPoissonTaps, filter.poisson_taps, 16, 32);
+    require_in_range(origin, shadow_keys::kPoissonRadius, filter.poisson_radius, 0.5f, 32.0f);
+    require_one_of(origin, shadow_keys::kPcssBlockerTaps, filter.pcss_blocker_taps, 16, 32);
+    require_in_range(origin, shadow_keys::kPcssMaxPenumbra, filter.pcss_max_penumbra, 1.0f, 128.0f);
+    require_in_range(origin, shadow_keys::kLightBleeding, filter.light_bleeding_reduction, 0.0f, 0.95f);
+    require_in_range(origin, shadow_keys::kBlurRadius, filter.blur_radius, 0, 8);
+    require_in_range(origin, shadow_keys::kEvsmPositiveExponent, filter.evsm_positive_exponent, 0.1f, 100.0f);
+    require_in_range(origin, shadow_keys::kEvsmNegativeExponent, filter.evsm_negative_exponent, 0.1f, 100.0f);
+    require_one_of(origin, shadow_keys::kEvsmComponents, filter.evsm_components, 2, 4);
+    require_in_range(origin, shadow_keys::kMsmMomentBias, filter.msm_moment_bias, 0.0f, 0.01f);
+}
+
 }  // namespace
 
 void validate_shadow_settings(const ShadowSettings& settings, const std::string& origin) {
     validate_cascade_settings(settings.cascades, origin);
     validate_bias_settings(settings.bias, origin);
     require_in_range(origin, shadow_keys::kBlendWidth, settings.blend_width, 0.0f, 0.5f);
+    validate_filter_settings(settings.filter, origin);
 }
 
 }  // namespace penumbra

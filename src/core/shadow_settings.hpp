@@ -11,6 +11,10 @@ namespace penumbra {
 enum class SplitScheme { Uniform, Logarithmic, Practical, Manual };
 enum class FitMode { Stable, Tight };
 enum class ShadowStrategy { PerCascade, Multiview };
+// Shadow filters (docs/filters.md): comparison filters over the depth map, and moment
+// filters over a prefilterable moments map rendered by the moments pass.
+enum class ShadowFilter { Hard, Pcf, Poisson, Pcss, Vsm, Evsm, Msm };
+enum class PcssQuality { Low, Medium, High };  // 16, 25 or 49 filter taps
 
 struct CascadeSettings {
     int count = 4;                                // 1..8
@@ -36,9 +40,31 @@ struct BiasSettings {
     float normal_offset = 1.0f;  // world offset along the normal, in cascade texels
 };
 
+struct FilterSettings {
+    ShadowFilter mode = ShadowFilter::Hard;
+    // Receiver-plane depth bias for pcf, poisson and pcss (Isidoro 2006).
+    bool receiver_plane_bias = true;
+    int pcf_radius = 1;                              // 0..5: a (2R+1) x (2R+1) grid of taps
+    int poisson_taps = 16;                           // 16 or 32
+    float poisson_radius = 2.5f;                     // texels, 0.5..32 (also the moments' Poisson radius)
+    int pcss_blocker_taps = 16;                      // 16 or 32
+    PcssQuality pcss_quality = PcssQuality::Medium;  // filter taps: 16 / 25 / 49
+    bool pcss_early_out = false;                     // fully shadowed when every blocker tap occludes
+    float pcss_max_penumbra = 32.0f;                 // texels, 1..128 (the search radius is clamped too)
+    float light_bleeding_reduction = 0.2f;           // vsm, evsm, msm: 0..0.95
+    int blur_radius = 2;                             // moments blur, texels 0..8 (0 = no blur)
+    bool moments_poisson = false;                    // 16 Poisson taps of the moments (poisson_radius)
+    float evsm_positive_exponent = 40.0f;            // 0.1..100, clamped to the format (42 for 32-bit float)
+    float evsm_negative_exponent = 5.0f;             // 0.1..100, likewise
+    int evsm_components = 4;                         // 2 (positive warp only) or 4
+    float msm_moment_bias = 3.0e-5f;                 // 0..0.01
+    bool msm_optimized_quantization = false;         // RGBA16 moments (Peters & Klein 2015, sec. 4.3)
+};
+
 struct ShadowSettings {
     CascadeSettings cascades;
     BiasSettings bias;
+    FilterSettings filter;
     float blend_width = 0.1f;  // fraction of a cascade's depth range blended into the next
     ShadowStrategy strategy = ShadowStrategy::PerCascade;
     bool cull_casters = true;
@@ -58,6 +84,23 @@ inline constexpr const char* kConstantBias = "constant_bias";    // 0..1e5
 inline constexpr const char* kBiasClamp = "bias_clamp";          // 0..0.1
 inline constexpr const char* kNormalOffset = "normal_offset";    // 0..10 texels
 inline constexpr const char* kBlendWidth = "blend_width";        // 0..0.5
+inline constexpr const char* kFilter = "filter";
+inline constexpr const char* kReceiverPlaneBias = "receiver_plane_bias";
+inline constexpr const char* kPcfRadius = "pcf_radius";                         // 0..5
+inline constexpr const char* kPoissonTaps = "poisson_taps";                     // 16 or 32
+inline constexpr const char* kPoissonRadius = "poisson_radius";                 // 0.5..32 texels
+inline constexpr const char* kPcssBlockerTaps = "pcss_blocker_taps";            // 16 or 32
+inline constexpr const char* kPcssQuality = "pcss_quality";                     // low|medium|high
+inline constexpr const char* kPcssEarlyOut = "pcss_early_out";                  // bool
+inline constexpr const char* kPcssMaxPenumbra = "pcss_max_penumbra";            // 1..128 texels
+inline constexpr const char* kLightBleeding = "light_bleeding_reduction";       // 0..0.95
+inline constexpr const char* kBlurRadius = "blur_radius";                       // 0..8 texels
+inline constexpr const char* kMomentsPoisson = "moments_poisson";               // bool
+inline constexpr const char* kEvsmPositiveExponent = "evsm_positive_exponent";  // 0.1..100
+inline constexpr const char* kEvsmNegativeExponent = "evsm_negative_exponent";  // 0.1..100
+inline constexpr const char* kEvsmComponents = "evsm_components";               // 2 or 4
+inline constexpr const char* kMsmMomentBias = "msm_moment_bias";                // 0..0.01
+inline constexpr const char* kMsmQuantization = "msm_optimized_quantization";   // bool
 }  // namespace shadow_keys
 
 // Throws InputError("<origin>: <setting>: <problem>") for any out-of-range or NaN value.

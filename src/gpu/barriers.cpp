@@ -29,6 +29,16 @@ StateUsage usage_of(ImageState state) {
         case ImageState::FragmentSampled:
             return {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        case ImageState::BlitSrc:
+            return {VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+        case ImageState::BlitDst:
+            return {VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+        case ImageState::SwapchainAcquired:
+            return {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_UNDEFINED};
+        case ImageState::PresentSrc:
+            // Presentation waits on a semaphore signalled after the whole submission, so the
+            // barrier only has to order the layout transition after the last write.
+            return {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR};
     }
     return {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
             VK_IMAGE_LAYOUT_GENERAL};
@@ -37,6 +47,11 @@ StateUsage usage_of(ImageState state) {
 }  // namespace
 
 void transition(VkCommandBuffer cmd, const Image& image, ImageState from, ImageState to) {
+    transition(cmd, image.get(), image.desc.aspect, image.desc.layers, from, to);
+}
+
+void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers, ImageState from,
+                ImageState to) {
     const StateUsage source = usage_of(from);
     const StateUsage destination = usage_of(to);
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
@@ -48,8 +63,8 @@ void transition(VkCommandBuffer cmd, const Image& image, ImageState from, ImageS
     barrier.newLayout = destination.layout;
     barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image.get();
-    barrier.subresourceRange = {image.desc.aspect, 0, 1, 0, image.desc.layers};
+    barrier.image = image;
+    barrier.subresourceRange = {aspect, 0, 1, 0, layers};
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.imageMemoryBarrierCount = 1;
     dependency.pImageMemoryBarriers = &barrier;

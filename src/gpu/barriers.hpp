@@ -15,10 +15,20 @@ enum class ImageState {
     ColorAttachment,
     DepthAttachment,
     FragmentSampled,  // read by fragment shaders (textures, shadow maps)
+    BlitSrc,          // read by vkCmdBlitImage
+    BlitDst,          // written by vkCmdBlitImage
+    // A swapchain image just acquired: undefined contents, and the submission waits for
+    // the acquire semaphore at ALL_COMMANDS, which this state's stage chains with.
+    SwapchainAcquired,
+    PresentSrc,  // handed to the presentation engine (which waits on a semaphore)
 };
 
 // Records one image memory barrier covering every layer of `image`.
 void transition(VkCommandBuffer cmd, const Image& image, ImageState from, ImageState to);
+// The same for an image the caller does not own as an Image (swapchain images): one
+// mip level, layers [0, layers).
+void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers, ImageState from,
+                ImageState to);
 
 // Makes transfer writes to host-visible buffers visible to the host after the fence.
 void transfer_to_host_barrier(VkCommandBuffer cmd);

@@ -196,10 +196,12 @@ std::vector<DeviceInfo> list_devices() {
 }
 
 Context::Context(const ContextOptions& options)
-    : validation_log_(options.log ? options.log : std::make_shared<ValidationLog>()) {
+    : validation_log_(options.log ? options.log : std::make_shared<ValidationLog>()),
+      presentation_(options.presentation) {
     try {
         create_instance(options.validation);
         pick_physical_device(options.device_selector);
+        if (presentation_) pick_present_queue_family();
         create_device();
     } catch (...) {
         release();
@@ -227,8 +229,12 @@ void Context::release() {
 }
 
 void Context::create_instance(bool validation) {
+    std::vector<const char*> extensions;
+    if (presentation_) {
+        for (const std::string& name : presentation_->instance_extensions) extensions.push_back(name.c_str());
+    }
     if (!validation) {
-        instance_ = create_bare_instance(nullptr, {}, {});
+        instance_ = create_bare_instance(nullptr, {}, extensions);
         return;
     }
     if (!layer_available(kValidationLayer)) {
@@ -242,7 +248,8 @@ void Context::create_instance(bool validation) {
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, &messenger};
     features.enabledValidationFeatureCount = 1;
     features.pEnabledValidationFeatures = enables;
-    instance_ = create_bare_instance(&features, {kValidationLayer}, {VK_EXT_DEBUG_UTILS_EXTENSION_NAME});
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    instance_ = create_bare_instance(&features, {kValidationLayer}, extensions);
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
     PENUMBRA_VK_CHECK(create(instance_, &messenger, nullptr, &messenger_));
@@ -259,6 +266,30 @@ void Context::pick_physical_device(const std::string& selector) {
     info_ = infos[chosen];
     vkGetPhysicalDeviceProperties(physical_device_, &properties_);
     queue_family_ = *graphics_queue_family(physical_device_);
+}
+
+// A window needs a graphics queue that can also present, and VK_KHR_swapchain.
+void Context::pick_present_queue_family() {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &count, extensions.data());
+    const bool has_swapchain = std::any_of(extensions.begin(), extensions.end(), [](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, VK_KHR_SWAPCHAIN_EXTENSION_NAME) == 0;
+    });
+    if (!has_swapchain)
+        throw DeviceError("device " + info_.name + " does not support " VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, families.data());
+    for (uint32_t family = 0; family < count; ++family) {
+        if ((families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+            (!presentation_->can_present || presentation_->can_present(instance_, physical_device_, family))) {
+            queue_family_ = family;
+            return;
+        }
+    }
+    throw DeviceError("device " + info_.name + " has no graphics queue that can present to the window");
 }
 
 void Context::create_device() {
@@ -288,6 +319,11 @@ void Context::create_device() {
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue_info;
+    const char* swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    if (presentation_) {
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &swapchain_extension;
+    }
     PENUMBRA_VK_CHECK(vkCreateDevice(physical_device_, &info, nullptr, &device_));
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 

@@ -1,12 +1,14 @@
 #pragma once
 // The Vulkan device layer's root: instance (optionally with the Khronos validation
 // layer and synchronization validation), physical-device choice, logical device,
-// one graphics queue and a command pool. Headless: no surface, no swapchain.
+// one graphics queue and a command pool. Headless by default: no surface, no swapchain;
+// ContextOptions::presentation turns on what a window needs (src/present).
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,14 @@ struct ContextOptions {
     // Where validation messages go; shared so that messages reported while the device and
     // instance are destroyed (leaks) can still be read after the Context is gone.
     std::shared_ptr<ValidationLog> log = std::make_shared<ValidationLog>();
+    // Set for a window: the instance gets `instance_extensions` (e.g. from
+    // glfwGetRequiredInstanceExtensions), the device VK_KHR_swapchain, and the queue is a
+    // graphics family for which `can_present` holds (e.g. glfwGetPhysicalDevicePresentationSupport).
+    struct Presentation {
+        std::vector<std::string> instance_extensions;
+        std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
+    };
+    std::optional<Presentation> presentation;  // nullopt = headless (no WSI extensions)
 };
 
 // Lists the physical devices. Throws penumbra::DeviceError when no Vulkan driver is present.
@@ -61,6 +71,7 @@ public:
     bool depth_clamp_supported() const { return depth_clamp_; }
     bool depth_bias_clamp_supported() const { return depth_bias_clamp_; }
     bool validation_enabled() const { return validation_enabled_; }
+    bool presentation_enabled() const { return presentation_.has_value(); }
     const ValidationLog& validation_log() const { return *validation_log_; }
 
     uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
@@ -71,6 +82,7 @@ public:
 private:
     void create_instance(bool validation);
     void pick_physical_device(const std::string& selector);
+    void pick_present_queue_family();
     void create_device();
     void release();  // destroys whatever was created, in reverse order
 
@@ -86,6 +98,7 @@ private:
     bool depth_bias_clamp_ = false;
     bool validation_enabled_ = false;
     std::shared_ptr<ValidationLog> validation_log_;
+    std::optional<ContextOptions::Presentation> presentation_;
     VkCommandPool command_pool_ = VK_NULL_HANDLE;
 };
 

@@ -53,7 +53,8 @@ UniquePipeline create_graphics_pipeline(const Context& context, const GraphicsPi
 
     const VkVertexInputBindingDescription binding{0, desc.vertex_layout.stride, VK_VERTEX_INPUT_RATE_VERTEX};
     VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vertex_input.vertexBindingDescriptionCount = 1;
+    // No binding at all when the vertex shader has no inputs (full-screen passes).
+    vertex_input.vertexBindingDescriptionCount = desc.vertex_layout.attributes.empty() ? 0 : 1;
     vertex_input.pVertexBindingDescriptions = &binding;
     vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(desc.vertex_layout.attributes.size());
     vertex_input.pVertexAttributeDescriptions = desc.vertex_layout.attributes.data();

@@ -97,6 +97,7 @@ Image create_image(const Context& context, const ImageDesc& desc) {
     VkMemoryRequirements requirements{};
     vkGetImageMemoryRequirements(context.device(), image, &requirements);
     result.memory = allocate(context, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    result.memory_size = requirements.size;
     PENUMBRA_VK_CHECK(vkBindImageMemory(context.device(), image, result.memory, 0));
 
     const bool layered = desc.layers > 1 || desc.array_view;

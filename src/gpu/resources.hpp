@@ -50,6 +50,7 @@ struct Image {
     UniqueImageView view;                      // all layers
     std::vector<UniqueImageView> layer_views;  // one 2D view per layer (when layers > 1 or array_view)
     ImageDesc desc;
+    VkDeviceSize memory_size = 0;  // bytes of its allocation (what it costs in GPU memory)
 
     VkImage get() const { return image.get(); }
     VkExtent2D extent() const { return {desc.width, desc.height}; }

@@ -6,6 +6,7 @@
 #include "gpu/barriers.hpp"
 #include "passes/draw_recording.hpp"
 #include "passes/shader_interface.hpp"
+#include "passes/shadow_filter_specialization.hpp"
 
 namespace penumbra::passes {
 namespace {
@@ -27,10 +28,11 @@ gpu::Image create_target(const gpu::Context& context, VkFormat format, uint32_t 
 }
 
 gpu::UniquePipeline create_lighting_pipeline(const gpu::Context& context, VkPipelineLayout layout,
-                                             VkCullModeFlags cull_mode) {
+                                             VkCullModeFlags cull_mode, const FilterSettings& filter) {
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
-    desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::lighting_frag(), {}});
+    desc.stages.push_back(
+        {VK_SHADER_STAGE_FRAGMENT_BIT, shaders::lighting_frag(), shadow_filter_specialization(filter)});
     desc.vertex_layout = scene_vertex_layout(VertexAttributes::PositionNormalUv);
     desc.layout = layout;
     desc.color_formats = {kColorFormat, kVisibilityFormat, kCascadeFormat};
@@ -53,7 +55,7 @@ VkRenderingAttachmentInfo color_attachment(const gpu::Image& image, VkClearColor
 }  // namespace
 
 LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
-                           uint32_t height)
+                           uint32_t height, const FilterSettings& filter)
     : width_(width), height_(height) {
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     targets_.color = create_target(context, kColorFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
@@ -63,18 +65,22 @@ LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout ma
     targets_.depth = create_target(context, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT);
 
-    const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+    const std::array<VkDescriptorSetLayoutBinding, 4> bindings{{
         {PENUMBRA_BINDING_FRAME_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {PENUMBRA_BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+         nullptr},
+        {PENUMBRA_BINDING_SHADOW_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+         nullptr},
+        {PENUMBRA_BINDING_SHADOW_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
          nullptr},
     }};
     frame_set_layout_ = gpu::create_descriptor_set_layout(context, bindings);
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout_, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(context, set_layouts, {&push_range, 1});
-    single_sided_ = create_lighting_pipeline(context, pipeline_layout_, VK_CULL_MODE_BACK_BIT);
-    double_sided_ = create_lighting_pipeline(context, pipeline_layout_, VK_CULL_MODE_NONE);
+    single_sided_ = create_lighting_pipeline(context, pipeline_layout_, VK_CULL_MODE_BACK_BIT, filter);
+    double_sided_ = create_lighting_pipeline(context, pipeline_layout_, VK_CULL_MODE_NONE, filter);
 }
 
 void LightingPass::begin_rendering(VkCommandBuffer cmd) const {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "core/shadow_settings.hpp"
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
@@ -22,10 +23,13 @@ struct LightingTargets {
 
 class LightingPass {
 public:
+    // The pipelines are specialized for `filter` (shaders/include/shadow_filter_constants.glsl).
     LightingPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
-                 uint32_t height);
+                 uint32_t height, const FilterSettings& filter = {});
 
-    // Set 0: binding 0 = frame uniforms, binding 1 = the shadow map (sampler2DArrayShadow).
+    // Set 0: binding 0 = frame uniforms, 1 = the shadow map (sampler2DArrayShadow), 2 = the
+    // same map's raw depth (sampler2DArray), 3 = the moments map (sampler2DArray; any
+    // float array image, e.g. the depth map, when the filter reads no moments).
     VkDescriptorSetLayout frame_set_layout() const { return frame_set_layout_; }
     const LightingTargets& targets() const { return targets_; }
 

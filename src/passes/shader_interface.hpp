@@ -22,12 +22,22 @@ static_assert(offsetof(FrameUniforms, cascade_split_far) == offsetof(FrameUnifor
 static_assert(offsetof(FrameUniforms, shadow_params) ==
               offsetof(FrameUniforms, cascade_split_far) + 16 * (PENUMBRA_MAX_CASCADES / 2));
 static_assert(offsetof(FrameUniforms, options) == offsetof(FrameUniforms, shadow_params) + 32);
-static_assert(sizeof(FrameUniforms) == offsetof(FrameUniforms, options) + 16);
+static_assert(offsetof(FrameUniforms, cascade_filter) == offsetof(FrameUniforms, options) + 16);
+static_assert(offsetof(FrameUniforms, filter_params) ==
+              offsetof(FrameUniforms, cascade_filter) + 16 * PENUMBRA_MAX_CASCADES);
+static_assert(offsetof(FrameUniforms, moment_params) == offsetof(FrameUniforms, filter_params) + 16);
+static_assert(offsetof(FrameUniforms, filter_options) == offsetof(FrameUniforms, moment_params) + 16);
+static_assert(sizeof(FrameUniforms) == offsetof(FrameUniforms, filter_options) + 16);
 
 static_assert(offsetof(DrawPushConstants, base_color) == 64);
 static_assert(offsetof(DrawPushConstants, material) == 80);
 static_assert(offsetof(DrawPushConstants, flags) == 96);
 static_assert(sizeof(DrawPushConstants) == 112);
 static_assert(sizeof(DrawPushConstants) <= 128, "Vulkan guarantees only 128 bytes of push constants");
+
+static_assert(offsetof(TapCeilingPushConstants, counts) == 16);
+static_assert(sizeof(TapCeilingPushConstants) == 32);
+
+static_assert(sizeof(BlurPushConstants) == 16);
 
 }  // namespace penumbra::shader

@@ -1,6 +1,7 @@
 #include "passes/shadow_pass.hpp"
 
 #include <algorithm>
+#include <string>
 
 #include "embedded_shaders.hpp"
 #include "gpu/barriers.hpp"
@@ -63,7 +64,7 @@ ShadowPass::ShadowPass(const gpu::Context& context, VkDescriptorSetLayout materi
 
 void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data,
                         const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias,
-                        ShadowStrategy strategy) const {
+                        ShadowStrategy strategy, gpu::GpuTimer* timer) const {
     gpu::transition(cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1, &frame_set,
                             0, nullptr);
@@ -71,9 +72,9 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Dr
     vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
     vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
     if (strategy == ShadowStrategy::Multiview) {
-        record_multiview(cmd, data, draw_lists, bias);
+        record_multiview(cmd, data, draw_lists, bias, timer);
     } else {
-        record_per_cascade(cmd, data, draw_lists, bias);
+        record_per_cascade(cmd, data, draw_lists, bias, timer);
     }
     gpu::transition(cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::FragmentSampled);
 }
@@ -101,8 +102,10 @@ void ShadowPass::begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t
 }
 
 void ShadowPass::record_per_cascade(VkCommandBuffer cmd, const DrawData& data,
-                                    const std::vector<CascadeDrawList>& lists, const BiasSettings& bias) const {
+                                    const std::vector<CascadeDrawList>& lists, const BiasSettings& bias,
+                                    gpu::GpuTimer* timer) const {
     for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
+        gpu::TimedScope scope(timer, cmd, "shadow_cascade_" + std::to_string(cascade));
         begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias);
         record_draws(cmd, data, lists[cascade], cascade, opaque_per_cascade_, masked_per_cascade_);
         vkCmdEndRendering(cmd);
@@ -110,13 +113,14 @@ void ShadowPass::record_per_cascade(VkCommandBuffer cmd, const DrawData& data,
 }
 
 void ShadowPass::record_multiview(VkCommandBuffer cmd, const DrawData& data, const std::vector<CascadeDrawList>& lists,
-                                  const BiasSettings& bias) const {
+                                  const BiasSettings& bias, gpu::GpuTimer* timer) const {
     // One pass renders every layer, so a draw goes in when any cascade needs it.
     CascadeDrawList union_list;
     for (const CascadeDrawList& list : lists) union_list.insert(union_list.end(), list.begin(), list.end());
     std::sort(union_list.begin(), union_list.end());
     union_list.erase(std::unique(union_list.begin(), union_list.end()), union_list.end());
 
+    gpu::TimedScope scope(timer, cmd, "shadow_multiview");
     begin_rendering(cmd, shadow_map_.view, (1u << cascade_count_) - 1u, bias);
     record_draws(cmd, data, union_list, 0, opaque_multiview_, masked_multiview_);
     vkCmdEndRendering(cmd);

@@ -14,6 +14,7 @@
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
+#include "gpu/timestamps.hpp"
 #include "passes/draw_data.hpp"
 
 namespace penumbra::passes {
@@ -32,16 +33,18 @@ public:
     uint32_t cascade_count() const { return cascade_count_; }
 
     // Records the depth rendering of every cascade and leaves the shadow map ready for
-    // fragment-shader sampling. draw_lists[c] are the draws for cascade c.
+    // fragment-shader sampling. draw_lists[c] are the draws for cascade c. With a timer,
+    // each cascade's rendering is a scope "shadow_cascade_<c>" (multiview: one scope,
+    // "shadow_multiview").
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data,
-                const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias,
-                ShadowStrategy strategy) const;
+                const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias, ShadowStrategy strategy,
+                gpu::GpuTimer* timer = nullptr) const;
 
 private:
     void record_per_cascade(VkCommandBuffer cmd, const DrawData& data, const std::vector<CascadeDrawList>& lists,
-                            const BiasSettings& bias) const;
+                            const BiasSettings& bias, gpu::GpuTimer* timer) const;
     void record_multiview(VkCommandBuffer cmd, const DrawData& data, const std::vector<CascadeDrawList>& lists,
-                          const BiasSettings& bias) const;
+                          const BiasSettings& bias, gpu::GpuTimer* timer) const;
     void record_draws(VkCommandBuffer cmd, const DrawData& data, const CascadeDrawList& list, uint32_t cascade,
                       VkPipeline opaque, VkPipeline masked) const;
     void begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias) const;

@@ -1,5 +1,7 @@
 #include "renderer/frame_setup.hpp"
 
+#include "renderer/filter_uniforms.hpp"
+
 namespace penumbra::renderer {
 
 glm::vec3 sun_travel_direction(const Scene& scene) {
@@ -24,7 +26,7 @@ CulledCasters cull_casters(const CascadeSet& cascades, const passes::DrawData& d
 }
 
 shader::FrameUniforms build_frame_uniforms(const CameraView& camera, const Scene& scene, const CascadeSet& cascades,
-                                           const RenderSettings& settings) {
+                                           const RenderSettings& settings, uint32_t frame_index) {
     shader::FrameUniforms frame{};
     frame.view_projection = camera.view_projection;
     frame.view = camera.view;
@@ -49,6 +51,7 @@ shader::FrameUniforms build_frame_uniforms(const CameraView& camera, const Scene
                                     settings.shadow.blend_width, cascades.shadow_distance);
     frame.options = glm::uvec4(
         settings.debug == DebugView::Cascades ? PENUMBRA_DEBUG_VIEW_CASCADES : PENUMBRA_DEBUG_VIEW_NONE, 0u, 0u, 0u);
+    fill_filter_uniforms(frame, scene, cascades, settings.shadow, frame_index);
     return frame;
 }
 

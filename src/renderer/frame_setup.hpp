@@ -30,7 +30,8 @@ glm::vec3 sun_travel_direction(const Scene& scene);
 // Draws that may cast into each cascade (all draws when culling is off).
 CulledCasters cull_casters(const CascadeSet& cascades, const passes::DrawData& data, bool cull);
 
+// frame_index rotates the shadow filters' sampling patterns from frame to frame.
 shader::FrameUniforms build_frame_uniforms(const CameraView& camera, const Scene& scene, const CascadeSet& cascades,
-                                           const RenderSettings& settings);
+                                           const RenderSettings& settings, uint32_t frame_index = 0);
 
 }  // namespace penumbra::renderer

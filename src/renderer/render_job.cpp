@@ -10,13 +10,29 @@
 namespace penumbra {
 namespace {
 
-struct PreparedJob {
-    Scene scene;
-    RenderSettings settings;
-};
+void write_output(const RenderJob& job, const renderer::FrameImages& images) {
+    if (job.debug == DebugView::ShadowMap) {
+        const renderer::GrayImage strip = renderer::shadow_map_strip(images);
+        write_png_gray8(job.output, strip.width, strip.height, strip.pixels);
+        return;
+    }
+    switch (job.aov) {
+        case Aov::None:
+            write_png_rgba8(job.output, images.width, images.height, images.color_rgba8);
+            break;
+        case Aov::Shadow:
+            write_png_gray16(job.output, images.width, images.height, images.visibility);
+            break;
+        case Aov::Cascade:
+            write_png_gray8(job.output, images.width, images.height, images.cascade);
+            break;
+    }
+}
+
+}  // namespace
 
 // Scene file < config file < command line; each source is validated under its own name.
-PreparedJob prepare(const RenderJob& job) {
+PreparedJob prepare_render_job(const RenderJob& job) {
     const std::string scene_spec = job.scene.empty() ? std::string(kDefaultSceneName) : job.scene;
     PreparedJob prepared{load_scene(scene_spec), RenderSettings{}};
     if (!scene_spec.starts_with(kBuiltinPrefix)) {
@@ -47,29 +63,8 @@ void check_validation(const gpu::ValidationLog& log) {
     }
 }
 
-void write_output(const RenderJob& job, const renderer::FrameImages& images) {
-    if (job.debug == DebugView::ShadowMap) {
-        const renderer::GrayImage strip = renderer::shadow_map_strip(images);
-        write_png_gray8(job.output, strip.width, strip.height, strip.pixels);
-        return;
-    }
-    switch (job.aov) {
-        case Aov::None:
-            write_png_rgba8(job.output, images.width, images.height, images.color_rgba8);
-            break;
-        case Aov::Shadow:
-            write_png_gray16(job.output, images.width, images.height, images.visibility);
-            break;
-        case Aov::Cascade:
-            write_png_gray8(job.output, images.width, images.height, images.cascade);
-            break;
-    }
-}
-
-}  // namespace
-
 RenderSummary run_render_job(const RenderJob& job) {
-    const PreparedJob prepared = prepare(job);
+    const PreparedJob prepared = prepare_render_job(job);
     gpu::ContextOptions device_options = job.device;
     device_options.log = std::make_shared<gpu::ValidationLog>();
     renderer::FrameImages images;

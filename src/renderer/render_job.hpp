@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/render_settings.hpp"
+#include "core/scene.hpp"
 #include "core/settings_overrides.hpp"
 #include "gpu/context.hpp"
 
@@ -42,5 +44,16 @@ struct RenderSummary {
 };
 
 RenderSummary run_render_job(const RenderJob& job);
+
+// The scene and settings a job renders, merged as `render` does: scene file < config
+// file < command line, each source validated under its own name. Shared with `bench`.
+struct PreparedJob {
+    Scene scene;
+    RenderSettings settings;
+};
+PreparedJob prepare_render_job(const RenderJob& job);
+
+// Throws ValidationFailure when the validation layer reported any message.
+void check_validation(const gpu::ValidationLog& log);
 
 }  // namespace penumbra

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "core/errors.hpp"
+#include "scene/forest_scene.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace penumbra {
@@ -198,13 +199,22 @@ constexpr std::array<BuiltinScene, 2> kBuiltinScenes{{
 std::vector<std::string> builtin_scene_names() {
     std::vector<std::string> names;
     for (const BuiltinScene& scene : kBuiltinScenes) names.emplace_back(scene.name);
+    names.emplace_back("forest");  // procedural; takes ?count=N (scene/forest_scene.hpp)
     return names;
 }
 
 Scene builtin_scene(const std::string& name) {
     const std::string origin = std::string(kBuiltinPrefix) + name;
+    // "NAME?QUERY": only the procedural scenes take parameters.
+    const size_t query_start = name.find('?');
+    const std::string base = name.substr(0, query_start);
+    const std::string query = query_start == std::string::npos ? "" : name.substr(query_start + 1);
+    if (base == "forest") return make_forest_scene(parse_forest_count(query, origin));
     for (const BuiltinScene& scene : kBuiltinScenes) {
-        if (scene.name == name) return parse_scene_toml(scene.toml, origin, {});
+        if (scene.name != base) continue;
+        if (query_start != std::string::npos)
+            throw InputError(origin + ": built-in scene \"" + base + "\" takes no parameters");
+        return parse_scene_toml(scene.toml, origin, {});
     }
     std::string valid;
     for (const std::string& known : builtin_scene_names()) valid += (valid.empty() ? "" : ", ") + known;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/errors.hpp"
+#include "core/shadow_filters.hpp"
 
 namespace penumbra {
 namespace {
@@ -125,10 +126,59 @@ void read_output_table(const TableReader& reader, SettingsOverrides& o) {
     o.height = reader.integer<uint32_t>("height", 1, kMaxImageSize);
 }
 
+// The filter keys of [shadow] (docs/filters.md). Ranges are checked by
+// validate_shadow_settings, which names the same keys.
+const std::set<std::string>& filter_keys() {
+    namespace k = shadow_keys;
+    static const std::set<std::string> keys{k::kFilter,
+                                            k::kReceiverPlaneBias,
+                                            k::kPcfRadius,
+                                            k::kPoissonTaps,
+                                            k::kPoissonRadius,
+                                            k::kPcssBlockerTaps,
+                                            k::kPcssQuality,
+                                            k::kPcssEarlyOut,
+                                            k::kPcssMaxPenumbra,
+                                            k::kLightBleeding,
+                                            k::kBlurRadius,
+                                            k::kMomentsPoisson,
+                                            k::kEvsmPositiveExponent,
+                                            k::kEvsmNegativeExponent,
+                                            k::kEvsmComponents,
+                                            k::kMsmMomentBias,
+                                            k::kMsmQuantization};
+    return keys;
+}
+
+void read_filter_keys(const TableReader& reader, FilterOverrides& f) {
+    namespace k = shadow_keys;
+    constexpr int64_t kAnyInt = 1 << 30;  // range errors come from validate_shadow_settings
+    f.mode = reader.choice<ShadowFilter>(k::kFilter, shadow_filter_names());
+    f.receiver_plane_bias = reader.boolean(k::kReceiverPlaneBias);
+    f.pcf_radius = reader.integer<int>(k::kPcfRadius, -kAnyInt, kAnyInt);
+    f.poisson_taps = reader.integer<int>(k::kPoissonTaps, -kAnyInt, kAnyInt);
+    f.poisson_radius = reader.real(k::kPoissonRadius);
+    f.pcss_blocker_taps = reader.integer<int>(k::kPcssBlockerTaps, -kAnyInt, kAnyInt);
+    f.pcss_quality = reader.choice<PcssQuality>(k::kPcssQuality, pcss_quality_names());
+    f.pcss_early_out = reader.boolean(k::kPcssEarlyOut);
+    f.pcss_max_penumbra = reader.real(k::kPcssMaxPenumbra);
+    f.light_bleeding_reduction = reader.real(k::kLightBleeding);
+    f.blur_radius = reader.integer<int>(k::kBlurRadius, -kAnyInt, kAnyInt);
+    f.moments_poisson = reader.boolean(k::kMomentsPoisson);
+    f.evsm_positive_exponent = reader.real(k::kEvsmPositiveExponent);
+    f.evsm_negative_exponent = reader.real(k::kEvsmNegativeExponent);
+    f.evsm_components = reader.integer<int>(k::kEvsmComponents, -kAnyInt, kAnyInt);
+    f.msm_moment_bias = reader.real(k::kMsmMomentBias);
+    f.msm_optimized_quantization = reader.boolean(k::kMsmQuantization);
+}
+
 void read_shadow_table(const TableReader& reader, SettingsOverrides& o) {
-    reader.reject_unknown_keys({"cascades", "resolution", "split_scheme", "split_lambda", "splits", "max_distance",
-                                "fit", "constant_bias", "slope_bias", "bias_clamp", "normal_offset", "blend_width",
-                                "strategy", "cull_casters"});
+    std::set<std::string> known{"cascades",      "resolution",  "split_scheme",  "split_lambda", "splits",
+                                "max_distance",  "fit",         "constant_bias", "slope_bias",   "bias_clamp",
+                                "normal_offset", "blend_width", "strategy",      "cull_casters"};
+    known.insert(filter_keys().begin(), filter_keys().end());
+    reader.reject_unknown_keys(known);
+    read_filter_keys(reader, o.filter);
     o.cascades = reader.integer<int>("cascades", 1, 8);
     o.shadow_resolution = reader.integer<uint32_t>("resolution", 512, 8192);
     o.split_scheme = reader.choice<SplitScheme>("split_scheme", {{"uniform", SplitScheme::Uniform},
@@ -160,16 +210,15 @@ void read_camera_table(const TableReader& reader, SettingsOverrides& o) {
 }
 
 void read_sun_table(const TableReader& reader, SettingsOverrides& o) {
-    reader.reject_unknown_keys({"direction"});
+    reader.reject_unknown_keys({"direction", "angular_diameter"});
     o.light_direction = reader.vec3("direction");
+    o.angular_diameter = reader.real("angular_diameter");
 }
 
 using TableHandler = std::function<void(const TableReader&, SettingsOverrides&)>;
 
-SettingsOverrides read_tables(const std::filesystem::path& path, const std::map<std::string, TableHandler>& handlers,
-                              bool reject_other_tables) {
-    const toml::table root = parse_file(path);
-    const std::string origin = path.string();
+SettingsOverrides read_tables(const toml::table& root, const std::string& origin,
+                              const std::map<std::string, TableHandler>& handlers, bool reject_other_tables) {
     SettingsOverrides overrides;
     for (const auto& [key, node] : root) {
         const std::string name(key.str());
@@ -183,6 +232,19 @@ SettingsOverrides read_tables(const std::filesystem::path& path, const std::map<
     return overrides;
 }
 
+SettingsOverrides read_tables(const std::filesystem::path& path, const std::map<std::string, TableHandler>& handlers,
+                              bool reject_other_tables) {
+    return read_tables(parse_file(path), path.string(), handlers, reject_other_tables);
+}
+
+const std::map<std::string, TableHandler>& config_file_tables() {
+    static const std::map<std::string, TableHandler> tables{{"output", read_output_table},
+                                                            {"shadow", read_shadow_table},
+                                                            {"camera", read_camera_table},
+                                                            {"sun", read_sun_table}};
+    return tables;
+}
+
 }  // namespace
 
 SettingsOverrides load_settings_from_scene_file(const std::filesystem::path& scene_file) {
@@ -193,12 +255,17 @@ SettingsOverrides load_settings_file(const std::filesystem::path& config_file) {
     if (!std::filesystem::is_regular_file(config_file)) {
         throw InputError(config_file.string() + ": config file not found");
     }
-    return read_tables(config_file,
-                       {{"output", read_output_table},
-                        {"shadow", read_shadow_table},
-                        {"camera", read_camera_table},
-                        {"sun", read_sun_table}},
-                       true);
+    return read_tables(config_file, config_file_tables(), true);
+}
+
+SettingsOverrides parse_settings_text(const std::string& text, const std::string& origin) {
+    toml::table root;
+    try {
+        root = toml::parse(text, origin);
+    } catch (const toml::parse_error& error) {
+        throw InputError(origin + ": malformed TOML: " + std::string(error.description()));
+    }
+    return read_tables(root, origin, config_file_tables(), true);
 }
 
 }  // namespace penumbra

@@ -14,4 +14,7 @@ SettingsOverrides load_settings_from_scene_file(const std::filesystem::path& sce
 // Reads a config file: [output], [shadow], [camera], [sun]; any other table or key is an error.
 SettingsOverrides load_settings_file(const std::filesystem::path& config_file);
 
+// Reads config-file text (the tables and keys of load_settings_file); errors name `origin`.
+SettingsOverrides parse_settings_text(const std::string& text, const std::string& origin);
+
 }  // namespace penumbra

@@ -246,3 +246,47 @@ TEST_F(Cli, NoVulkanDevice) {
 TEST_F(Cli, UnknownDeviceSelector) { expect_failure(run("render --device nosuchgpu -o out.png"), 3, "nosuchgpu"); }
 
 }  // namespace
+
+// Shadow filters (docs/filters.md): flags and [shadow] keys, and their range errors.
+TEST_F(Cli, FilterFlagsRenderValidationClean) {
+    for (const char* flags : {"--filter pcss --pcss-quality high --pcss-early-out --angular-diameter 2",
+                              "--filter evsm --evsm-components 2 --blur-radius 0 --moments-poisson",
+                              "--filter msm --msm-quantization --light-bleeding 0.1"}) {
+        const RunResult result = run(std::string("render --validate --width 64 --height 48 --shadow-resolution 512 ") +
+                                     flags + " -o out.png");
+        EXPECT_EQ(result.exit_code, 0) << flags << ": " << result.err;
+        EXPECT_TRUE(fs::exists(dir_ / "out.png")) << flags;
+        fs::remove(dir_ / "out.png");
+    }
+}
+
+TEST_F(Cli, FilterSettingsOutOfRange) {
+    expect_failure(run("render --filter soft -o out.png"), 2, "--filter");
+    expect_failure(run("render --pcf-radius 6 -o out.png"), 2, "--pcf-radius");
+    expect_failure(run("render --poisson-taps 20 -o out.png"), 2, "--poisson-taps");
+    expect_failure(run("render --poisson-radius 0.1 -o out.png"), 2, "--poisson-radius");
+    expect_failure(run("render --pcss-quality ultra -o out.png"), 2, "--pcss-quality");
+    expect_failure(run("render --pcss-blocker-taps 8 -o out.png"), 2, "--pcss-blocker-taps");
+    expect_failure(run("render --pcss-max-penumbra 500 -o out.png"), 2, "--pcss-max-penumbra");
+    expect_failure(run("render --light-bleeding 1 -o out.png"), 2, "--light-bleeding");
+    expect_failure(run("render --blur-radius 9 -o out.png"), 2, "--blur-radius");
+    expect_failure(run("render --evsm-positive-exponent 0 -o out.png"), 2, "--evsm-positive-exponent");
+    expect_failure(run("render --evsm-components 3 -o out.png"), 2, "--evsm-components");
+    expect_failure(run("render --msm-moment-bias 0.5 -o out.png"), 2, "--msm-moment-bias");
+    expect_failure(run("render --angular-diameter 50 -o out.png"), 2, "--angular-diameter");
+}
+
+TEST_F(Cli, FilterSettingsOutOfRangeInConfigFile) {
+    write_file("config.toml", "[shadow]\nfilter = \"soft\"\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "shadow.filter");
+    write_file("config.toml", "[shadow]\npcf_radius = 7\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "pcf_radius");
+    write_file("config.toml", "[shadow]\npoisson_taps = 24\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "poisson_taps");
+    write_file("config.toml", "[shadow]\nevsm_negative_exponent = 1000.0\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "evsm_negative_exponent");
+    write_file("config.toml", "[shadow]\npcss_early_out = 1\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "pcss_early_out");
+    write_file("config.toml", "[sun]\nangular_diameter = -1.0\n");
+    expect_failure(run("render --config config.toml -o out.png"), 2, "angular_diameter");
+}

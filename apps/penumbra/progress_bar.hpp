@@ -1,0 +1,12 @@
+#pragma once
+// A one-line progress bar on stderr for long benchmark runs, drawn only when stderr is
+// a terminal (so logs and pipes get no carriage returns).
+#include <cstdint>
+#include <functional>
+
+namespace penumbra::cli {
+
+// A callback for BenchJob::progress, or an empty function when stderr is not a TTY.
+std::function<void(uint32_t done, uint32_t total)> terminal_progress_bar();
+
+}  // namespace penumbra::cli

@@ -1,0 +1,92 @@
+// The statistics sections of the viewer panel: frame and GPU pass times, per-cascade
+// depth range, texel density and load, and the shadow-map layers.
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "panel.hpp"
+
+namespace penumbra::view {
+namespace {
+
+void timing_section(const PanelStats& stats) {
+    if (!ImGui::CollapsingHeader("Timings", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Text("device: %s", stats.device_name.c_str());
+    ImGui::Text("frame %.2f ms (%.1f fps), Renderer::render %.2f ms", stats.frame_ms,
+                stats.frame_ms > 0.0 ? 1000.0 / stats.frame_ms : 0.0, stats.render_ms);
+    ImGui::Text("shadow maps: %.1f MiB", static_cast<double>(stats.shadow_map_bytes) / (1024.0 * 1024.0));
+    if (!stats.frame) return;
+    if (stats.frame->gpu_times.empty()) {
+        ImGui::TextDisabled("GPU pass times: the queue has no timestamps");
+        return;
+    }
+    for (const gpu::ScopeTime& scope : stats.frame->gpu_times) {
+        ImGui::Text("GPU %-20s %8.3f ms", scope.name.c_str(), scope.milliseconds);
+    }
+    const renderer::CpuTimes& cpu = stats.frame->cpu_times;
+    ImGui::Text("CPU setup %.2f, culling %.2f, recording %.2f ms", cpu.cascade_setup_ms, cpu.culling_ms,
+                cpu.recording_ms);
+}
+
+void cascade_table(const renderer::FrameInfo& frame) {
+    if (!ImGui::BeginTable("cascades", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+    for (const char* heading : {"#", "range (m)", "texels/m", "draws", "triangles"}) ImGui::TableSetupColumn(heading);
+    ImGui::TableHeadersRow();
+    for (size_t i = 0; i < frame.cascades.cascades.size(); ++i) {
+        const Cascade& cascade = frame.cascades.cascades[i];
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("%zu", i);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.2f - %.2f", cascade.split_near, cascade.split_far);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.1f", cascade.texel_world_size > 0.0f ? 1.0f / cascade.texel_world_size : 0.0f);
+        ImGui::TableNextColumn();
+        if (i < frame.cascade_stats.size()) ImGui::Text("%u", frame.cascade_stats[i].draws);
+        ImGui::TableNextColumn();
+        if (i < frame.cascade_stats.size()) {
+            ImGui::Text("%llu", static_cast<unsigned long long>(frame.cascade_stats[i].triangles));
+        }
+    }
+    ImGui::EndTable();
+}
+
+// The layers as a grid of filled cells (the stock ImGui 1.86 Vulkan backend cannot bind
+// user textures): each cell averages a block of texels of the 8-bit strip.
+void shadow_map_layers(const renderer::GrayImage& strip) {
+    if (strip.width == 0 || strip.height == 0) {
+        ImGui::TextDisabled("choose debug view \"shadow-map layers\" to show them");
+        return;
+    }
+    const uint32_t layers = strip.width / strip.height;
+    constexpr uint32_t kCells = 48;  // per layer side
+    const float cell = std::max(1.0f, (ImGui::GetContentRegionAvail().x / static_cast<float>(layers)) / kCells);
+    const uint32_t block = std::max(1u, strip.height / kCells);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    for (uint32_t layer = 0; layer < layers; ++layer) {
+        for (uint32_t y = 0; y < kCells; ++y) {
+            for (uint32_t x = 0; x < kCells; ++x) {
+                const uint32_t px = std::min(layer * strip.height + x * block, strip.width - 1);
+                const uint32_t py = std::min(y * block, strip.height - 1);
+                const uint8_t value = strip.pixels[size_t{py} * strip.width + px];
+                const ImVec2 p0(origin.x + (layer * kCells + x) * cell, origin.y + y * cell);
+                draw->AddRectFilled(p0, ImVec2(p0.x + cell, p0.y + cell), IM_COL32(value, value, value, 255));
+            }
+        }
+    }
+    ImGui::Dummy(ImVec2(layers * kCells * cell, kCells * cell));
+}
+
+}  // namespace
+
+void draw_statistics(const PanelStats& stats) {
+    timing_section(stats);
+    if (stats.frame && ImGui::CollapsingHeader("Cascade statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::Text("shadow distance %.1f m", stats.frame->cascades.shadow_distance);
+        cascade_table(*stats.frame);
+    }
+    if (ImGui::CollapsingHeader("Shadow-map layers")) shadow_map_layers(stats.shadow_map_layers);
+}
+
+}  // namespace penumbra::view

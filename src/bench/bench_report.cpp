@@ -1,0 +1,248 @@
+#include "bench/bench_report.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+
+namespace penumbra::bench {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+const char* strategy_name(ShadowStrategy strategy) {
+    return strategy == ShadowStrategy::Multiview ? "multiview" : "per-cascade";
+}
+
+const char* split_scheme_name(SplitScheme scheme) {
+    switch (scheme) {
+        case SplitScheme::Uniform:
+            return "uniform";
+        case SplitScheme::Logarithmic:
+            return "log";
+        case SplitScheme::Practical:
+            return "practical";
+        case SplitScheme::Manual:
+            return "manual";
+    }
+    return "unknown";
+}
+
+const char* ceiling_name(Ceiling ceiling) {
+    switch (ceiling) {
+        case Ceiling::None:
+            return "none";
+        case Ceiling::Triangles:
+            return "triangles";
+        case Ceiling::Taps:
+            return "taps";
+    }
+    return "unknown";
+}
+
+Json summary_json(const Summary& summary) {
+    return Json{{"median", summary.median}, {"p95", summary.p95},   {"min", summary.min},
+                {"max", summary.max},       {"mean", summary.mean}, {"samples", summary.samples}};
+}
+
+Json counts_json(const CountSummary& counts) {
+    return Json{{"mean", counts.mean}, {"min", counts.min}, {"max", counts.max}};
+}
+
+const char* filter_name(ShadowFilter filter) {
+    switch (filter) {
+        case ShadowFilter::Hard:
+            return "hard";
+        case ShadowFilter::Pcf:
+            return "pcf";
+        case ShadowFilter::Poisson:
+            return "poisson";
+        case ShadowFilter::Pcss:
+            return "pcss";
+        case ShadowFilter::Vsm:
+            return "vsm";
+        case ShadowFilter::Evsm:
+            return "evsm";
+        case ShadowFilter::Msm:
+            return "msm";
+    }
+    return "unknown";
+}
+
+const char* pcss_quality_name(PcssQuality quality) {
+    return quality == PcssQuality::Low ? "low" : quality == PcssQuality::Medium ? "medium" : "high";
+}
+
+// The filter settings that change the cost of a frame.
+Json filter_json(const FilterSettings& filter) {
+    return Json{{"mode", filter_name(filter.mode)},
+                {"pcf_radius", filter.pcf_radius},
+                {"poisson_taps", filter.poisson_taps},
+                {"pcss_blocker_taps", filter.pcss_blocker_taps},
+                {"pcss_quality", pcss_quality_name(filter.pcss_quality)},
+                {"blur_radius", filter.blur_radius},
+                {"evsm_components", filter.evsm_components}};
+}
+
+Json settings_json(const RenderSettings& settings) {
+    const ShadowSettings& shadow = settings.shadow;
+    return Json{{"width", settings.width},
+                {"height", settings.height},
+                {"cascades", shadow.cascades.count},
+                {"shadow_resolution", shadow.cascades.resolution},
+                {"strategy", strategy_name(shadow.strategy)},
+                {"cull_casters", shadow.cull_casters},
+                {"split_scheme", split_scheme_name(shadow.cascades.scheme)},
+                {"split_lambda", shadow.cascades.split_lambda},
+                {"max_distance", shadow.cascades.max_distance},
+                {"fit", shadow.cascades.fit == FitMode::Stable ? "stable" : "tight"},
+                {"slope_bias", shadow.bias.slope},
+                {"constant_bias", shadow.bias.constant},
+                {"bias_clamp", shadow.bias.clamp},
+                {"normal_offset", shadow.bias.normal_offset},
+                {"blend_width", shadow.blend_width},
+                {"filter", filter_json(shadow.filter)}};
+}
+
+Json run_json(const BenchJob& job) {
+    return Json{{"frames", job.frames},
+                {"warmup", job.warmup},
+                {"camera_path", camera_path_name(job.camera_path)},
+                {"light_path", light_path_name(job.light_path)},
+                {"readback", job.readback},
+                {"ceiling", ceiling_name(job.ceiling)},
+                {"taps", job.ceiling == Ceiling::Taps ? Json(job.taps) : Json(nullptr)},
+                {"validation", job.render.device.validation}};
+}
+
+Json timings_json(const std::vector<std::string>& order, const std::map<std::string, Summary>& summaries) {
+    Json timings = Json::object();
+    for (const std::string& name : order) timings[name] = summary_json(summaries.at(name));
+    return timings;
+}
+
+Json ceiling_json(const std::optional<CeilingReport>& ceiling) {
+    if (!ceiling) return nullptr;
+    return Json{{"mode", ceiling->mode},
+                {"unit", ceiling->unit},
+                {"work_per_frame", ceiling->work_per_frame},
+                {"per_second", ceiling->per_second}};
+}
+
+std::string format_row(const char* kind, const std::string& name, const Summary& summary) {
+    char line[160];
+    std::snprintf(line, sizeof(line), "%-4s %-22s %10.3f %10.3f %10.3f\n", kind, name.c_str(), summary.median,
+                  summary.p95, summary.min);
+    return line;
+}
+
+std::string format_header(const BenchResult& result) {
+    const RenderSettings& s = result.settings;
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "penumbra bench: %s (%llu triangles, %zu instances) on %s (%s)\n"
+                  "%ux%u, %d cascades x %u, %s, culling %s; %u frames after %u warm-up, camera %s, light %s\n",
+                  result.scene.spec.c_str(), static_cast<unsigned long long>(result.scene.triangles),
+                  result.scene.instances, result.device.name.c_str(), result.device.driver.c_str(), s.width, s.height,
+                  s.shadow.cascades.count, s.shadow.cascades.resolution, strategy_name(s.shadow.strategy),
+                  s.shadow.cull_casters ? "on" : "off", result.job.frames, result.job.warmup,
+                  camera_path_name(result.job.camera_path), light_path_name(result.job.light_path));
+    return line;
+}
+
+std::string format_cascades(const BenchResult& result) {
+    std::string text = "cascade  draws/frame  triangles/frame (mean)\n";
+    char line[128];
+    for (size_t c = 0; c < result.cascades.size(); ++c) {
+        std::snprintf(line, sizeof(line), "%7zu %12.0f %16.0f\n", c, result.cascades[c].draws.mean,
+                      result.cascades[c].triangles.mean);
+        text += line;
+    }
+    std::snprintf(line, sizeof(line), "shadow map: %llu bytes (%.1f MiB)\n",
+                  static_cast<unsigned long long>(result.shadow_map_bytes),
+                  static_cast<double>(result.shadow_map_bytes) / (1024.0 * 1024.0));
+    return text + line;
+}
+
+}  // namespace
+
+std::string format_bench_table(const BenchResult& result) {
+    std::string text = format_header(result);
+    char line[160];
+    std::snprintf(line, sizeof(line), "%-4s %-22s %10s %10s %10s\n", "", "pass", "median ms", "p95 ms", "min ms");
+    text += line;
+    for (const std::string& name : result.gpu_pass_order) text += format_row("gpu", name, result.gpu_ms.at(name));
+    for (const std::string& name : result.cpu_step_order) text += format_row("cpu", name, result.cpu_ms.at(name));
+    if (result.frames_without_gpu_times > 0) {
+        text += "note: " + std::to_string(result.frames_without_gpu_times) +
+                " frame(s) had no GPU timestamps (unsupported by the queue, or not ready)\n";
+    }
+    text += format_cascades(result);
+    if (result.ceiling) {
+        std::snprintf(line, sizeof(line), "ceiling %s: %llu %s per frame, %.4g per second\n",
+                      result.ceiling->mode.c_str(), static_cast<unsigned long long>(result.ceiling->work_per_frame),
+                      result.ceiling->unit.c_str(), result.ceiling->per_second);
+        text += line;
+    }
+    return text;
+}
+
+std::string bench_json(const BenchResult& result) {
+    Json cascades = Json::array();
+    for (size_t c = 0; c < result.cascades.size(); ++c) {
+        cascades.push_back(Json{{"index", c},
+                                {"draws", counts_json(result.cascades[c].draws)},
+                                {"triangles", counts_json(result.cascades[c].triangles)}});
+    }
+    const Json document{
+        {"schema", "penumbra-bench/1"},
+        {"penumbra_version", result.version},
+        {"device",
+         {{"name", result.device.name},
+          {"driver", result.device.driver},
+          {"type", result.device.type},
+          {"api_version", result.device.api_version},
+          {"timestamp_valid_bits", result.device.timestamp_valid_bits},
+          {"timestamp_period_ns", result.device.timestamp_period_ns}}},
+        {"scene",
+         {{"spec", result.scene.spec},
+          {"meshes", result.scene.meshes},
+          {"materials", result.scene.materials},
+          {"instances", result.scene.instances},
+          {"triangles", result.scene.triangles},
+          {"vertices", result.scene.vertices}}},
+        {"settings", settings_json(result.settings)},
+        {"run", run_json(result.job)},
+        {"gpu_ms", timings_json(result.gpu_pass_order, result.gpu_ms)},
+        {"cpu_ms", timings_json(result.cpu_step_order, result.cpu_ms)},
+        {"frames_without_gpu_times", result.frames_without_gpu_times},
+        {"cascades", cascades},
+        {"shadow_map_bytes", result.shadow_map_bytes},
+        {"ceiling", ceiling_json(result.ceiling)},
+    };
+    return document.dump(2) + "\n";
+}
+
+void write_bench_json(const BenchResult& result, const std::filesystem::path& path) {
+    const std::string text = bench_json(result);
+    std::filesystem::path temporary = path;
+    temporary += ".tmp";
+    {
+        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+        file << text;
+        if (!file.flush()) {
+            std::error_code ignored;
+            std::filesystem::remove(temporary, ignored);
+            throw InputError(path.string() + ": cannot write the JSON report");
+        }
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) {
+        std::filesystem::remove(temporary, error);
+        throw InputError(path.string() + ": cannot write the JSON report");
+    }
+}
+
+}  // namespace penumbra::bench

@@ -1,0 +1,257 @@
+// run_bench_job: the frame loops of `penumbra bench` and the collection of their samples.
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+#include "bench/bench_job.hpp"
+#include "core/errors.hpp"
+#include "gpu/frame_commands.hpp"
+#include "gpu/timestamps.hpp"
+#include "passes/tap_ceiling_pass.hpp"
+#include "renderer/renderer.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace penumbra::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Named samples, remembering the order in which names first appeared.
+class SampleSet {
+public:
+    void add(const std::string& name, double value) {
+        auto [entry, inserted] = samples_.try_emplace(name);
+        if (inserted) order_.push_back(name);
+        entry->second.push_back(value);
+    }
+
+    // `last` (when present) goes to the end of the order: totals read best after their parts.
+    void summarize_into(std::vector<std::string>& order, std::map<std::string, Summary>& summaries,
+                        const std::string& last = "") const {
+        for (const std::string& name : order_) {
+            if (name != last) order.push_back(name);
+        }
+        if (samples_.contains(last)) order.push_back(last);
+        for (const auto& [name, values] : samples_) summaries[name] = summarize(values);
+    }
+
+private:
+    std::vector<std::string> order_;
+    std::map<std::string, std::vector<double>> samples_;
+};
+
+struct FrameSamples {
+    SampleSet gpu;
+    SampleSet cpu;
+    std::vector<std::vector<uint64_t>> cascade_draws;  // [cascade][frame]
+    std::vector<std::vector<uint64_t>> cascade_triangles;
+    uint32_t frames_without_gpu_times = 0;
+
+    void add_gpu_times(const std::vector<gpu::ScopeTime>& times) {
+        if (times.empty()) ++frames_without_gpu_times;
+        for (const gpu::ScopeTime& time : times) gpu.add(time.name, time.milliseconds);
+    }
+};
+
+CountSummary summarize_counts(const std::vector<uint64_t>& counts) {
+    CountSummary summary;
+    if (counts.empty()) return summary;
+    summary.min = *std::min_element(counts.begin(), counts.end());
+    summary.max = *std::max_element(counts.begin(), counts.end());
+    double total = 0.0;
+    for (const uint64_t count : counts) total += static_cast<double>(count);
+    summary.mean = total / static_cast<double>(counts.size());
+    return summary;
+}
+
+void validate_job(const BenchJob& job) {
+    if (job.frames == 0) throw InputError("--frames: must be at least 1, got 0");
+    if (job.ceiling == Ceiling::Taps && (job.taps == 0 || job.taps > kMaxTaps)) {
+        throw InputError("--taps: must be between 1 and " + std::to_string(kMaxTaps) + ", got " +
+                         std::to_string(job.taps));
+    }
+}
+
+// Path parameter of frame `index`: warm-up frames repeat the first measured frame.
+float path_parameter(const BenchJob& job, uint32_t index) {
+    if (index < job.warmup) return 0.0f;
+    return static_cast<float>(index - job.warmup) / static_cast<float>(job.frames);
+}
+
+DeviceReport describe_device(const gpu::Context& context, const gpu::GpuTimer& timer) {
+    DeviceReport report;
+    report.name = context.info().name;
+    report.driver = context.info().driver;
+    report.type = gpu::device_type_name(context.info().type);
+    report.api_version = gpu::api_version_string(context.info().api_version);
+    report.timestamp_valid_bits = timer.valid_bits();
+    report.timestamp_period_ns = timer.period_ns();
+    return report;
+}
+
+SceneReport describe_scene(const std::string& spec, const Scene& scene) {
+    SceneReport report;
+    report.spec = spec.empty() ? std::string(kDefaultSceneName) : spec;
+    report.meshes = scene.meshes.size();
+    report.materials = scene.materials.size();
+    report.instances = scene.instances.size();
+    report.triangles = scene.triangle_count();
+    for (const Mesh& mesh : scene.meshes) report.vertices += mesh.vertices.size();
+    return report;
+}
+
+void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, FrameSamples& samples) {
+    samples.add_gpu_times(frame.gpu_times);
+    samples.cpu.add("cascade_setup", frame.cpu_times.cascade_setup_ms);
+    samples.cpu.add("culling", frame.cpu_times.culling_ms);
+    samples.cpu.add("recording", frame.cpu_times.recording_ms);
+    samples.cpu.add("submit_wait", frame.cpu_times.submit_wait_ms);
+    samples.cpu.add("frame_wall", wall_ms);
+    samples.cascade_draws.resize(frame.cascade_stats.size());
+    samples.cascade_triangles.resize(frame.cascade_stats.size());
+    for (size_t c = 0; c < frame.cascade_stats.size(); ++c) {
+        samples.cascade_draws[c].push_back(frame.cascade_stats[c].draws);
+        samples.cascade_triangles[c].push_back(frame.cascade_stats[c].triangles);
+    }
+}
+
+Light* find_sun(Scene& scene) {
+    for (Light& light : scene.lights) {
+        if (light.type == LightType::Directional) return &light;
+    }
+    return nullptr;
+}
+
+// The renderer's frames along the camera and light paths. The Renderer keeps a reference
+// to `prepared.scene` and reads its sun every frame, so moving the sun here moves it there.
+FrameSamples run_renderer_frames(const gpu::Context& context, const BenchJob& job, PreparedJob& prepared,
+                                 BenchResult& result) {
+    renderer::Renderer renderer(context, prepared.scene, prepared.settings);
+    result.device = describe_device(context, renderer.gpu_timer());
+    result.shadow_map_bytes = renderer.shadow_map_bytes();
+    const Camera start_camera = prepared.scene.camera;
+    Light* sun = find_sun(prepared.scene);
+    const glm::vec3 start_sun = sun ? sun->direction : glm::vec3{0.0f, -1.0f, 0.0f};
+    const auto readback = job.readback ? renderer::ReadbackMode::Images : renderer::ReadbackMode::None;
+
+    FrameSamples samples;
+    const uint32_t total = job.warmup + job.frames;
+    for (uint32_t index = 0; index < total; ++index) {
+        const float t = path_parameter(job, index);
+        if (sun) sun->direction = glm::normalize(sun_on_path(job.light_path, start_sun, t));
+        const Clock::time_point start = Clock::now();
+        renderer.render(camera_on_path(job.camera_path, start_camera, t), readback);
+        const double wall_ms = milliseconds_since(start);
+        if (index >= job.warmup) record_renderer_frame(renderer.last_frame(), wall_ms, samples);
+        if (job.progress) job.progress(index + 1, total);
+    }
+    return samples;
+}
+
+// The sampling-rate ceiling: no scene rendering, only the full-screen tap pass.
+FrameSamples run_tap_frames(const gpu::Context& context, const BenchJob& job, const RenderSettings& settings,
+                            BenchResult& result) {
+    const passes::TapCeilingPass pass(context, {settings.width, settings.height, settings.shadow.cascades.resolution,
+                                                static_cast<uint32_t>(settings.shadow.cascades.count), job.taps});
+    gpu::FrameCommands commands(context);
+    gpu::GpuTimer timer(context, 2);
+    result.device = describe_device(context, timer);
+    result.shadow_map_bytes = pass.shadow_map_bytes();
+    context.submit_and_wait([&](VkCommandBuffer cmd) { pass.record_setup(cmd); });
+
+    FrameSamples samples;
+    const uint32_t total = job.warmup + job.frames;
+    for (uint32_t index = 0; index < total; ++index) {
+        double recording_ms = 0.0;
+        const Clock::time_point start = Clock::now();
+        commands.submit_and_wait([&](VkCommandBuffer cmd) {
+            const Clock::time_point record_start = Clock::now();
+            timer.begin_frame(cmd);
+            gpu::TimedScope frame_scope(&timer, cmd, "frame");
+            gpu::TimedScope taps_scope(&timer, cmd, "taps");
+            pass.record(cmd);
+            recording_ms = milliseconds_since(record_start);
+        });
+        const double wall_ms = milliseconds_since(start);
+        if (index >= job.warmup) {
+            samples.add_gpu_times(timer.read().value_or(std::vector<gpu::ScopeTime>{}));
+            samples.cpu.add("recording", recording_ms);
+            samples.cpu.add("frame_wall", wall_ms);
+        }
+        if (job.progress) job.progress(index + 1, total);
+    }
+    result.ceiling = CeilingReport{"taps", "texture taps", pass.taps_per_frame(), 0.0};
+    return samples;
+}
+
+// The triangle-rate ceiling renders the same casters with the same pipelines into a map so
+// small that rasterisation costs nothing, with every caster in every cascade.
+void apply_triangle_ceiling(RenderSettings& settings) {
+    settings.shadow.cascades.resolution = kCeilingShadowResolution;
+    settings.shadow.cull_casters = false;
+    settings.width = kCeilingShadowResolution;
+    settings.height = kCeilingShadowResolution;
+}
+
+double shadow_median_ms(const BenchResult& result) {
+    double total = 0.0;
+    for (const auto& [name, summary] : result.gpu_ms) {
+        if (name.starts_with("shadow_")) total += summary.median;
+    }
+    return total;
+}
+
+void summarize_samples(const FrameSamples& samples, BenchResult& result) {
+    samples.gpu.summarize_into(result.gpu_pass_order, result.gpu_ms, "frame");
+    samples.cpu.summarize_into(result.cpu_step_order, result.cpu_ms, "frame_wall");
+    for (size_t c = 0; c < samples.cascade_draws.size(); ++c) {
+        result.cascades.push_back(
+            {summarize_counts(samples.cascade_draws[c]), summarize_counts(samples.cascade_triangles[c])});
+    }
+    result.frames_without_gpu_times = samples.frames_without_gpu_times;
+}
+
+void finish_ceiling(const BenchJob& job, const Scene& scene, const RenderSettings& settings, BenchResult& result) {
+    if (job.ceiling == Ceiling::Triangles) {
+        const uint64_t work = scene.triangle_count() * static_cast<uint64_t>(settings.shadow.cascades.count);
+        const double ms = shadow_median_ms(result);
+        result.ceiling = CeilingReport{"triangles", "cascade triangles", work, ms > 0.0 ? work / (ms * 1e-3) : 0.0};
+    } else if (job.ceiling == Ceiling::Taps && result.ceiling) {
+        const double ms = result.gpu_ms.contains("taps") ? result.gpu_ms.at("taps").median : 0.0;
+        result.ceiling->per_second = ms > 0.0 ? static_cast<double>(result.ceiling->work_per_frame) / (ms * 1e-3) : 0.0;
+    }
+}
+
+}  // namespace
+
+BenchResult run_bench_job(const BenchJob& job) {
+    validate_job(job);
+    PreparedJob prepared = prepare_render_job(job.render);
+    if (job.ceiling == Ceiling::Triangles) apply_triangle_ceiling(prepared.settings);
+
+    BenchResult result;
+    result.version = PENUMBRA_VERSION;
+    result.job = job;
+    result.job.progress = nullptr;
+    result.settings = prepared.settings;
+    result.scene = describe_scene(job.render.scene, prepared.scene);
+    gpu::ContextOptions device_options = job.render.device;
+    device_options.log = std::make_shared<gpu::ValidationLog>();
+    {
+        gpu::Context context(device_options);
+        const FrameSamples samples = job.ceiling == Ceiling::Taps
+                                         ? run_tap_frames(context, job, prepared.settings, result)
+                                         : run_renderer_frames(context, job, prepared, result);
+        summarize_samples(samples, result);
+    }
+    // Checked after the device and instance are gone, so leak reports count too.
+    check_validation(*device_options.log);
+    finish_ceiling(job, prepared.scene, prepared.settings, result);
+    return result;
+}
+
+}  // namespace penumbra::bench

@@ -1,0 +1,128 @@
+#include "passes/geometry_aov_pass.hpp"
+
+#include <array>
+
+#include "embedded_shaders.hpp"
+#include "gpu/barriers.hpp"
+#include "passes/draw_recording.hpp"
+#include "passes/shader_interface.hpp"
+
+namespace penumbra::passes {
+namespace {
+
+constexpr VkFormat kPositionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kNormalFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+gpu::Image create_target(const gpu::Context& context, VkFormat format, uint32_t width, uint32_t height,
+                         VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+    gpu::ImageDesc desc;
+    desc.format = format;
+    desc.width = width;
+    desc.height = height;
+    desc.usage = usage;
+    desc.aspect = aspect;
+    return gpu::create_image(context, desc);
+}
+
+gpu::UniquePipeline create_pipeline(const gpu::Context& context, VkPipelineLayout layout, VkCullModeFlags cull_mode) {
+    gpu::GraphicsPipelineDesc desc;
+    desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
+    desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::geometry_aovs_frag(), {}});
+    desc.vertex_layout = scene_vertex_layout(VertexAttributes::PositionNormalUv);
+    desc.layout = layout;
+    desc.color_formats = {kPositionFormat, kNormalFormat};
+    desc.depth_format = kDepthFormat;
+    desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z, as the lighting pass
+    desc.cull_mode = cull_mode;
+    return gpu::create_graphics_pipeline(context, desc);
+}
+
+VkRenderingAttachmentInfo cleared_attachment(const gpu::Image& image) {
+    VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    attachment.imageView = image.view;
+    attachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attachment.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // w = 0: no geometry
+    return attachment;
+}
+
+}  // namespace
+
+GeometryAovPass::GeometryAovPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout,
+                                 uint32_t width, uint32_t height, VkBuffer frame_uniforms,
+                                 VkDeviceSize frame_uniforms_size)
+    : width_(width), height_(height) {
+    const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    targets_.world_position =
+        create_target(context, kPositionFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.world_normal = create_target(context, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.depth = create_target(context, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                   VK_IMAGE_ASPECT_DEPTH_BIT);
+
+    const VkDescriptorSetLayoutBinding binding{PENUMBRA_BINDING_FRAME_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                               VK_SHADER_STAGE_VERTEX_BIT, nullptr};
+    frame_set_layout_ = gpu::create_descriptor_set_layout(context, {&binding, 1});
+    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    descriptor_pool_ = gpu::create_descriptor_pool(context, 1, {&pool_size, 1});
+    frame_set_ = gpu::allocate_descriptor_set(context, descriptor_pool_, frame_set_layout_);
+    gpu::write_uniform_buffer(context, frame_set_, PENUMBRA_BINDING_FRAME_UNIFORMS, frame_uniforms,
+                              frame_uniforms_size);
+
+    const VkDescriptorSetLayout set_layouts[] = {frame_set_layout_, material_set_layout};
+    const VkPushConstantRange push_range = draw_push_constant_range();
+    pipeline_layout_ = gpu::create_pipeline_layout(context, set_layouts, {&push_range, 1});
+    single_sided_ = create_pipeline(context, pipeline_layout_, VK_CULL_MODE_BACK_BIT);
+    double_sided_ = create_pipeline(context, pipeline_layout_, VK_CULL_MODE_NONE);
+}
+
+void GeometryAovPass::begin_rendering(VkCommandBuffer cmd) const {
+    const std::array<VkRenderingAttachmentInfo, 2> colors{cleared_attachment(targets_.world_position),
+                                                          cleared_attachment(targets_.world_normal)};
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = targets_.depth.view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {0.0f, 0};
+
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {width_, height_}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &info);
+    set_viewport_and_scissor(cmd, width_, height_);
+}
+
+void GeometryAovPass::record(VkCommandBuffer cmd, const DrawData& data) const {
+    for (const gpu::Image* target : {&targets_.world_position, &targets_.world_normal}) {
+        gpu::transition(cmd, *target, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
+    }
+    gpu::transition(cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+
+    begin_rendering(cmd);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1, &frame_set_,
+                            0, nullptr);
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
+    // The lighting pass's order (single-sided draws, then double-sided ones), so that
+    // equal-depth ties resolve to the same surface.
+    for (const bool double_sided : {false, true}) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, double_sided ? double_sided_ : single_sided_);
+        for (const Draw& draw : data.draws) {
+            if (data.materials[draw.material].double_sided != double_sided) continue;
+            record_draw(cmd, pipeline_layout_, data, draw, 0);
+        }
+    }
+    vkCmdEndRendering(cmd);
+
+    for (const gpu::Image* target : {&targets_.world_position, &targets_.world_normal}) {
+        gpu::transition(cmd, *target, gpu::ImageState::ColorAttachment, gpu::ImageState::TransferSrc);
+    }
+}
+
+}  // namespace penumbra::passes

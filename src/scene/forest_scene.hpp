@@ -1,0 +1,29 @@
+#pragma once
+// The procedural stress scene behind "builtin:forest?count=N": N trees (a trunk
+// cylinder, an ellipsoid crown and a rock beside it) jittered over a 400 m square of
+// ground. Each kind of object is one Mesh shared by all its Instances, so the scene
+// costs little memory at any size while the renderer still submits one draw per
+// instance. Triangles: exactly kForestTrianglesPerTree * N + kForestGroundTriangles:
+// count=100 is 0.1 M, count=1000 is 1 M and count=10000 is 10 M triangles (plus the
+// ground's 8,192). The trees cover the whole square at every count, so triangle density
+// (and every cascade's work) grows linearly with N. Deterministic: the same N always gives the same scene.
+#include <cstdint>
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace penumbra {
+
+constexpr uint32_t kForestTrianglesPerTree = 1000;  // crown 900 + trunk 88 + rock 12
+// make_plane() tessellates large planes into 64 x 64 cells (a lavapipe multiview workaround).
+constexpr uint32_t kForestGroundTriangles = 64 * 64 * 2;
+constexpr uint32_t kForestDefaultCount = 1000;
+constexpr uint32_t kForestMaxCount = 100000;
+constexpr float kForestSize = 400.0f;  // side of the square the trees cover, metres
+
+Scene make_forest_scene(uint32_t count);
+
+// Parses the query after "forest?" ("" or "count=N"); throws InputError naming `origin`.
+uint32_t parse_forest_count(const std::string& query, const std::string& origin);
+
+}  // namespace penumbra

@@ -1,0 +1,270 @@
+// `penumbra bench`: the JSON report (every pass timed, triangle counts equal to what the
+// scene submits, culling lowering them), the ceiling modes, bad input, and the pure
+// pieces behind it (statistics, camera and light paths, the forest scene). Timings are
+// only checked for being present and positive: lavapipe's numbers mean nothing here.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bench/paths.hpp"
+#include "bench/statistics.hpp"
+#include "core/errors.hpp"
+#include "scene/forest_scene.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kForest = "'builtin:forest?count=30'";
+// Small and quick on lavapipe; --validate makes any validation message fail the run.
+constexpr const char* kSmall = " --frames 3 --warmup 1 --width 96 --height 64 --shadow-resolution 512 --validate";
+
+struct RunResult {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+    std::ifstream file(path);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// Triangles the renderer submits for one pass over every instance, counted from the meshes.
+uint64_t triangles_submitted_by(const penumbra::Scene& scene) {
+    uint64_t triangles = 0;
+    for (const penumbra::Instance& instance : scene.instances) {
+        triangles += scene.meshes[instance.mesh].indices.size() / 3;
+    }
+    return triangles;
+}
+
+class BenchCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / (std::string("penumbra_bench_") + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    RunResult run(const std::string& arguments) const {
+        const fs::path out = dir_ / "stdout.txt";
+        const fs::path err = dir_ / "stderr.txt";
+        const std::string command = "cd '" + dir_.string() + "' && '" + PENUMBRA_BINARY + "' " + arguments + " > '" +
+                                    out.string() + "' 2> '" + err.string() + "'";
+        const int status = std::system(command.c_str());
+        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+    }
+
+    // Runs `bench` with --json and returns the parsed report (fails the test on error).
+    json run_json(const std::string& arguments) const {
+        const RunResult result = run("bench " + arguments + " --json report.json");
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+        if (result.exit_code != 0) return json::object();
+        return json::parse(read_text(dir_ / "report.json"));
+    }
+
+    void expect_usage_error(const std::string& arguments, const std::string& needle) const {
+        const RunResult result = run("bench " + arguments + " --json report.json");
+        EXPECT_EQ(result.exit_code, 2) << result.err;
+        EXPECT_NE(result.err.find(needle), std::string::npos) << result.err;
+        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+        EXPECT_FALSE(fs::exists(dir_ / "report.json"));
+    }
+
+    fs::path dir_;
+};
+
+void expect_positive_timings(const json& timings, const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        SCOPED_TRACE(name);
+        ASSERT_TRUE(timings.contains(name)) << timings.dump();
+        EXPECT_GT(timings[name]["median"].get<double>(), 0.0);
+        EXPECT_GT(timings[name]["min"].get<double>(), 0.0);
+        EXPECT_GE(timings[name]["p95"].get<double>(), timings[name]["median"].get<double>());
+        EXPECT_EQ(timings[name]["samples"].get<int>(), 3);
+    }
+}
+
+TEST_F(BenchCli, ReportsEveryPassWithAPositiveTime) {
+    const json report = run_json(std::string(kForest) + kSmall + " --cascades 3");
+    ASSERT_FALSE(report.empty());
+    EXPECT_EQ(report["schema"], "penumbra-bench/1");
+    EXPECT_FALSE(report["device"]["name"].get<std::string>().empty());
+    EXPECT_GT(report["device"]["timestamp_valid_bits"].get<int>(), 0);
+    expect_positive_timings(report["gpu_ms"],
+                            {"shadow_cascade_0", "shadow_cascade_1", "shadow_cascade_2", "lighting", "frame"});
+    expect_positive_timings(report["cpu_ms"], {"cascade_setup", "culling", "recording", "submit_wait", "frame_wall"});
+    EXPECT_EQ(report["frames_without_gpu_times"], 0);
+    EXPECT_EQ(report["settings"]["cascades"], 3);
+    EXPECT_GE(report["shadow_map_bytes"].get<uint64_t>(), uint64_t{512} * 512 * 3 * 4);
+    ASSERT_EQ(report["cascades"].size(), 3u);
+    EXPECT_TRUE(report["ceiling"].is_null());
+}
+
+TEST_F(BenchCli, PrintsATableOfMedianP95AndMin) {
+    const RunResult result = run(std::string("bench ") + kForest + kSmall + " --camera-path flythrough");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(result.err.empty()) << "no progress bar without a terminal: " << result.err;
+    for (const char* needle : {"median ms", "p95 ms", "min ms", "shadow_cascade_0", "lighting", "frame_wall"}) {
+        EXPECT_NE(result.out.find(needle), std::string::npos) << needle << " in\n" << result.out;
+    }
+}
+
+TEST_F(BenchCli, WithoutCullingEveryCascadeGetsEveryTriangle) {
+    const penumbra::Scene scene = penumbra::load_scene("builtin:forest?count=30");
+    const uint64_t triangles = triangles_submitted_by(scene);
+    const json report = run_json(std::string(kForest) + kSmall + " --no-cull");
+    ASSERT_FALSE(report.empty());
+    EXPECT_EQ(report["scene"]["triangles"].get<uint64_t>(), triangles);
+    EXPECT_EQ(report["scene"]["instances"].get<size_t>(), scene.instances.size());
+    ASSERT_EQ(report["cascades"].size(), 4u);
+    for (const json& cascade : report["cascades"]) {
+        EXPECT_EQ(cascade["triangles"]["min"].get<uint64_t>(), triangles);
+        EXPECT_EQ(cascade["triangles"]["max"].get<uint64_t>(), triangles);
+        EXPECT_EQ(cascade["draws"]["min"].get<size_t>(), scene.instances.size());
+    }
+}
+
+TEST_F(BenchCli, PerCascadeCullingLowersTheSubmittedTriangles) {
+    // The forest covers 400 m; the cascades cover 150 m from a camera inside it, so most
+    // trees cast into no cascade and the near cascades see only a few.
+    const uint64_t triangles = triangles_submitted_by(penumbra::load_scene("builtin:forest?count=30"));
+    const json report = run_json(std::string(kForest) + kSmall);
+    ASSERT_FALSE(report.empty());
+    double culled_total = 0.0;
+    for (const json& cascade : report["cascades"]) {
+        EXPECT_LE(cascade["triangles"]["max"].get<uint64_t>(), triangles);
+        culled_total += cascade["triangles"]["mean"].get<double>();
+    }
+    EXPECT_LT(culled_total, 0.8 * static_cast<double>(triangles * report["cascades"].size()));
+    EXPECT_LT(report["cascades"][0]["triangles"]["mean"].get<double>(), static_cast<double>(triangles));
+}
+
+TEST_F(BenchCli, MultiviewIsOneTimedShadowPass) {
+    const json report = run_json(std::string(kForest) + kSmall + " --shadow-strategy multiview --light-path rotate");
+    ASSERT_FALSE(report.empty());
+    expect_positive_timings(report["gpu_ms"], {"shadow_multiview", "lighting", "frame"});
+    EXPECT_FALSE(report["gpu_ms"].contains("shadow_cascade_0"));
+    EXPECT_EQ(report["run"]["light_path"], "rotate");
+}
+
+TEST_F(BenchCli, TriangleCeilingCountsEveryTriangleInEveryCascade) {
+    const uint64_t triangles = triangles_submitted_by(penumbra::load_scene("builtin:forest?count=30"));
+    const json report = run_json(std::string(kForest) + kSmall + " --ceiling triangles");
+    ASSERT_FALSE(report.empty());
+    ASSERT_FALSE(report["ceiling"].is_null());
+    EXPECT_EQ(report["ceiling"]["mode"], "triangles");
+    EXPECT_EQ(report["ceiling"]["work_per_frame"].get<uint64_t>(), 4 * triangles);
+    EXPECT_GT(report["ceiling"]["per_second"].get<double>(), 0.0);
+    EXPECT_EQ(report["settings"]["shadow_resolution"], 16);
+    EXPECT_EQ(report["settings"]["cull_casters"], false);
+}
+
+TEST_F(BenchCli, TapCeilingTimesTheFullScreenPass) {
+    const json report = run_json(std::string(kForest) + kSmall + " --ceiling taps --taps 8");
+    ASSERT_FALSE(report.empty());
+    expect_positive_timings(report["gpu_ms"], {"taps", "frame"});
+    EXPECT_EQ(report["ceiling"]["work_per_frame"].get<uint64_t>(), uint64_t{96} * 64 * 8);
+    EXPECT_GT(report["ceiling"]["per_second"].get<double>(), 0.0);
+}
+
+TEST_F(BenchCli, BadInputIsOneLineAndExitTwo) {
+    expect_usage_error(std::string(kForest) + " --frames 0", "--frames");
+    expect_usage_error(std::string(kForest) + " --camera-path spiral", "--camera-path: unknown value \"spiral\"");
+    expect_usage_error(std::string(kForest) + " --light-path wobble", "--light-path");
+    expect_usage_error(std::string(kForest) + " --ceiling pixels", "--ceiling");
+    expect_usage_error("'builtin:forest?count=0'", "count");
+    expect_usage_error("'builtin:forest?trees=5'", "expected count=N");
+}
+
+TEST(BenchStatistics, MedianPercentileAndMin) {
+    std::vector<double> samples;
+    for (int i = 100; i >= 1; --i) samples.push_back(i);
+    const penumbra::bench::Summary summary = penumbra::bench::summarize(samples);
+    EXPECT_DOUBLE_EQ(summary.median, 50.5);
+    EXPECT_DOUBLE_EQ(summary.p95, 95.0);
+    EXPECT_DOUBLE_EQ(summary.min, 1.0);
+    EXPECT_DOUBLE_EQ(summary.max, 100.0);
+    EXPECT_DOUBLE_EQ(summary.mean, 50.5);
+    EXPECT_EQ(penumbra::bench::summarize({}).samples, 0u);
+    EXPECT_DOUBLE_EQ(penumbra::bench::summarize({7.0}).p95, 7.0);
+}
+
+TEST(BenchPaths, OrbitCirclesTheTargetAtTheCameraDistance) {
+    penumbra::Camera start;
+    start.eye = {0.0f, 20.0f, 90.0f};
+    start.target = {0.0f, 3.0f, 0.0f};
+    using penumbra::bench::CameraPath;
+    for (const float t : {0.0f, 0.25f, 0.5f, 0.9f}) {
+        const penumbra::Camera camera = penumbra::bench::camera_on_path(CameraPath::Orbit, start, t);
+        EXPECT_NEAR(glm::length(camera.eye - camera.target), glm::length(start.eye - start.target), 1e-3f);
+        EXPECT_EQ(camera.target, start.target);
+        EXPECT_NEAR(camera.eye.y, start.eye.y, 1e-4f);
+    }
+    EXPECT_NEAR(penumbra::bench::camera_on_path(CameraPath::Orbit, start, 0.5f).eye.z, -90.0f, 1e-3f);
+}
+
+TEST(BenchPaths, FlythroughKeepsTheViewDirectionAndMovesAhead) {
+    penumbra::Camera start;
+    start.eye = {0.0f, 20.0f, 90.0f};
+    start.target = {0.0f, 3.0f, 0.0f};
+    using penumbra::bench::CameraPath;
+    const penumbra::Camera half = penumbra::bench::camera_on_path(CameraPath::Flythrough, start, 0.5f);
+    EXPECT_NEAR(half.eye.z, 0.0f, 1e-3f);  // over the target halfway
+    const glm::vec3 view = half.target - half.eye;
+    const glm::vec3 start_view = start.target - start.eye;
+    EXPECT_NEAR(glm::length(view - start_view), 0.0f, 1e-3f);
+}
+
+TEST(BenchPaths, RotatingSunKeepsItsElevation) {
+    const glm::vec3 start = glm::normalize(glm::vec3{-0.4f, -1.0f, -0.3f});
+    using penumbra::bench::LightPath;
+    EXPECT_EQ(penumbra::bench::sun_on_path(LightPath::Fixed, start, 0.3f), start);
+    const glm::vec3 turned = penumbra::bench::sun_on_path(LightPath::Rotate, start, 0.3f);
+    EXPECT_NEAR(turned.y, start.y, 1e-6f);
+    EXPECT_NEAR(glm::length(turned), 1.0f, 1e-5f);
+    EXPECT_GT(glm::length(turned - start), 0.1f);
+}
+
+TEST(ForestScene, TrianglesAreAThousandPerTreePlusTheGround) {
+    for (const uint32_t count : {1u, 100u, 1000u}) {
+        const penumbra::Scene scene = penumbra::make_forest_scene(count);
+        EXPECT_EQ(scene.meshes[0].indices.size() / 3, penumbra::kForestGroundTriangles);
+        EXPECT_EQ(scene.triangle_count(),
+                  uint64_t{penumbra::kForestTrianglesPerTree} * count + penumbra::kForestGroundTriangles);
+        EXPECT_EQ(scene.meshes.size(), 4u) << "one mesh per kind, shared by the instances";
+        EXPECT_EQ(scene.instances.size(), 1 + 3 * size_t{count});
+    }
+}
+
+TEST(ForestScene, SpreadsOverTheWholeSquareAtAnyCount) {
+    for (const uint32_t count : {10u, 1000u}) {
+        const penumbra::Aabb bounds = penumbra::make_forest_scene(count).world_bounds();
+        EXPECT_GT(bounds.max.x - bounds.min.x, 0.5f * penumbra::kForestSize);
+        EXPECT_GT(bounds.max.z - bounds.min.z, 0.5f * penumbra::kForestSize);
+    }
+}
+
+TEST(ForestScene, IsDeterministicAndParsesItsCount) {
+    EXPECT_EQ(penumbra::make_forest_scene(50).instances[7].world, penumbra::make_forest_scene(50).instances[7].world);
+    EXPECT_EQ(penumbra::load_scene("builtin:forest").instances.size(), 1 + 3 * size_t{penumbra::kForestDefaultCount});
+    EXPECT_EQ(penumbra::load_scene("builtin:forest?count=12").instances.size(), 37u);
+    EXPECT_THROW(penumbra::load_scene("builtin:forest?count=100001"), penumbra::InputError);
+    EXPECT_THROW(penumbra::load_scene("builtin:forest?count=-3"), penumbra::InputError);
+    EXPECT_THROW(penumbra::load_scene("builtin:default?count=3"), penumbra::InputError);
+}
+
+}  // namespace

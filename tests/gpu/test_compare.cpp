@@ -1,0 +1,253 @@
+// `penumbra compare`: the ray-traced reference agrees with analytic shadows on the
+// rasterizer's own surface points, the metrics respond to the artefacts they name, and
+// bad input fails with one line and exit code 2.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "analytic_shadow.hpp"
+#include "compare/compare_job.hpp"
+#include "render_fixture.hpp"
+
+namespace penumbra::testing {
+namespace {
+
+std::string scene_text(const glm::vec3& light, const std::string& objects) {
+    char header[512];
+    std::snprintf(header, sizeof(header), R"(
+[camera]
+eye = [0.0, 9.0, 7.0]
+target = [0.0, 0.0, 0.0]
+fov = 50.0
+near = 0.1
+far = 60.0
+
+[[lights]]
+type = "directional"
+direction = [%f, %f, %f]
+
+[[objects]]
+type = "plane"
+size = [30.0, 30.0]
+)",
+                  light.x, light.y, light.z);
+    return header + objects;
+}
+
+const char* kFloatingBox = R"(
+[[objects]]
+type = "box"
+size = [3.0, 0.5, 2.0]
+translation = [0.0, 2.0, 0.0]
+)";
+
+const char* kSphere = R"(
+[[objects]]
+type = "sphere"
+radius = 1.0
+translation = [0.5, 1.6, 0.0]
+)";
+
+// A 2.5 cm thick slab floating 5 cm above the ground and a standing box: contact shadows
+// that a large normal offset detaches (peter-panning).
+const char* kSlabAndBox = R"(
+[[objects]]
+type = "box"
+size = [2.5, 0.025, 2.5]
+translation = [-1.5, 0.0625, 0.5]
+
+[[objects]]
+type = "box"
+size = [1.5, 1.5, 1.5]
+translation = [2.0, 0.75, -0.5]
+rotation = [0.0, 20.0, 0.0]
+)";
+
+compare::CompareResult compare_scene(const std::string& text, const RenderSettings& settings, uint32_t rays = 16,
+                                     uint32_t stability_frames = 1) {
+    compare::CompareJob job;
+    job.rays = rays;
+    job.stability_frames = stability_frames;
+    job.render.device.validation = true;  // any message throws ValidationFailure
+    return compare::compare_prepared(job, {scene_from_toml(text), settings}, "test.toml");
+}
+
+// Ground pixels (y = 0 in the geometry AOV) whose analytic answer is unambiguous: the
+// hard reference must match it, and the AOV position must lie on the pixel's primary ray.
+struct Agreement {
+    size_t ground_pixels = 0;
+    size_t disagreements = 0;
+    float worst_position_error = 0.0f;
+};
+
+template <typename Truth>
+Agreement check_against_analytic(const compare::CompareResult& result, const Camera& camera, const Truth& truth) {
+    Agreement agreement;
+    const auto& frame = result.images.frame;
+    for (uint32_t y = 0; y < frame.height; ++y) {
+        for (uint32_t x = 0; x < frame.width; ++x) {
+            const size_t i = size_t{y} * frame.width + x;
+            const glm::vec4 position = result.images.world_position[i];
+            if (position.w < 0.5f || std::abs(position.y) > 1e-4f || !frame.evaluated[i]) continue;
+            const PixelRay ray = pixel_ray(camera, frame.width, frame.height, x, y);
+            const auto ground = intersect_ground(ray, 15.0f);
+            if (!ground) continue;
+            const glm::vec3 expected = ray.origin + ray.direction * *ground;
+            agreement.worst_position_error =
+                std::max(agreement.worst_position_error, glm::length(glm::vec3(position) - expected));
+            const std::optional<bool> shadowed = truth(glm::vec3(position));
+            if (!shadowed) continue;
+            ++agreement.ground_pixels;
+            agreement.disagreements += (frame.hard[i] == 0) != *shadowed;
+        }
+    }
+    return agreement;
+}
+
+void expect_box_agreement(const glm::vec3& light_direction) {
+    const std::string text = scene_text(light_direction, kFloatingBox);
+    const compare::CompareResult result = compare_scene(text, small_settings(240, 180));
+    const Aabb box{{-1.5f, 1.75f, -1.0f}, {1.5f, 2.25f, 1.0f}};
+    const auto polygon = shadow_polygon(box, glm::normalize(light_direction));
+    const Agreement agreement =
+        check_against_analytic(result, scene_from_toml(text).camera, [&](const glm::vec3& p) -> std::optional<bool> {
+            const glm::vec2 ground(p.x, p.z);
+            if (distance_to_polygon_edge(polygon, ground) < 2e-3f) return std::nullopt;
+            return inside_convex_polygon(polygon, ground);
+        });
+    EXPECT_GT(agreement.ground_pixels, 20000u);
+    EXPECT_EQ(agreement.disagreements, 0u);
+    EXPECT_LT(agreement.worst_position_error, 5e-3f) << "geometry AOV off the primary ray";
+}
+
+TEST(CompareReference, BoxWithLightStraightDownMatchesTheAnalyticFootprint) { expect_box_agreement({0, -1, 0}); }
+
+TEST(CompareReference, BoxWithSlantedLightMatchesTheAnalyticFootprint) { expect_box_agreement({-0.6f, -1, 0.35f}); }
+
+TEST(CompareReference, SphereShadowIsTheProjectedEllipse) {
+    const glm::vec3 light = glm::normalize(glm::vec3(0.7f, -1.0f, -0.4f));
+    const std::string text = scene_text(light, kSphere);
+    const compare::CompareResult result = compare_scene(text, small_settings(240, 180));
+    const glm::vec3 center(0.5f, 1.6f, 0.0f);
+    // The shadow is the sphere projected along the light: the ground points whose line toward
+    // the sun passes within the radius of the centre (an ellipse). The mesh is a 32 x 16
+    // tessellation, up to 2% inside the true sphere, so a thin band around the rim is skipped.
+    const Agreement agreement =
+        check_against_analytic(result, scene_from_toml(text).camera, [&](const glm::vec3& p) -> std::optional<bool> {
+            const glm::vec3 to_center = center - p;
+            const float axis_distance = glm::length(to_center + light * glm::dot(to_center, -light));
+            if (std::abs(axis_distance - 1.0f) < 0.03f) return std::nullopt;
+            return axis_distance < 1.0f;
+        });
+    EXPECT_GT(agreement.ground_pixels, 20000u);
+    EXPECT_EQ(agreement.disagreements, 0u);
+}
+
+const glm::vec3 kSlantedLight{-0.6f, -1.0f, 0.35f};
+
+TEST(CompareMetrics, ZeroBiasRaisesFalseShadow) {
+    const std::string text = scene_text(kSlantedLight, kSlabAndBox);
+    RenderSettings settings = small_settings(240, 180);
+    const compare::CompareResult biased = compare_scene(text, settings);
+    settings.shadow.bias.slope = 0.0f;
+    settings.shadow.bias.normal_offset = 0.0f;
+    const compare::CompareResult unbiased = compare_scene(text, settings);
+    EXPECT_LT(biased.hard.false_shadow_outside_edges.percent(), 0.1);
+    EXPECT_GT(unbiased.hard.false_shadow_outside_edges.percent(), 1.0) << "no acne without any bias?";
+}
+
+TEST(CompareMetrics, LargeNormalOffsetRaisesFalseLit) {
+    const std::string text = scene_text(kSlantedLight, kSlabAndBox);
+    RenderSettings settings = small_settings(240, 180);
+    const compare::CompareResult normal = compare_scene(text, settings);
+    settings.shadow.bias.normal_offset = 10.0f;
+    const compare::CompareResult large = compare_scene(text, settings);
+    EXPECT_GT(large.hard.false_lit.percent(), normal.hard.false_lit.percent() + 2.0);
+}
+
+TEST(CompareMetrics, CoarserShadowMapRaisesTheEdgeError) {
+    const std::string text = scene_text(kSlantedLight, kFloatingBox);
+    RenderSettings settings = small_settings(240, 180);
+    settings.shadow.cascades.count = 1;
+    settings.shadow.cascades.resolution = 4096;
+    const compare::CompareResult fine = compare_scene(text, settings);
+    settings.shadow.cascades.resolution = 512;
+    const compare::CompareResult coarse = compare_scene(text, settings);
+    EXPECT_GT(coarse.soft.edge_mean_abs_error, 1.5 * fine.soft.edge_mean_abs_error);
+    EXPECT_GT(coarse.soft.penumbra_width_error_px, fine.soft.penumbra_width_error_px);
+}
+
+TEST(CompareMetrics, StableFitShimmersLessThanTightUnderCameraMotion) {
+    const std::string text = scene_text(kSlantedLight, kSlabAndBox);
+    RenderSettings settings = small_settings(240, 180);
+    settings.shadow.cascades.fit = FitMode::Stable;
+    const compare::CompareResult stable = compare_scene(text, settings, 1, 8);
+    settings.shadow.cascades.fit = FitMode::Tight;
+    const compare::CompareResult tight = compare_scene(text, settings, 1, 8);
+    EXPECT_GT(stable.stability.compared_pixels, 10000u);
+    EXPECT_LT(stable.stability.mean_change, tight.stability.mean_change);
+}
+
+// The command line: bad input fails before anything is rendered or written.
+struct RunResult {
+    int exit_code = -1;
+    std::string err;
+};
+
+RunResult run_penumbra(const std::filesystem::path& dir, const std::string& arguments) {
+    const std::filesystem::path err = dir / "stderr.txt";
+    const std::string command = "cd '" + dir.string() + "' && '" + PENUMBRA_BINARY + "' " + arguments + " > /dev/null 2> '" +
+                                err.string() + "'";
+    const int status = std::system(command.c_str());
+    std::ifstream file(err);
+    std::stringstream text;
+    text << file.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+class CompareCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = std::filesystem::temp_directory_path() /
+               (std::string("penumbra_compare_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+
+    void expect_one_line_failure(const std::string& arguments, const std::string& needle) const {
+        const RunResult result = run_penumbra(dir_, arguments);
+        EXPECT_EQ(result.exit_code, 2) << result.err;
+        EXPECT_NE(result.err.find(needle), std::string::npos) << result.err;
+        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+        EXPECT_FALSE(std::filesystem::exists(dir_ / "out")) << "output left behind";
+    }
+
+    std::filesystem::path dir_;
+};
+
+TEST_F(CompareCli, SceneWithoutDirectionalLightIsRejected) {
+    std::ofstream(dir_ / "dark.toml") << "[[objects]]\ntype = \"plane\"\nsize = [10.0, 10.0]\n";
+    expect_one_line_failure("compare dark.toml --out-dir out", "directional light");
+}
+
+TEST_F(CompareCli, ZeroRaysAreRejected) { expect_one_line_failure("compare --rays 0 --out-dir out", "--rays"); }
+
+TEST_F(CompareCli, WritesTheReportAndImages) {
+    const RunResult result = run_penumbra(
+        dir_, "compare builtin:box-on-plane --width 96 --height 64 --rays 4 --stability-frames 2 --out-dir out");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    for (const char* name : {"compare.json", "render_shadow.png", "reference_hard.png", "reference_soft.png", "error.png",
+                             "soft_error.png", "side_by_side.png"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / name)) << name;
+    }
+}
+
+}  // namespace
+}  // namespace penumbra::testing
