@@ -301,6 +301,10 @@ void Context::create_device() {
     if (!supported11.multiview) throw DeviceError("device " + info_.name + " does not support multiview");
     depth_clamp_ = supported.depthClamp == VK_TRUE;
     depth_bias_clamp_ = supported.depthBiasClamp == VK_TRUE;
+    VkPhysicalDeviceMultiviewProperties multiview{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &multiview};
+    vkGetPhysicalDeviceProperties2(physical_device_, &properties);
+    max_multiview_views_ = multiview.maxMultiviewViewCount;
 
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;

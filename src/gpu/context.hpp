@@ -70,6 +70,7 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     bool depth_clamp_supported() const { return depth_clamp_; }
     bool depth_bias_clamp_supported() const { return depth_bias_clamp_; }
+    uint32_t max_multiview_views() const { return max_multiview_views_; }
     bool validation_enabled() const { return validation_enabled_; }
     bool presentation_enabled() const { return presentation_.has_value(); }
     const ValidationLog& validation_log() const { return *validation_log_; }
@@ -96,6 +97,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     bool depth_clamp_ = false;
     bool depth_bias_clamp_ = false;
+    uint32_t max_multiview_views_ = 0;
     bool validation_enabled_ = false;
     std::shared_ptr<ValidationLog> validation_log_;
     std::optional<ContextOptions::Presentation> presentation_;

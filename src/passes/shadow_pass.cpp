@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/errors.hpp"
 #include "embedded_shaders.hpp"
 #include "gpu/barriers.hpp"
 #include "passes/draw_recording.hpp"
@@ -35,8 +36,13 @@ gpu::UniquePipeline create_shadow_pipeline(const gpu::Context& context, VkPipeli
 }  // namespace
 
 ShadowPass::ShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
-                       uint32_t cascade_count)
-    : context_(context), resolution_(resolution), cascade_count_(cascade_count) {
+                       uint32_t cascade_count, ShadowStrategy strategy)
+    : context_(context), resolution_(resolution), cascade_count_(cascade_count), strategy_(strategy) {
+    if (strategy == ShadowStrategy::Multiview && cascade_count > context.max_multiview_views()) {
+        throw InputError("--shadow-strategy multiview: " + context.info().name + " renders at most " +
+                         std::to_string(context.max_multiview_views()) + " views in one pass, not " +
+                         std::to_string(cascade_count) + " cascades (use fewer cascades or per-cascade)");
+    }
     gpu::ImageDesc desc;
     desc.format = kShadowFormat;
     desc.width = resolution;
@@ -55,23 +61,26 @@ ShadowPass::ShadowPass(const gpu::Context& context, VkDescriptorSetLayout materi
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(context, set_layouts, {&push_range, 1});
 
-    const uint32_t all_cascades = (1u << cascade_count) - 1u;
-    opaque_per_cascade_ = create_shadow_pipeline(context, pipeline_layout_, false, 0);
-    masked_per_cascade_ = create_shadow_pipeline(context, pipeline_layout_, true, 0);
-    opaque_multiview_ = create_shadow_pipeline(context, pipeline_layout_, false, all_cascades);
-    masked_multiview_ = create_shadow_pipeline(context, pipeline_layout_, true, all_cascades);
+    if (strategy == ShadowStrategy::Multiview) {
+        const uint32_t all_cascades = (1u << cascade_count) - 1u;
+        opaque_multiview_ = create_shadow_pipeline(context, pipeline_layout_, false, all_cascades);
+        masked_multiview_ = create_shadow_pipeline(context, pipeline_layout_, true, all_cascades);
+    } else {
+        opaque_per_cascade_ = create_shadow_pipeline(context, pipeline_layout_, false, 0);
+        masked_per_cascade_ = create_shadow_pipeline(context, pipeline_layout_, true, 0);
+    }
 }
 
 void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data,
                         const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias,
-                        ShadowStrategy strategy, gpu::GpuTimer* timer) const {
+                        gpu::GpuTimer* timer) const {
     gpu::transition(cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1, &frame_set,
                             0, nullptr);
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
     vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
-    if (strategy == ShadowStrategy::Multiview) {
+    if (strategy_ == ShadowStrategy::Multiview) {
         record_multiview(cmd, data, draw_lists, bias, timer);
     } else {
         record_per_cascade(cmd, data, draw_lists, bias, timer);

@@ -24,8 +24,10 @@ using CascadeDrawList = std::vector<uint32_t>;
 
 class ShadowPass {
 public:
+    // Builds the pipelines of `strategy` only. Throws InputError when multiview is asked for
+    // more cascades than the device renders views in one pass (maxMultiviewViewCount).
     ShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
-               uint32_t cascade_count);
+               uint32_t cascade_count, ShadowStrategy strategy);
 
     // Set 0 of the shadow pipelines: binding 0 = the frame uniform buffer.
     VkDescriptorSetLayout frame_set_layout() const { return frame_set_layout_; }
@@ -37,7 +39,7 @@ public:
     // each cascade's rendering is a scope "shadow_cascade_<c>" (multiview: one scope,
     // "shadow_multiview").
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data,
-                const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias, ShadowStrategy strategy,
+                const std::vector<CascadeDrawList>& draw_lists, const BiasSettings& bias,
                 gpu::GpuTimer* timer = nullptr) const;
 
 private:
@@ -52,6 +54,7 @@ private:
     const gpu::Context& context_;
     uint32_t resolution_;
     uint32_t cascade_count_;
+    ShadowStrategy strategy_;
     gpu::Image shadow_map_;
     gpu::UniqueDescriptorSetLayout frame_set_layout_;
     gpu::UniquePipelineLayout pipeline_layout_;

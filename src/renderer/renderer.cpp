@@ -23,7 +23,7 @@ struct Readback {
     gpu::Buffer color;
     gpu::Buffer visibility;
     gpu::Buffer cascade;
-    gpu::Buffer shadow_map;  // only with DebugView::ShadowMap
+    gpu::Buffer shadow_map;      // only with DebugView::ShadowMap
     gpu::Buffer world_position;  // only with RenderSettings::geometry_aovs
     gpu::Buffer world_normal;
 };
@@ -94,7 +94,7 @@ struct Renderer::Resources {
     Resources(const gpu::Context& context, const Scene& scene, const RenderSettings& settings)
         : gpu_scene(context, scene),
           shadow_pass(context, gpu_scene.draw_data().material_set_layout, settings.shadow.cascades.resolution,
-                      static_cast<uint32_t>(settings.shadow.cascades.count)),
+                      static_cast<uint32_t>(settings.shadow.cascades.count), settings.shadow.strategy),
           lighting_pass(context, gpu_scene.draw_data().material_set_layout, settings.width, settings.height,
                         settings.shadow.filter),
           frame_uniforms(gpu::create_buffer(context, sizeof(shader::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -223,7 +223,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, const CulledCasters& casters, R
             resources_->filters.record_moments(cmd, draw_data, casters.lists);
         } else {
             resources_->shadow_pass.record(cmd, resources_->shadow_frame_set, draw_data, casters.lists,
-                                           settings_.shadow.bias, settings_.shadow.strategy, &timer);
+                                           settings_.shadow.bias, &timer);
         }
         gpu::TimedScope lighting_scope(&timer, cmd, "lighting");
         resources_->lighting_pass.record(cmd, resources_->lighting_frame_set, draw_data);

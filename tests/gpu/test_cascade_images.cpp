@@ -5,6 +5,8 @@
 
 #include <set>
 
+#include "core/errors.hpp"
+#include "gpu/context.hpp"
 #include "render_fixture.hpp"
 #include "scene/scene_loader.hpp"
 
@@ -142,6 +144,34 @@ TEST(CascadeImages, CasterOutsideTheViewStillCasts) {
         EXPECT_LT(visibility_at(frame.images, 60, 45), 0.01f) << "cull=" << cull;
         EXPECT_GT(frame.info.cascade_stats[0].draws, 1u) << "the off-screen box must be drawn into cascade 0";
     }
+}
+
+}  // namespace
+}  // namespace penumbra::testing
+
+namespace penumbra::testing {
+namespace {
+
+TEST(CascadeImages, EightCascadesRenderValidationCleanAndMultiviewRespectsTheDeviceViewLimit) {
+    const Scene scene = scene_from_toml(kLongGround);
+    RenderSettings settings = small_settings(64, 64);
+    settings.shadow.cascades.count = 8;
+    settings.shadow.cascades.resolution = 512;
+    const RenderedFrame frame = render_with_validation(scene, settings);
+    ASSERT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
+    EXPECT_EQ(frame.info.cascades.cascades.size(), 8u);
+
+    settings.shadow.strategy = ShadowStrategy::Multiview;
+    gpu::ContextOptions options;
+    options.validation = true;
+    gpu::Context context(options);
+    if (context.max_multiview_views() >= 8) {
+        renderer::Renderer renderer(context, scene, settings);
+        renderer.render(scene.camera);
+    } else {
+        EXPECT_THROW(renderer::Renderer(context, scene, settings), InputError);
+    }
+    EXPECT_TRUE(options.log->messages.empty());
 }
 
 }  // namespace
