@@ -5,6 +5,7 @@
 // without a window system the viewer fails with one line and exit code 3.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -37,7 +38,9 @@ class View : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / (std::string("penumbra_view_") + info->name());
+        // The process id keeps runs from several build folders at once apart.
+        dir_ = fs::temp_directory_path() /
+               (std::string("penumbra_view_") + info->name() + "_" + std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
