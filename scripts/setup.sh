@@ -13,6 +13,8 @@ packages=(
   # libraries: math, glTF (with its stb/json dependencies), TOML, command line, PNG, tests
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
   libpng-dev googletest libgtest-dev
+  # ray tracing: Embree 3 BVHs for `penumbra compare`'s ground-truth shadow rays
+  libembree-dev
   # `penumbra view`: the window and its surface, the Dear ImGui panel (core library and the
   # GLFW/Vulkan backend sources), and a virtual X server for its tests (xvfb-run needs xauth)
   libglfw3-dev libimgui-dev xvfb xauth

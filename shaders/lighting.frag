@@ -14,6 +14,7 @@ layout(set = PENUMBRA_SET_MATERIAL, binding = PENUMBRA_BINDING_BASE_COLOR_TEXTUR
 
 #include "shadow.glsl"
 #include "shading.glsl"
+#include "local_lights.glsl"
 
 layout(location = 0) in vec3 in_world_position;
 layout(location = 1) in vec3 in_world_normal;
@@ -51,6 +52,22 @@ void main() {
 
     vec3 color = shade_sun(base_color.rgb, normal, normalize(frame.camera_position.xyz - in_world_position), to_sun,
                            frame.sun_radiance.rgb * visibility, draw.material.y, draw.material.z);
+    // Spot and point lights; with `--aov shadow:N` light N's visibility (shadow, cone, range,
+    // facing) replaces the sun's in the visibility target.
+    const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
+    for (int i = 0; i < local_light_count(); ++i) {
+        const LocalLight light = local.lights[i];
+        const vec3 light_vector = light.position_range.xyz - in_world_position;
+        const float distance = length(light_vector);
+        const vec3 to_light = light_vector / max(distance, 1e-4);
+        const float cone = spot_cone(light, to_light);
+        const bool reaches = distance < light.position_range.w && cone > 0.0 && dot(normal, to_light) > 0.0;
+        const float shadow = reaches ? local_shadow(light, in_world_position, normal) : 0.0;
+        if (i == int(local.counts.y)) visibility = shadow * cone;
+        const float falloff = distance_falloff(distance, light.position_range.w);
+        color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance.rgb * (falloff * cone * shadow),
+                           draw.material.y, draw.material.z);
+    }
     color += base_color.rgb * frame.ambient.rgb;
     if (frame.options.x == PENUMBRA_DEBUG_VIEW_CASCADES && cascade >= 0) color *= kCascadeTints[cascade];
 

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -62,6 +63,15 @@ Enum parse_choice(const std::string& text, const std::string& flag, const std::m
     throw InputError(flag + ": unknown value \"" + text + "\" (expected " + names + ")");
 }
 
+// N of `--aov shadow:N`: a light index, 0 or more.
+int32_t parse_light_index(const std::string& text) {
+    const bool digits = !text.empty() && text.size() <= 6 &&
+                        std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits)
+        throw InputError("--aov: expected shadow:N with N a light index (0, 1, ...), got \"shadow:" + text + "\"");
+    return static_cast<int32_t>(std::stoi(text));
+}
+
 void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptions& raw) {
     render.add_option("--width", o.width, "Image width in pixels (1..16384, default 1280)")
         ->check(CLI::Range(1u, kMaxImageSize));
@@ -75,6 +85,15 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
     render.add_option("--far", o.far_plane, "Camera far plane (> near)");
     render.add_option("--light-dir", raw.light_dir, "Direction the sunlight travels x,y,z");
     render.add_option("--cascades", o.cascades, "Number of shadow cascades (1..8, default 4)")->check(CLI::Range(1, 8));
+    render
+        .add_option("--local-shadow-budget", o.local_shadow_budget,
+                    "Spot/point lights with a shadow map (0..16, default 8); the rest render unshadowed")
+        ->check(CLI::Range(0u, kMaxLocalShadowBudget));
+    render
+        .add_option("--local-shadow-resolution", o.local_shadow_resolution,
+                    "Texels per side of a spot/point light's shadow map unless the light sets shadow_resolution "
+                    "(16..8192, default 1024)")
+        ->check(CLI::Range(16u, 8192u));
     render.add_option("--shadow-resolution", o.shadow_resolution, "Shadow map texels per side (512..8192)")
         ->check(CLI::Range(512u, 8192u));
     render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: uniform|log|practical|manual");
@@ -118,7 +137,10 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
             raw.strategy, "--shadow-strategy",
             {{"per-cascade", ShadowStrategy::PerCascade}, {"multiview", ShadowStrategy::Multiview}});
     }
-    if (!raw.aov.empty()) {
+    if (raw.aov.starts_with("shadow:")) {
+        job.aov = Aov::Shadow;
+        job.aov_light = parse_light_index(raw.aov.substr(7));
+    } else if (!raw.aov.empty()) {
         job.aov = parse_choice<Aov>(raw.aov, "--aov", {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}});
     }
     if (!raw.debug.empty()) {
@@ -192,7 +214,9 @@ Command parse_command_line(int argc, char** argv) {
     CLI::App* render = app.add_subcommand("render", "Render a scene with a sun shadow to a PNG");
     add_render_job_options(*render, job, raw);
     render->add_option("-o,--output", job.output, "Output PNG (default penumbra.png)");
-    render->add_option("--aov", raw.aov, "Write an AOV instead of colour: shadow (16-bit visibility) | cascade");
+    render->add_option(
+        "--aov", raw.aov,
+        "Write an AOV instead of colour: shadow (16-bit sun visibility) | shadow:N (light N of [[lights]]) | cascade");
     render->add_option("--debug", raw.debug,
                        "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side)");
 

@@ -20,6 +20,10 @@
 #define PENUMBRA_BINDING_SHADOW_MAP 1      // sampler2DArrayShadow (hardware comparison)
 #define PENUMBRA_BINDING_SHADOW_DEPTH 2    // the same map, raw depth (PCSS blocker search)
 #define PENUMBRA_BINDING_SHADOW_MOMENTS 3  // filtered moments (vsm/evsm/msm), else the depth map
+#define PENUMBRA_BINDING_LOCAL_LIGHTS 4        // LocalLightUniforms (spot and point lights)
+#define PENUMBRA_BINDING_LOCAL_SHADOW_MAP 5    // sampler2DArrayShadow: every local light's layers
+#define PENUMBRA_BINDING_LOCAL_SHADOW_DEPTH 6  // the same map, raw depth (PCSS blocker search)
+// The local shadow pass: set 0, binding 0 = LocalLightUniforms.
 // The moments blur pass: set 0 holds the image it reads.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 #define PENUMBRA_SET_MATERIAL 1
@@ -87,6 +91,32 @@ struct FrameUniforms {
     vec4 moment_params;
     // x: frame index (per-frame rotation of the sampling patterns)
     uvec4 filter_options;
+};
+
+// Spot and point lights (docs/local-lights.md, src/core/local_lights.hpp).
+#define PENUMBRA_MAX_LOCAL_LIGHTS 16
+#define PENUMBRA_MAX_LOCAL_SHADOW_LAYERS 96
+#define PENUMBRA_LIGHT_SPOT 1.0
+#define PENUMBRA_LIGHT_POINT 2.0
+
+struct LocalLight {
+    vec4 position_range;  // xyz: world position; w: range (metres)
+    vec4 direction_type;  // xyz: unit travel direction (spot); w: PENUMBRA_LIGHT_SPOT or _POINT
+    vec4 radiance;        // rgb: colour * intensity; w: light radius (metres)
+    vec4 cone;            // x: cos(outer angle), y: cos(inner angle) (spot; -1, -1 for points)
+    // x: first shadow layer (-1: unshadowed), y: near plane, z: 2 tan(fov / 2) of a layer,
+    // w: the used fraction of the map per side (light resolution / map resolution)
+    vec4 shadow;
+};
+
+struct LocalLightUniforms {
+    mat4 shadow_view_projection[PENUMBRA_MAX_LOCAL_SHADOW_LAYERS];  // world -> reverse-Z clip per layer
+    LocalLight lights[PENUMBRA_MAX_LOCAL_LIGHTS];
+    // x: local light count, y: slot of the light written to the visibility target (-1: the sun),
+    // z: normal offset in texels, w: one map texel in UV
+    vec4 counts;
+    // x: pcf radius (taps), y: pcss max penumbra (texels)
+    vec4 filter_params;
 };
 
 struct DrawPushConstants {

@@ -22,10 +22,10 @@ constexpr uint32_t kMaxStabilityFrames = 64;
 constexpr uint32_t kMaxEdgeBand = 64;
 
 struct CompareJob {
-    RenderJob render;  // scene, config, overrides, device, validation; output and aov unused
-    uint32_t rays = 64;               // soft reference rays per pixel, 1..kMaxRays
-    uint32_t edge_band = 2;           // pixels around true shadow edges left out of the *_outside_edges numbers
-    uint32_t stability_frames = 8;    // frames under camera motion (1 = no stability measurement)
+    RenderJob render;               // scene, config, overrides, device, validation; output and aov unused
+    uint32_t rays = 64;             // soft reference rays per pixel, 1..kMaxRays
+    uint32_t edge_band = 2;         // pixels around true shadow edges left out of the *_outside_edges numbers
+    uint32_t stability_frames = 8;  // frames under camera motion (1 = no stability measurement)
     std::filesystem::path out_dir = "compare";
     std::optional<std::filesystem::path> json;  // default: out_dir / "compare.json"
 };
@@ -46,8 +46,8 @@ struct CompareTimings {
 
 // Frame 0's images, kept for the output files.
 struct CompareImages {
-    quality::VisibilityComparison frame;  // rendered, hard, soft, evaluated
-    std::vector<uint8_t> color_rgba8;     // the render's colour image
+    quality::VisibilityComparison frame;    // rendered, hard, soft, evaluated
+    std::vector<uint8_t> color_rgba8;       // the render's colour image
     std::vector<glm::vec4> world_position;  // the geometry AOV (w = 1 where geometry)
 };
 
@@ -59,7 +59,7 @@ struct CompareResult {
     CompareJob job;
     glm::vec3 to_sun{0.0f};
     float sun_angular_diameter_degrees = 0.0f;
-    uint64_t triangles = 0;           // traced (every instance)
+    uint64_t triangles = 0;                 // traced (every instance)
     float nearest_texel_world_size = 0.0f;  // cascade 0 under the stable fit: the unit of the camera motions
     PixelCounts pixels;
     quality::HardShadowMetrics hard;

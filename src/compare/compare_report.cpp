@@ -72,12 +72,9 @@ Json soft_json(const quality::SoftShadowMetrics& soft) {
 
 Json stability_json(const quality::StabilityMetrics& stability) {
     if (stability.frames < 2) return nullptr;
-    return {{"frames", stability.frames},
-            {"compared_pixels", stability.compared_pixels},
-            {"mean_change", stability.mean_change},
-            {"p99_change", stability.p99_change},
-            {"max_change", stability.max_change},
-            {"flicker_percent", stability.flicker_percent}};
+    return {{"frames", stability.frames},           {"compared_pixels", stability.compared_pixels},
+            {"mean_change", stability.mean_change}, {"p99_change", stability.p99_change},
+            {"max_change", stability.max_change},   {"flicker_percent", stability.flicker_percent}};
 }
 
 Json pixels_json(const PixelCounts& pixels) {
@@ -128,7 +125,8 @@ std::string format_compare_summary(const CompareResult& result) {
                   soft.edge_mean_abs_error, soft.penumbra_width_render_px, soft.penumbra_width_reference_px);
     std::string summary = text;
     if (result.stability.frames >= 2) {
-        std::snprintf(text, sizeof(text), "  stability over %u frames: mean change %.4f, p99 %.4f, max %.4f, flicker %.3f%%\n",
+        std::snprintf(text, sizeof(text),
+                      "  stability over %u frames: mean change %.4f, p99 %.4f, max %.4f, flicker %.3f%%\n",
                       result.stability.frames, result.stability.mean_change, result.stability.p99_change,
                       result.stability.max_change, result.stability.flicker_percent);
         summary += text;
@@ -137,9 +135,8 @@ std::string format_compare_summary(const CompareResult& result) {
 }
 
 std::string compare_json(const CompareResult& result) {
-    const Json images = {{"render", kRenderFile},       {"reference_hard", kHardFile}, {"reference_soft", kSoftFile},
-                         {"error", kErrorFile},         {"soft_error", kSoftErrorFile},
-                         {"side_by_side", kSideBySideFile}};
+    const Json images = {{"render", kRenderFile}, {"reference_hard", kHardFile},  {"reference_soft", kSoftFile},
+                         {"error", kErrorFile},   {"soft_error", kSoftErrorFile}, {"side_by_side", kSideBySideFile}};
     const Json report = {
         {"penumbra_version", result.version},
         {"device", result.device_name},

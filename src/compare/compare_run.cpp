@@ -36,8 +36,9 @@ struct CapturedFrame {
 const Light& require_sun(const Scene& scene, const std::string& origin) {
     const Light* sun = scene.sun();
     if (!sun) {
-        throw InputError(origin + ": compare needs a directional light (the sun) to trace shadow rays toward; "
-                                  "the scene has none");
+        throw InputError(origin +
+                         ": compare needs a directional light (the sun) to trace shadow rays toward; "
+                         "the scene has none");
     }
     if (!sun->cast_shadows) throw InputError(origin + ": the sun casts no shadows (cast_shadows = false)");
     return *sun;
@@ -95,8 +96,7 @@ float motion_texel_size(const PreparedJob& prepared, const glm::vec3& light_dire
     CascadeSettings cascades = prepared.settings.shadow.cascades;
     cascades.fit = FitMode::Stable;
     const CascadeSet set = compute_cascades(make_camera_view(prepared.scene.camera, aspect_of(prepared.settings)),
-                                            light_direction, cascades,
-                                            prepared.scene.world_bounds());
+                                            light_direction, cascades, prepared.scene.world_bounds());
     return set.cascades.empty() ? 0.01f : set.cascades.front().texel_world_size;
 }
 
@@ -147,7 +147,8 @@ void measure(std::vector<CapturedFrame>& frames, const CompareJob& job, CompareR
     frame.rendered = frames[0].rendered;
     frame.hard = frames[0].hard;
     frame.evaluated = frames[0].evaluated;
-    const std::vector<uint8_t> boundary = quality::shadow_boundary(frame.width, frame.height, frame.hard, frame.evaluated);
+    const std::vector<uint8_t> boundary =
+        quality::shadow_boundary(frame.width, frame.height, frame.hard, frame.evaluated);
     const std::vector<uint8_t> band = quality::edge_band(frame.width, frame.height, boundary, job.edge_band);
     result.hard = quality::hard_shadow_metrics(frame, boundary, band);
     result.soft = quality::soft_shadow_metrics(frame, boundary, band);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/local_lights.hpp"
 #include "core/shadow_settings.hpp"
 
 namespace penumbra {
@@ -25,6 +26,11 @@ struct RenderSettings {
     // Also render and read back each pixel's world position and normal (FrameImages::
     // world_position / world_normal), for `penumbra compare`. Off: frames pay nothing.
     bool geometry_aovs = false;
+    // Shadow maps of spot and point lights (docs/local-lights.md).
+    LocalShadowSettings local_shadows;
+    // The light whose visibility goes into FrameImages::visibility: an index into the
+    // scene's [[lights]] list (`--aov shadow:N`), or -1 for the sun (`--aov shadow`).
+    int32_t visibility_light = -1;
 };
 
 // Throws InputError naming `origin` and the setting for out-of-range values.

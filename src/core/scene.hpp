@@ -29,6 +29,12 @@ struct Light {
     float intensity = 3.0f;
     float angular_diameter_degrees = 0.53f;  // directional: the sun's disk
     bool cast_shadows = true;
+    // Spot and point lights (docs/local-lights.md).
+    float inner_angle_degrees = 20.0f;  // spot: full intensity inside (half-angle from the axis)
+    float outer_angle_degrees = 30.0f;  // spot: zero outside; the shadow frustum's fov is twice this
+    float range = 25.0f;                // metres: the light and its shadow end here
+    float radius = 0.1f;                // metres: the light's size, for soft shadows (pcss)
+    uint32_t shadow_resolution = 0;     // texels per side of its shadow map; 0 = the renderer's default
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };

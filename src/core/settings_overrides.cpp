@@ -27,6 +27,8 @@ void apply_overrides(const SettingsOverrides& overrides, RenderSettings& setting
     CascadeSettings& cascades = settings.shadow.cascades;
     assign_if(overrides.cascades, cascades.count);
     assign_if(overrides.shadow_resolution, cascades.resolution);
+    assign_if(overrides.local_shadow_budget, settings.local_shadows.budget);
+    assign_if(overrides.local_shadow_resolution, settings.local_shadows.resolution);
     assign_if(overrides.split_scheme, cascades.scheme);
     assign_if(overrides.split_lambda, cascades.split_lambda);
     if (overrides.splits) {

@@ -50,14 +50,14 @@ VkRenderingAttachmentInfo cleared_attachment(const gpu::Image& image) {
 
 }  // namespace
 
-GeometryAovPass::GeometryAovPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout,
-                                 uint32_t width, uint32_t height, VkBuffer frame_uniforms,
-                                 VkDeviceSize frame_uniforms_size)
+GeometryAovPass::GeometryAovPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
+                                 uint32_t height, VkBuffer frame_uniforms, VkDeviceSize frame_uniforms_size)
     : width_(width), height_(height) {
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     targets_.world_position =
         create_target(context, kPositionFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.world_normal = create_target(context, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.world_normal =
+        create_target(context, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     targets_.depth = create_target(context, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT);
 

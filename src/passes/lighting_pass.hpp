@@ -29,7 +29,8 @@ public:
 
     // Set 0: binding 0 = frame uniforms, 1 = the shadow map (sampler2DArrayShadow), 2 = the
     // same map's raw depth (sampler2DArray), 3 = the moments map (sampler2DArray; any
-    // float array image, e.g. the depth map, when the filter reads no moments).
+    // float array image, e.g. the depth map, when the filter reads no moments); 4 = the
+    // local-light uniforms, 5 and 6 = the local lights' shadow map (comparison, raw depth).
     VkDescriptorSetLayout frame_set_layout() const { return frame_set_layout_; }
     const LightingTargets& targets() const { return targets_; }
 

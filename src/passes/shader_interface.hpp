@@ -40,4 +40,11 @@ static_assert(sizeof(TapCeilingPushConstants) == 32);
 
 static_assert(sizeof(BlurPushConstants) == 16);
 
+static_assert(sizeof(LocalLight) == 80);
+static_assert(offsetof(LocalLightUniforms, lights) == 64 * PENUMBRA_MAX_LOCAL_SHADOW_LAYERS);
+static_assert(offsetof(LocalLightUniforms, counts) ==
+              offsetof(LocalLightUniforms, lights) + sizeof(LocalLight) * PENUMBRA_MAX_LOCAL_LIGHTS);
+static_assert(sizeof(LocalLightUniforms) == offsetof(LocalLightUniforms, counts) + 32);
+static_assert(sizeof(LocalLightUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
+
 }  // namespace penumbra::shader

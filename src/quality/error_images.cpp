@@ -43,8 +43,8 @@ RgbaImage hard_error_image(const VisibilityComparison& frame, std::span<const ui
     RgbaImage image{frame.width, frame.height, std::vector<uint8_t>(pixels * 4)};
     for (size_t i = 0; i < pixels; ++i) {
         // Rec. 709 luma of the (sRGB-encoded) colour, dimmed so that the error colours stand out.
-        const float luma = 0.2126f * color_rgba8[i * 4] + 0.7152f * color_rgba8[i * 4 + 1] +
-                           0.0722f * color_rgba8[i * 4 + 2];
+        const float luma =
+            0.2126f * color_rgba8[i * 4] + 0.7152f * color_rgba8[i * 4 + 1] + 0.0722f * color_rgba8[i * 4 + 2];
         const auto gray = static_cast<uint8_t>(40.0f + luma * 0.5f);
         put(image.pixels, i, {gray, gray, gray});
         if (!frame.evaluated[i]) continue;

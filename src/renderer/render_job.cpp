@@ -29,6 +29,22 @@ void write_output(const RenderJob& job, const renderer::FrameImages& images) {
     }
 }
 
+// The light whose visibility `--aov shadow:N` writes, checked against the scene: -1 for the sun.
+int32_t aov_light_index(const RenderJob& job, const Scene& scene) {
+    if (job.aov_light < 0) return -1;
+    const std::string flag = "--aov shadow:" + std::to_string(job.aov_light);
+    if (static_cast<size_t>(job.aov_light) >= scene.lights.size()) {
+        throw InputError(flag + ": the scene has " + std::to_string(scene.lights.size()) +
+                         " light(s) (indices start at 0)");
+    }
+    const Light& light = scene.lights[static_cast<size_t>(job.aov_light)];
+    if (light.type != LightType::Directional) return job.aov_light;
+    if (&light != scene.sun()) {
+        throw InputError(flag + ": only the first directional light is rendered; this one is not");
+    }
+    return -1;
+}
+
 }  // namespace
 
 // Scene file < config file < command line; each source is validated under its own name.
@@ -50,6 +66,7 @@ PreparedJob prepare_render_job(const RenderJob& job) {
     apply_overrides(job.overrides, prepared.settings);
     apply_overrides(job.overrides, prepared.scene);
     prepared.settings.debug = job.debug;
+    prepared.settings.visibility_light = aov_light_index(job, prepared.scene);
     validate_render_settings(prepared.settings, "command line");
     validate_camera_and_sun(prepared.scene, "command line");
     return prepared;

@@ -28,6 +28,9 @@ struct RenderJob {
     SettingsOverrides overrides;        // from the command line: highest priority
     DebugView debug = DebugView::None;  // ShadowMap writes the map's layers instead of the image
     Aov aov = Aov::None;
+    // With Aov::Shadow: the [[lights]] index whose visibility is written (`--aov shadow:N`),
+    // -1 for the sun. A spot or point light, or the first directional light.
+    int32_t aov_light = -1;
     gpu::ContextOptions device;
 };
 

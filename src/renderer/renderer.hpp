@@ -98,6 +98,7 @@ public:
 
 private:
     CulledCasters prepare_frame(const Camera& camera);
+    void prepare_local_lights();  // spot/point shadow matrices, uniforms and caster lists
     void record_frame(VkCommandBuffer cmd, const CulledCasters& casters, ReadbackMode readback);
     FrameImages read_images() const;
 
@@ -107,7 +108,7 @@ private:
     RenderSettings settings_;
     std::unique_ptr<Resources> resources_;
     FrameInfo last_frame_;
-    uint32_t frame_index_ = 0;  // rotates the shadow filters' sampling patterns per frame
+    uint32_t frame_index_ = 0;              // rotates the shadow filters' sampling patterns per frame
     std::optional<Camera> cascade_camera_;  // fit_cascades_to()
 };
 

@@ -63,20 +63,54 @@ Camera read_camera(TomlTableReader reader) {
 LightType read_light_type(TomlTableReader& reader) {
     const std::string type = reader.optional_string("type").value_or("directional");
     if (type == "directional") return LightType::Directional;
-    if (type == "spot" || type == "point") {
-        reader.fail("type", "light type \"" + type + "\" is not supported yet (only \"directional\" is)");
+    if (type == "spot") return LightType::Spot;
+    if (type == "point") return LightType::Point;
+    reader.fail("type", "unknown light type \"" + type + "\" (expected directional, spot or point)");
+}
+
+// Keys of spot and point lights, validated: 0 < inner <= outer < 90 degrees (a spot's shadow
+// frustum has fov = 2 * outer), range > 0, radius >= 0, shadow_resolution 16..8192.
+void read_local_light_keys(TomlTableReader& reader, Light& light) {
+    light.position = reader.vec3_or("position", light.position);
+    light.range = reader.number_or("range", light.range);
+    light.radius = reader.number_or("radius", light.radius);
+    if (const std::optional<double> resolution = reader.optional_number("shadow_resolution")) {
+        if (*resolution < 16.0 || *resolution > 8192.0 ||
+            *resolution != static_cast<double>(static_cast<int>(*resolution))) {
+            reader.fail("shadow_resolution",
+                        "must be an integer between 16 and 8192, got " + format_number(*resolution));
+        }
+        light.shadow_resolution = static_cast<uint32_t>(*resolution);
     }
-    reader.fail("type", "unknown light type \"" + type + "\" (expected directional)");
+    if (light.type == LightType::Spot) {
+        light.inner_angle_degrees = reader.number_or("inner_angle", light.inner_angle_degrees);
+        light.outer_angle_degrees = reader.number_or("outer_angle", light.outer_angle_degrees);
+        if (light.outer_angle_degrees <= 0.0f || light.outer_angle_degrees >= 90.0f) {
+            reader.fail("outer_angle",
+                        "must be between 0 and 90 degrees (exclusive; the shadow fov is twice it), got " +
+                            format_number(light.outer_angle_degrees));
+        }
+        if (light.inner_angle_degrees < 0.0f || light.inner_angle_degrees > light.outer_angle_degrees) {
+            reader.fail("inner_angle", "must be between 0 and outer_angle (" +
+                                           format_number(light.outer_angle_degrees) + ") degrees, got " +
+                                           format_number(light.inner_angle_degrees));
+        }
+    }
+    if (light.range <= 0.0f) reader.fail("range", "must be > 0, got " + format_number(light.range));
+    if (light.radius < 0.0f) reader.fail("radius", "must be >= 0, got " + format_number(light.radius));
 }
 
 Light read_light(TomlTableReader reader) {
     Light light;
     light.type = read_light_type(reader);
-    light.direction = reader.vec3_or("direction", light.direction);
+    if (light.type != LightType::Point) light.direction = reader.vec3_or("direction", light.direction);
     light.color = reader.vec3_or("color", light.color);
     light.intensity = reader.number_or("intensity", light.intensity);
-    light.angular_diameter_degrees = reader.number_or("angular_diameter", light.angular_diameter_degrees);
+    if (light.type == LightType::Directional) {
+        light.angular_diameter_degrees = reader.number_or("angular_diameter", light.angular_diameter_degrees);
+    }
     light.cast_shadows = reader.boolean_or("cast_shadows", light.cast_shadows);
+    if (light.type != LightType::Directional) read_local_light_keys(reader, light);
     reader.reject_unknown_keys();
 
     if (glm::length(light.direction) == 0.0f) {

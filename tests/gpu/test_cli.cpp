@@ -290,3 +290,56 @@ TEST_F(Cli, FilterSettingsOutOfRangeInConfigFile) {
     write_file("config.toml", "[sun]\nangular_diameter = -1.0\n");
     expect_failure(run("render --config config.toml -o out.png"), 2, "angular_diameter");
 }
+
+// Spot and point lights (docs/local-lights.md): `--aov shadow:N` and their scene-file errors.
+constexpr const char* kLocalLights = R"(
+[[lights]]
+type = "spot"
+position = [1.0, 6.0, 0.5]
+direction = [0.0, -1.0, 0.0]
+inner_angle = 20.0
+outer_angle = 30.0
+range = 25.0
+
+[[lights]]
+type = "point"
+position = [-2.0, 3.0, 0.0]
+range = 15.0
+)";
+
+TEST_F(Cli, LocalLightVisibilityAov) {
+    write_file("scene.toml", std::string(kValidScene) + kLocalLights);
+    for (const char* light : {"0", "1", "2"}) {
+        const RunResult result = run(std::string("render scene.toml --validate --aov shadow:") + light +
+                                     " --local-shadow-resolution 256 --width 64 --height 48 -o out.png");
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+        const penumbra::PngImage image = penumbra::read_png(dir_ / "out.png");
+        EXPECT_EQ(image.bit_depth, 16u);
+        fs::remove(dir_ / "out.png");
+    }
+    expect_failure(run("render scene.toml --aov shadow:3 -o out.png"), 2, "--aov shadow:3");
+    expect_failure(run("render scene.toml --aov shadow:x -o out.png"), 2, "--aov");
+    expect_failure(run("render scene.toml --local-shadow-budget 17 -o out.png"), 2, "--local-shadow-budget");
+}
+
+TEST_F(Cli, LocalLightsBeyondTheBudgetWarnOnce) {
+    write_file("scene.toml", std::string(kValidScene) + kLocalLights);
+    const RunResult result =
+        run("render scene.toml --local-shadow-budget 1 --local-shadow-resolution 64 --width 32 --height 24 -o out.png");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_NE(result.err.find("beyond the local shadow budget of 1"), std::string::npos) << result.err;
+}
+
+TEST_F(Cli, BadLocalLightValues) {
+    const std::string scene = std::string(kValidScene) + kLocalLights;
+    const std::pair<const char*, const char*> cases[] = {{"outer_angle = 30.0", "outer_angle = 10.0"},
+                                                         {"outer_angle = 30.0", "outer_angle = 180.0"},
+                                                         {"range = 15.0", "range = 0.0"},
+                                                         {"range = 15.0", "range = 15.0\nradius = -1.0"}};
+    const char* keys[] = {"lights[1].inner_angle", "lights[1].outer_angle", "lights[2].range", "lights[2].radius"};
+    for (size_t i = 0; i < 4; ++i) {
+        write_file("scene.toml", replace(scene, cases[i].first, cases[i].second));
+        expect_failure(run("render scene.toml -o out.png"), 2, std::string("scene.toml: ") + keys[i]);
+    }
+}

@@ -203,8 +203,8 @@ struct RunResult {
 
 RunResult run_penumbra(const std::filesystem::path& dir, const std::string& arguments) {
     const std::filesystem::path err = dir / "stderr.txt";
-    const std::string command = "cd '" + dir.string() + "' && '" + PENUMBRA_BINARY + "' " + arguments + " > /dev/null 2> '" +
-                                err.string() + "'";
+    const std::string command = "cd '" + dir.string() + "' && '" + PENUMBRA_BINARY + "' " + arguments +
+                                " > /dev/null 2> '" + err.string() + "'";
     const int status = std::system(command.c_str());
     std::ifstream file(err);
     std::stringstream text;
@@ -244,8 +244,8 @@ TEST_F(CompareCli, WritesTheReportAndImages) {
     const RunResult result = run_penumbra(
         dir_, "compare builtin:box-on-plane --width 96 --height 64 --rays 4 --stability-frames 2 --out-dir out");
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    for (const char* name : {"compare.json", "render_shadow.png", "reference_hard.png", "reference_soft.png", "error.png",
-                             "soft_error.png", "side_by_side.png"}) {
+    for (const char* name : {"compare.json", "render_shadow.png", "reference_hard.png", "reference_soft.png",
+                             "error.png", "soft_error.png", "side_by_side.png"}) {
         EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / name)) << name;
     }
 }

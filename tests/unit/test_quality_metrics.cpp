@@ -226,8 +226,8 @@ TEST(CameraJitter, MovesByFractionsToAFewTexels) {
         const float distance = glm::length(moved.eye - camera.eye);
         EXPECT_GT(distance, 0.0015f);
         EXPECT_LT(distance, 0.04f);
-        const float turn = std::acos(std::min(1.0f, glm::dot(glm::normalize(moved.target - moved.eye),
-                                                           glm::normalize(camera.target - camera.eye))));
+        const float turn = std::acos(std::min(
+            1.0f, glm::dot(glm::normalize(moved.target - moved.eye), glm::normalize(camera.target - camera.eye))));
         EXPECT_LT(turn * glm::length(camera.target - camera.eye), 0.05f);
     }
 }

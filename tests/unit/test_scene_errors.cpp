@@ -191,13 +191,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(SceneErrors, UnknownLightType) {
     EXPECT_EQ(scene_error("[[lights]]\ntype = \"area\"\n"),
-              "scene.toml: lights[0].type: unknown light type \"area\" (expected directional)");
-}
-
-TEST(SceneErrors, SpotAndPointLightsAreNotSupportedYet) {
-    EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\n"),
-              "scene.toml: lights[0].type: light type \"spot\" is not supported yet (only \"directional\" is)");
-    EXPECT_THAT(scene_error("[[lights]]\ntype = \"point\"\n"), HasSubstr("\"point\" is not supported yet"));
+              "scene.toml: lights[0].type: unknown light type \"area\" (expected directional, spot or point)");
 }
 
 TEST(SceneErrors, LightValueRanges) {

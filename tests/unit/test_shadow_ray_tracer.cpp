@@ -31,8 +31,8 @@ bool ground_lit(const ShadowRayTracer& tracer, float x, float z, const glm::vec3
 
 TEST(ShadowRayTracer, BoxShadowIsTheBoxProjectedAlongTheLight) {
     // Box [-1, 1] x [2, 3] x [-1, 1]; the light travels along -to_sun.
-    const Scene scene = scene_with({{make_plane(40, 40), glm::mat4(1.0f)},
-                                    {make_box({2, 1, 2}), translation({0, 2.5f, 0})}});
+    const Scene scene =
+        scene_with({{make_plane(40, 40), glm::mat4(1.0f)}, {make_box({2, 1, 2}), translation({0, 2.5f, 0})}});
     const ShadowRayTracer tracer(scene);
     EXPECT_EQ(tracer.triangle_count(), scene.triangle_count());
     const glm::vec3 to_sun = glm::normalize(glm::vec3(1.0f, 2.0f, 0.0f));
@@ -52,8 +52,8 @@ TEST(ShadowRayTracer, BoxShadowIsTheBoxProjectedAlongTheLight) {
 TEST(ShadowRayTracer, SphereShadowIsAnEllipse) {
     const glm::vec3 center(0.0f, 3.0f, 0.0f);
     const float radius = 1.0f;
-    const Scene scene = scene_with({{make_plane(40, 40), glm::mat4(1.0f)},
-                                    {make_sphere(radius, 64, 32), translation(center)}});
+    const Scene scene =
+        scene_with({{make_plane(40, 40), glm::mat4(1.0f)}, {make_sphere(radius, 64, 32), translation(center)}});
     const ShadowRayTracer tracer(scene);
     const glm::vec3 to_sun = glm::normalize(glm::vec3(-0.8f, 1.0f, 0.3f));
     int checked = 0;
@@ -117,8 +117,8 @@ TEST(AlphaMask, BilinearRepeatMatchesTheSampler) {
 
 TEST(ReferenceVisibility, SoftReferenceHasAPenumbraOfTheSunsWidth) {
     // A wall edge at height 10 m: the penumbra on the ground spans 10 * 2 tan(d / 2) metres.
-    const Scene scene = scene_with({{make_plane(200, 200), glm::mat4(1.0f)},
-                                    {make_box({40, 0.1f, 40}), translation({-20, 10, 0})}});
+    const Scene scene =
+        scene_with({{make_plane(200, 200), glm::mat4(1.0f)}, {make_box({40, 0.1f, 40}), translation({-20, 10, 0})}});
     const ShadowRayTracer tracer(scene);
     SurfaceImage surfaces{200, 1, {}, {}};
     for (uint32_t x = 0; x < 200; ++x) {

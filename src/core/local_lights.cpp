@@ -1,0 +1,121 @@
+#include "core/local_lights.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/camera_math.hpp"
+
+namespace penumbra {
+namespace {
+
+// A view matrix looking from `eye` along `forward`, with any up not parallel to it.
+glm::mat4 look_along(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& preferred_up) {
+    const glm::vec3 f = glm::normalize(forward);
+    const glm::vec3 up = std::abs(glm::dot(f, preferred_up)) > 0.99f ? glm::vec3(1.0f, 0.0f, 0.0f) : preferred_up;
+    return glm::lookAt(eye, eye + f, up);
+}
+
+}  // namespace
+
+uint32_t local_shadow_layers(LightType type) {
+    switch (type) {
+        case LightType::Spot:
+            return 1;
+        case LightType::Point:
+            return 6;
+        default:
+            return 0;
+    }
+}
+
+LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings& settings) {
+    LocalShadowPlan plan;
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        if (light.type == LightType::Directional) continue;
+        if (plan.local_lights.size() >= kMaxLocalLights) {
+            plan.beyond_light_limit += 1;
+            continue;
+        }
+        plan.local_lights.push_back(i);
+        if (!light.cast_shadows) continue;
+        const uint32_t layers = local_shadow_layers(light.type);
+        if (plan.slots.size() >= settings.budget || plan.layer_count + layers > kMaxLocalShadowLayers) {
+            plan.over_budget += 1;
+            continue;
+        }
+        LocalShadowSlot slot;
+        slot.light = i;
+        slot.first_layer = plan.layer_count;
+        slot.resolution = light.shadow_resolution != 0 ? light.shadow_resolution : settings.resolution;
+        slot.view_projection.resize(layers);
+        plan.layer_count += layers;
+        plan.atlas_resolution = std::max(plan.atlas_resolution, slot.resolution);
+        plan.slots.push_back(std::move(slot));
+    }
+    return plan;
+}
+
+float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& boxes, float max_far) {
+    float nearest = max_far;
+    for (const Aabb& box : boxes) {
+        if (box.empty()) continue;
+        const glm::vec3 closest = glm::clamp(point, box.min, box.max);
+        nearest = std::min(nearest, glm::length(closest - point));
+    }
+    // Never closer than the minimum (depth precision), never at or past the far plane.
+    return std::clamp(nearest, kMinLocalShadowNear, std::max(kMinLocalShadowNear, max_far * 0.5f));
+}
+
+glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane) {
+    const float fov = glm::radians(2.0f * spot.outer_angle_degrees);
+    const glm::mat4 view = look_along(spot.position, spot.direction, glm::vec3(0.0f, 1.0f, 0.0f));
+    return perspective_reverse_z(fov, 1.0f, near_plane, spot.range) * view;
+}
+
+std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position, float near_plane, float far_plane) {
+    const glm::mat4 projection = perspective_reverse_z(glm::radians(90.0f), 1.0f, near_plane, far_plane);
+    const std::array<glm::vec3, 6> axes{glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
+                                        glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
+    std::array<glm::mat4, 6> faces{};
+    for (size_t face = 0; face < 6; ++face) {
+        faces[face] = projection * look_along(position, axes[face], glm::vec3(0.0f, 1.0f, 0.0f));
+    }
+    return faces;
+}
+
+void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes) {
+    for (LocalShadowSlot& slot : plan.slots) {
+        const Light& light = scene.lights[slot.light];
+        slot.near_plane = nearest_caster_distance(light.position, caster_boxes, light.range);
+        if (light.type == LightType::Spot) {
+            slot.view_projection = {spot_shadow_view_projection(light, slot.near_plane)};
+        } else {
+            const auto faces = point_shadow_view_projections(light.position, slot.near_plane, light.range);
+            slot.view_projection.assign(faces.begin(), faces.end());
+        }
+    }
+}
+
+bool caster_may_shadow_frustum(const glm::mat4& view_projection, const Aabb& box) {
+    if (box.empty()) return false;
+    // Gribb-Hartmann: rows of the clip matrix combine into the planes -w <= x, y <= w and
+    // 0 <= z <= w (reverse-Z, so z >= 0 is the far plane and z <= w the near plane).
+    const glm::mat4 m = glm::transpose(view_projection);
+    const std::array<glm::vec4, 5> planes{m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2]};
+    for (const glm::vec4& plane : planes) {
+        // The box corner farthest along the plane normal (the "positive vertex").
+        const glm::vec3 positive(plane.x >= 0.0f ? box.max.x : box.min.x, plane.y >= 0.0f ? box.max.y : box.min.y,
+                                 plane.z >= 0.0f ? box.max.z : box.min.z);
+        if (glm::dot(glm::vec3(plane), positive) + plane.w < 0.0f) return false;
+    }
+    return true;
+}
+
+bool caster_may_shadow_sphere(const glm::vec3& center, float radius, const Aabb& box) {
+    if (box.empty()) return false;
+    const glm::vec3 closest = glm::clamp(center, box.min, box.max);
+    return glm::length(closest - center) <= radius;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,76 @@
+#pragma once
+// Shadow maps of spot and point lights ("local" lights), as pure math: which lights get
+// a shadow map within the budget, where their layers lie in the shared layered map, their
+// light-space matrices and per-light caster culling. No Vulkan (docs/local-lights.md).
+//
+// A spot light gets one layer: a reverse-Z perspective projection fitted to its cone
+// (fov = 2 * outer angle, near = the nearest caster's distance clamped to >= 0.05 m,
+// far = range). A point light gets six consecutive layers, one per cube face, in the
+// order +X, -X, +Y, -Y, +Z, -Z, each a 90-degree reverse-Z perspective projection; the
+// lighting shader selects the face by the major axis of (receiver - light).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/bounds.hpp"
+#include "core/glm_config.hpp"
+#include "core/scene.hpp"
+
+namespace penumbra {
+
+// Bounds of the local-light settings (`--local-shadow-budget`, `--local-shadow-resolution`).
+inline constexpr uint32_t kMaxLocalLights = 16;        // lit by the lighting shader; more are ignored
+inline constexpr uint32_t kMaxLocalShadowBudget = 16;  // shadowed local lights per frame
+inline constexpr uint32_t kMaxLocalShadowLayers = 96;  // 16 point lights x 6 faces
+inline constexpr float kMinLocalShadowNear = 0.05f;    // metres
+
+struct LocalShadowSettings {
+    uint32_t budget = 8;         // shadowed local lights; the rest render unshadowed
+    uint32_t resolution = 1024;  // texels per side of a light's map when the light sets none
+};
+
+// Where one local light's shadow lives and how it was fitted.
+struct LocalShadowSlot {
+    uint32_t light = 0;        // index into Scene::lights
+    uint32_t first_layer = 0;  // spot: 1 layer; point: 6 (faces +X, -X, +Y, -Y, +Z, -Z)
+    uint32_t resolution = 0;   // texels per side actually used in each of its layers
+    float near_plane = kMinLocalShadowNear;
+    std::vector<glm::mat4> view_projection;  // world -> reverse-Z clip, one per layer
+};
+
+struct LocalShadowPlan {
+    std::vector<uint32_t> local_lights;  // indices into Scene::lights of the lit spot/point lights (<= 16)
+    std::vector<LocalShadowSlot> slots;  // shadowed ones, in light order, within the budget
+    uint32_t layer_count = 0;            // layers of the shared map
+    uint32_t atlas_resolution = 0;       // the shared map's texels per side (max of the slots)
+    uint32_t over_budget = 0;            // shadow-casting local lights left unshadowed by the budget
+    uint32_t beyond_light_limit = 0;     // local lights past kMaxLocalLights (not lit at all)
+};
+
+// Shadow-map layers a light type takes: 1 for a spot, 6 for a point, 0 for a directional light.
+uint32_t local_shadow_layers(LightType type);
+
+// The camera-independent part: which lights are lit and shadowed, their layers and resolutions.
+// Matrices are filled by fit_local_shadows().
+LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings& settings);
+
+// Distance from `point` to the nearest of `boxes` (0 inside one), clamped to [min_near, max_far).
+float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& boxes, float max_far);
+
+// Reverse-Z perspective of a spot's cone: fov = 2 * outer angle, near, far = range.
+glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane);
+
+// The six cube faces of a point light (+X, -X, +Y, -Y, +Z, -Z), 90-degree reverse-Z perspectives.
+std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position, float near_plane, float far_plane);
+
+// Fills each slot's near plane (nearest caster within range) and matrices for the scene's
+// current light positions; `caster_boxes` are the world bounds of every draw.
+void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes);
+
+// Conservative culling: false only when the box cannot cast into the layer. Spot: outside a
+// plane of its frustum (Gribb-Hartmann planes of the view projection); point: farther than
+// the range from the light.
+bool caster_may_shadow_frustum(const glm::mat4& view_projection, const Aabb& box);
+bool caster_may_shadow_sphere(const glm::vec3& center, float radius, const Aabb& box);
+
+}  // namespace penumbra

@@ -1,0 +1,383 @@
+// Spot and point lights with shadows (docs/local-lights.md), checked against geometry:
+// a spot's box shadow against the box projected from the light point, a point light's
+// six cube faces in a closed room, and the shadow budget with more lights than it holds.
+// Pixels are located through the geometry AOVs (world position per pixel).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "analytic_shadow.hpp"
+#include "render_fixture.hpp"
+
+namespace penumbra::testing {
+namespace {
+
+// Convex hull (Andrew's monotone chain), counter-clockwise.
+std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
+    std::sort(points.begin(), points.end(),
+              [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    const auto cross = [](glm::vec2 o, glm::vec2 a, glm::vec2 b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    std::vector<glm::vec2> hull(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
+        hull[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, t = k + 1; i > 0; --i) {
+        while (k >= t && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0.0f) --k;
+        hull[k++] = points[i - 1];
+    }
+    hull.resize(k - 1);
+    return hull;
+}
+
+// The box's shadow on y = 0 cast from the point `light` (above the box): its corners
+// projected from the light onto the plane, as a convex polygon in (x, z).
+std::vector<glm::vec2> point_shadow_polygon(const Aabb& box, const glm::vec3& light) {
+    std::vector<glm::vec2> projected;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
+                               (i & 4) ? box.max.z : box.min.z);
+        const float t = light.y / (light.y - corner.y);
+        const glm::vec3 hit = light + (corner - light) * t;
+        projected.emplace_back(hit.x, hit.z);
+    }
+    return convex_hull(projected);
+}
+
+RenderedFrame render_light(const Scene& scene, RenderSettings settings, int32_t light_index) {
+    settings.geometry_aovs = true;
+    settings.visibility_light = light_index;
+    RenderedFrame frame = render_with_validation(scene, settings);
+    EXPECT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
+    return frame;
+}
+
+const char* kSpotScene = R"(
+[camera]
+eye = [0.0, 12.0, 6.0]
+target = [0.0, 0.0, 0.0]
+fov = 55.0
+far = 60.0
+
+[[lights]]
+type = "spot"
+position = [0.8, 6.0, 0.5]
+direction = [-0.1, -1.0, 0.05]
+inner_angle = 33.0
+outer_angle = 35.0
+range = 25.0
+radius = 0.0
+intensity = 40.0
+
+[[objects]]
+type = "plane"
+size = [30.0, 30.0]
+
+[[objects]]
+type = "box"
+size = [1.5, 0.5, 1.0]
+translation = [0.0, 2.0, 0.0]
+)";
+
+TEST(LocalLights, SpotShadowMatchesThePerspectiveProjectionOfTheBox) {
+    const Scene scene = scene_from_toml(kSpotScene);
+    RenderSettings settings = small_settings(320, 240);
+    settings.shadow.filter.mode = ShadowFilter::Hard;
+    const RenderedFrame frame = render_light(scene, settings, 0);
+    const Light& spot = scene.lights[0];
+    const Aabb box{{-0.75f, 1.75f, -0.5f}, {0.75f, 2.25f, 0.5f}};
+    const auto polygon = point_shadow_polygon(box, spot.position);
+    const float cos_inner = std::cos(glm::radians(spot.inner_angle_degrees));
+    const float cos_outer = std::cos(glm::radians(spot.outer_angle_degrees));
+    size_t intersection = 0, union_count = 0, outside_cone = 0, lit_outside_cone = 0;
+    for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+        const glm::vec4 p = frame.images.world_position[i];
+        if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;  // ground pixels only
+        const glm::vec3 point(p);
+        const float cos_angle = glm::dot(glm::normalize(point - spot.position), glm::normalize(spot.direction));
+        const float visibility = frame.images.visibility[i] / 65535.0f;
+        if (cos_angle < cos_outer) {
+            ++outside_cone;
+            if (visibility > 0.0f) ++lit_outside_cone;
+            continue;
+        }
+        if (cos_angle < cos_inner) continue;  // the smooth cone edge
+        if (distance_to_polygon_edge(polygon, glm::vec2(point.x, point.z)) < 0.02f) continue;
+        const bool truth = inside_convex_polygon(polygon, glm::vec2(point.x, point.z));
+        const bool shadowed = visibility < 0.5f;
+        intersection += truth && shadowed;
+        union_count += truth || shadowed;
+    }
+    const double iou = union_count ? double(intersection) / double(union_count) : 0.0;
+    std::printf("spot footprint IoU %.4f (%zu / %zu px), ground outside the cone %zu px, lit there %zu\n", iou,
+                intersection, union_count, outside_cone, lit_outside_cone);
+    EXPECT_GT(union_count, 500u);
+    EXPECT_GE(iou, 0.95);
+    EXPECT_GT(outside_cone, 1000u);
+    EXPECT_EQ(lit_outside_cone, 0u);
+}
+
+// A closed room (8 x 6 x 8 m, walls 0.2 m thick) with a point light in the middle and a
+// 0.6 m cube between the light and each of the six surfaces.
+const char* kRoomScene = R"(
+[[lights]]
+type = "point"
+position = [0.0, 3.0, 0.0]
+range = 15.0
+radius = 0.0
+intensity = 30.0
+
+[[objects]]
+type = "box"
+size = [8.4, 0.2, 8.4]
+translation = [0.0, -0.1, 0.0]
+[[objects]]
+type = "box"
+size = [8.4, 0.2, 8.4]
+translation = [0.0, 6.1, 0.0]
+[[objects]]
+type = "box"
+size = [0.2, 6.0, 8.0]
+translation = [4.1, 3.0, 0.0]
+[[objects]]
+type = "box"
+size = [0.2, 6.0, 8.0]
+translation = [-4.1, 3.0, 0.0]
+[[objects]]
+type = "box"
+size = [8.0, 6.0, 0.2]
+translation = [0.0, 3.0, 4.1]
+[[objects]]
+type = "box"
+size = [8.0, 6.0, 0.2]
+translation = [0.0, 3.0, -4.1]
+
+[[objects]]
+type = "box"
+size = 0.6
+translation = [2.5, 3.3, 0.4]
+[[objects]]
+type = "box"
+size = 0.6
+translation = [-2.5, 2.6, -0.5]
+[[objects]]
+type = "box"
+size = 0.6
+translation = [0.5, 5.0, -0.3]
+[[objects]]
+type = "box"
+size = 0.6
+translation = [-0.4, 1.2, 0.6]
+[[objects]]
+type = "box"
+size = 0.6
+translation = [0.3, 2.7, 2.5]
+[[objects]]
+type = "box"
+size = 0.6
+translation = [-0.6, 3.4, -2.5]
+)";
+
+const glm::vec3 kCubeCenters[6] = {{2.5f, 3.3f, 0.4f},  {-2.5f, 2.6f, -0.5f}, {0.5f, 5.0f, -0.3f},
+                                   {-0.4f, 1.2f, 0.6f}, {0.3f, 2.7f, 2.5f},   {-0.6f, 3.4f, -2.5f}};
+
+// Wall of a room point: 0..5 = +X, -X, +Y (ceiling), -Y (floor), +Z, -Z; -1 for a cube.
+int room_wall(const glm::vec3& p) {
+    const float e = 1e-3f;
+    if (std::abs(p.x - 4.0f) < e) return 0;
+    if (std::abs(p.x + 4.0f) < e) return 1;
+    if (std::abs(p.y - 6.0f) < e) return 2;
+    if (std::abs(p.y) < e) return 3;
+    if (std::abs(p.z - 4.0f) < e) return 4;
+    if (std::abs(p.z + 4.0f) < e) return 5;
+    return -1;
+}
+
+// Whether the segment from the light to `point` passes through a cube grown by `margin`.
+bool room_point_shadowed(const glm::vec3& light, const glm::vec3& point, float margin) {
+    const glm::vec3 to_point = point - light;
+    const PixelRay ray{light, glm::normalize(to_point)};
+    for (const glm::vec3& center : kCubeCenters) {
+        const Aabb cube{center - glm::vec3(0.3f + margin), center + glm::vec3(0.3f + margin)};
+        const auto hit = intersect_box(ray, cube);
+        if (hit && *hit < glm::length(to_point)) return true;
+    }
+    return false;
+}
+
+class PointLightRoom : public ::testing::TestWithParam<ShadowFilter> {};
+
+TEST_P(PointLightRoom, EveryCubeFaceShadowsItsWallWithoutSeams) {
+    Scene scene = scene_from_toml(kRoomScene);
+    RenderSettings settings = small_settings(240, 180);
+    settings.shadow.filter.mode = GetParam();
+    settings.local_shadows.resolution = 512;
+    const glm::vec3 light = scene.lights[0].position;
+    // Two corners of the room see all six walls between them.
+    const Camera views[2] = {{{3.6f, 5.6f, 3.6f}, {-4.0f, 0.0f, -4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f},
+                             {{-3.6f, 0.4f, -3.6f}, {4.0f, 6.0f, 4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f}};
+    size_t shadowed_per_wall[6] = {}, agree_per_wall[6] = {}, checked_per_wall[6] = {};
+    size_t seam_pixels = 0, seam_wrong = 0;
+    for (const Camera& view : views) {
+        scene.camera = view;
+        const RenderedFrame frame = render_light(scene, settings, 0);
+        for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+            const glm::vec4 p = frame.images.world_position[i];
+            if (p.w == 0.0f) continue;
+            const int wall = room_wall(glm::vec3(p));
+            if (wall < 0) continue;
+            const glm::vec3 point(p);
+            const bool inner = room_point_shadowed(light, point, -0.03f);
+            const bool outer = room_point_shadowed(light, point, 0.03f);
+            if (inner != outer) continue;  // within 3 cm of a shadow edge
+            const bool shadowed = frame.images.visibility[i] < 32768;
+            ++checked_per_wall[wall];
+            agree_per_wall[wall] += shadowed == inner;
+            shadowed_per_wall[wall] += shadowed && inner;
+            // Cube-face seams: where two components of (point - light) are nearly equal.
+            glm::vec3 a = glm::abs(point - light);
+            std::sort(&a[0], &a[0] + 3);
+            if (a[2] - a[1] < 0.02f * a[2]) {
+                ++seam_pixels;
+                seam_wrong += shadowed != inner;
+            }
+        }
+    }
+    for (int wall = 0; wall < 6; ++wall) {
+        const double agreement = checked_per_wall[wall] ? double(agree_per_wall[wall]) / checked_per_wall[wall] : 0.0;
+        std::printf("wall %d: %zu px checked, agreement %.4f, %zu px in the cube's shadow\n", wall,
+                    checked_per_wall[wall], agreement, shadowed_per_wall[wall]);
+        EXPECT_GT(checked_per_wall[wall], 200u) << "wall " << wall;
+        EXPECT_GE(agreement, 0.99) << "wall " << wall;
+        EXPECT_GT(shadowed_per_wall[wall], 20u) << "wall " << wall << ": no cube shadow (missing face?)";
+    }
+    std::printf("seam pixels %zu, wrong %zu\n", seam_pixels, seam_wrong);
+    EXPECT_GT(seam_pixels, 50u);
+    EXPECT_LE(seam_wrong, seam_pixels / 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom, ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf),
+                         [](const auto& param_info) {
+                             return param_info.param == ShadowFilter::Hard ? "hard" : "pcf";
+                         });
+
+// PCSS for a spot: the penumbra of the box grows with the light's radius
+// (w = (d_receiver - d_blocker) * radius / d_blocker: 0.5 m here for radius 0.5).
+size_t spot_penumbra_pixels(float radius) {
+    std::string text = kSpotScene;
+    const std::string key = "radius = 0.0";
+    text.replace(text.find(key), key.size(), "radius = " + std::to_string(radius));
+    const Scene scene = scene_from_toml(text);
+    RenderSettings settings = small_settings(320, 240);
+    settings.shadow.filter.mode = ShadowFilter::Pcss;
+    const RenderedFrame frame = render_light(scene, settings, 0);
+    const Light& spot = scene.lights[0];
+    const float cos_inner = std::cos(glm::radians(spot.inner_angle_degrees));
+    size_t partial = 0;
+    for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+        const glm::vec4 p = frame.images.world_position[i];
+        if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;
+        const float cos_angle = glm::dot(glm::normalize(glm::vec3(p) - spot.position), glm::normalize(spot.direction));
+        const uint16_t v = frame.images.visibility[i];
+        if (cos_angle >= cos_inner && v > 3000 && v < 62535) ++partial;
+    }
+    return partial;
+}
+
+TEST(LocalLights, SpotPcssPenumbraGrowsWithTheLightRadius) {
+    const size_t small = spot_penumbra_pixels(0.02f);
+    const size_t large = spot_penumbra_pixels(0.5f);
+    std::printf("spot pcss penumbra pixels: radius 0.02 m: %zu, radius 0.5 m: %zu\n", small, large);
+    EXPECT_GT(large, 3 * std::max<size_t>(small, 20));
+}
+
+// Nine shadowed spot lights in a row, each over its own box: with a budget of 8 the ninth
+// renders unshadowed with a one-line warning, and the first eight still shadow correctly.
+std::string nine_spots_scene() {
+    std::string text = R"(
+[camera]
+eye = [0.0, 24.0, 0.1]
+target = [0.0, 0.0, 0.0]
+fov = 60.0
+far = 100.0
+
+[[objects]]
+type = "plane"
+size = [60.0, 20.0]
+)";
+    char buffer[512];
+    for (int i = 0; i < 9; ++i) {
+        const float x = -16.0f + 4.0f * static_cast<float>(i);
+        std::snprintf(buffer, sizeof(buffer), R"(
+[[lights]]
+type = "spot"
+position = [%f, 5.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+inner_angle = 25.0
+outer_angle = 28.0
+range = 12.0
+radius = 0.0
+intensity = 20.0
+
+[[objects]]
+type = "box"
+size = 0.8
+translation = [%f, 2.0, 0.0]
+)",
+                      x, x);
+        text += buffer;
+    }
+    return text;
+}
+
+TEST(LocalLights, LightsBeyondTheBudgetRenderUnshadowedWithOneWarning) {
+    const Scene scene = scene_from_toml(nine_spots_scene());
+    RenderSettings settings = small_settings(480, 200);
+    settings.shadow.filter.mode = ShadowFilter::Pcf;
+    settings.local_shadows.resolution = 256;
+    ASSERT_EQ(settings.local_shadows.budget, 8u);
+    for (const int light : {0, 7, 8}) {
+        ::testing::internal::CaptureStderr();
+        const RenderedFrame frame = render_light(scene, settings, light);
+        const std::string errors = ::testing::internal::GetCapturedStderr();
+        EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+        EXPECT_NE(errors.find("1 shadow-casting spot/point light(s) beyond the local shadow budget of 8"),
+                  std::string::npos)
+            << errors;
+        // Under the light, straight below the box: the box's shadow (or none past the budget);
+        // 1 to 1.8 m to the side, past the box shadow and inside the inner cone: lit.
+        const float x = -16.0f + 4.0f * static_cast<float>(light);
+        size_t under = 0, under_shadowed = 0, beside = 0, beside_lit = 0;
+        for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+            const glm::vec4 p = frame.images.world_position[i];
+            if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;
+            const float dx = std::abs(p.x - x), dz = std::abs(p.z);
+            const float visibility = frame.images.visibility[i] / 65535.0f;
+            if (dx < 0.3f && dz < 0.3f) {
+                ++under;
+                under_shadowed += visibility < 0.5f;
+            } else if (dx > 1.0f && dx < 1.8f && dz < 0.3f) {
+                ++beside;
+                beside_lit += visibility > 0.5f;
+            }
+        }
+        std::printf("light %d: %zu/%zu px under the box shadowed, %zu/%zu beside lit\n", light, under_shadowed, under,
+                    beside_lit, beside);
+        ASSERT_GT(under, 10u);
+        ASSERT_GT(beside, 10u);
+        EXPECT_EQ(beside_lit, beside) << "light " << light;
+        if (light < 8) {
+            EXPECT_EQ(under_shadowed, under) << "light " << light << " is within the budget";
+        } else {
+            EXPECT_EQ(under_shadowed, 0u) << "light 8 is beyond the budget: unshadowed";
+        }
+    }
+}
+
+}  // namespace
+}  // namespace penumbra::testing

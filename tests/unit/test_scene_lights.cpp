@@ -1,0 +1,162 @@
+// Spot and point lights in scene files (docs/scene-format.md, docs/local-lights.md):
+// their keys, defaults and the one-line errors for out-of-range values.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/local_lights.hpp"
+#include "scene_test_support.hpp"
+
+namespace penumbra {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::scene_error;
+
+TEST(SceneLights, SpotLightKeys) {
+    const Scene scene = testing::parse_scene_text(R"(
+[[lights]]
+type = "spot"
+position = [4.0, 6.0, 2.0]
+direction = [-0.5, -1.0, -0.2]
+inner_angle = 20.0
+outer_angle = 30.0
+range = 25.0
+radius = 0.1
+color = [1.0, 0.9, 0.8]
+intensity = 40.0
+cast_shadows = true
+shadow_resolution = 512
+)");
+    ASSERT_EQ(scene.lights.size(), 1u);
+    const Light& spot = scene.lights[0];
+    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_EQ(spot.position, glm::vec3(4.0f, 6.0f, 2.0f));
+    EXPECT_NEAR(glm::length(spot.direction), 1.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(spot.inner_angle_degrees, 20.0f);
+    EXPECT_FLOAT_EQ(spot.outer_angle_degrees, 30.0f);
+    EXPECT_FLOAT_EQ(spot.range, 25.0f);
+    EXPECT_FLOAT_EQ(spot.radius, 0.1f);
+    EXPECT_FLOAT_EQ(spot.intensity, 40.0f);
+    EXPECT_EQ(spot.shadow_resolution, 512u);
+    EXPECT_EQ(scene.sun(), nullptr) << "a spot light is not the sun";
+}
+
+TEST(SceneLights, PointLightKeys) {
+    const Scene scene = testing::parse_scene_text(R"(
+[[lights]]
+type = "point"
+position = [0.0, 3.0, 0.0]
+range = 15.0
+radius = 0.05
+cast_shadows = false
+)");
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_EQ(scene.lights[0].type, LightType::Point);
+    EXPECT_FLOAT_EQ(scene.lights[0].range, 15.0f);
+    EXPECT_FALSE(scene.lights[0].cast_shadows);
+    EXPECT_EQ(scene.lights[0].shadow_resolution, 0u) << "0 = the renderer's --local-shadow-resolution";
+}
+
+TEST(SceneLights, KeysOfOtherLightTypesAreRejected) {
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"point\"\nouter_angle = 30\n"),
+                HasSubstr("scene.toml: lights[0].outer_angle: unknown key \"outer_angle\""));
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"point\"\ndirection = [0, -1, 0]\n"),
+                HasSubstr("unknown key \"direction\""));
+    EXPECT_THAT(scene_error("[[lights]]\nrange = 3\n"), HasSubstr("unknown key \"range\""));
+}
+
+TEST(SceneLights, OuterAngleSmallerThanInner) {
+    EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\ninner_angle = 40\nouter_angle = 30\n"),
+              "scene.toml: lights[0].inner_angle: must be between 0 and outer_angle (30) degrees, got 40");
+}
+
+TEST(SceneLights, AnglesOfNinetyOrMore) {
+    EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 90\n"),
+              "scene.toml: lights[0].outer_angle: must be between 0 and 90 degrees (exclusive; the shadow fov is "
+              "twice it), got 90");
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 180\n"),
+                HasSubstr("lights[0].outer_angle: must be between 0 and 90"));
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\ninner_angle = 200\nouter_angle = 45\n"),
+                HasSubstr("lights[0].inner_angle:"));
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 0\n"), HasSubstr("lights[0].outer_angle:"));
+}
+
+TEST(SceneLights, RangeAndRadius) {
+    EXPECT_EQ(scene_error("[[lights]]\ntype = \"point\"\nrange = 0\n"),
+              "scene.toml: lights[0].range: must be > 0, got 0");
+    EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\nrange = -2\n"),
+              "scene.toml: lights[0].range: must be > 0, got -2");
+    EXPECT_EQ(scene_error("[[lights]]\ntype = \"point\"\nradius = -0.1\n"),
+              "scene.toml: lights[0].radius: must be >= 0, got -0.1");
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"point\"\nshadow_resolution = 8\n"),
+                HasSubstr("lights[0].shadow_resolution: must be an integer between 16 and 8192, got 8"));
+}
+
+TEST(SceneLights, ErrorNamesTheLightIndex) {
+    EXPECT_THAT(scene_error("[[lights]]\n[[lights]]\ntype = \"spot\"\nrange = 0\n"),
+                HasSubstr("scene.toml: lights[1].range:"));
+}
+
+// The budget: spots take one layer, points six; lights beyond it are counted.
+TEST(LocalShadowPlan, BudgetAndLayers) {
+    Scene scene;
+    scene.lights.push_back(Light{});  // the sun: not a local light
+    for (int i = 0; i < 5; ++i) {
+        Light light;
+        light.type = i % 2 == 0 ? LightType::Spot : LightType::Point;
+        scene.lights.push_back(light);
+    }
+    const LocalShadowPlan plan = plan_local_shadows(scene, {3, 256});
+    EXPECT_EQ(plan.local_lights.size(), 5u);
+    ASSERT_EQ(plan.slots.size(), 3u);
+    EXPECT_EQ(plan.slots[0].light, 1u);
+    EXPECT_EQ(plan.slots[1].first_layer, 1u);
+    EXPECT_EQ(plan.slots[2].first_layer, 7u);
+    EXPECT_EQ(plan.layer_count, 8u);
+    EXPECT_EQ(plan.over_budget, 2u);
+    EXPECT_EQ(plan.atlas_resolution, 256u);
+}
+
+TEST(LocalShadowMath, SpotFrustumCoversTheConeAndCulls) {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 6.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.outer_angle_degrees = 30.0f;
+    spot.range = 25.0f;
+    const glm::mat4 view_projection = spot_shadow_view_projection(spot, 1.0f);
+    const glm::vec4 below = view_projection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(below.x / below.w, 0.0f, 1e-5f);
+    EXPECT_GT(below.z / below.w, 0.0f);
+    EXPECT_LT(below.z / below.w, 1.0f);
+    // On the ground 6 m below, the cone's edge lies 6 tan(30 deg) from the axis: NDC x = +-1.
+    const glm::vec4 edge = view_projection * glm::vec4(6.0f * std::tan(glm::radians(30.0f)), 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(std::abs(edge.x / edge.w) + std::abs(edge.y / edge.w), 1.0f, 1e-4f);
+    EXPECT_TRUE(caster_may_shadow_frustum(view_projection, Aabb{{-1, 0, -1}, {1, 1, 1}}));
+    EXPECT_FALSE(caster_may_shadow_frustum(view_projection, Aabb{{20, 0, 20}, {21, 1, 21}})) << "outside the cone";
+    EXPECT_FALSE(caster_may_shadow_frustum(view_projection, Aabb{{-1, 8, -1}, {1, 9, 1}})) << "behind the light";
+    EXPECT_FALSE(caster_may_shadow_frustum(view_projection, Aabb{{-1, -30, -1}, {1, -29, 1}})) << "beyond range";
+}
+
+TEST(LocalShadowMath, CubeFacesCoverTheirAxes) {
+    const auto faces = point_shadow_view_projections(glm::vec3(1.0f, 2.0f, 3.0f), 0.1f, 10.0f);
+    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int face = 0; face < 6; ++face) {
+        const glm::vec4 clip = faces[face] * glm::vec4(glm::vec3(1.0f, 2.0f, 3.0f) + axes[face] * 5.0f, 1.0f);
+        EXPECT_NEAR(clip.x / clip.w, 0.0f, 1e-5f) << face;
+        EXPECT_NEAR(clip.y / clip.w, 0.0f, 1e-5f) << face;
+        EXPECT_GT(clip.w, 0.0f) << face;
+    }
+    EXPECT_TRUE(caster_may_shadow_sphere(glm::vec3(0.0f), 2.0f, Aabb{{1, 1, 1}, {3, 3, 3}}));
+    EXPECT_FALSE(caster_may_shadow_sphere(glm::vec3(0.0f), 1.0f, Aabb{{1, 1, 1}, {3, 3, 3}}));
+}
+
+TEST(LocalShadowMath, NearPlaneFromTheNearestCaster) {
+    const std::vector<Aabb> boxes{Aabb{{-1, 0, -1}, {1, 2, 1}}, Aabb{{-10, -1, -10}, {10, 0, 10}}};
+    EXPECT_FLOAT_EQ(nearest_caster_distance(glm::vec3(0.0f, 6.0f, 0.0f), boxes, 25.0f), 4.0f);
+    EXPECT_FLOAT_EQ(nearest_caster_distance(glm::vec3(0.0f, 1.0f, 0.0f), boxes, 25.0f), kMinLocalShadowNear)
+        << "inside a caster's bounds";
+}
+
+}  // namespace
+}  // namespace penumbra
