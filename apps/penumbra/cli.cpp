@@ -232,7 +232,8 @@ Command parse_command_line(int argc, char** argv) {
     RawRenderOptions compare_render_raw;
     std::string compare_json;
     CLI::App* compare = app.add_subcommand(
-        "compare", "Measure shadow quality against a ray-traced reference (Embree): error images and JSON (docs/QUALITY.md)");
+        "compare",
+        "Measure shadow quality against a ray-traced reference (Embree): error images and JSON (docs/QUALITY.md)");
     add_render_job_options(*compare, compare_job.render, compare_render_raw);
     add_compare_options(*compare, compare_job, compare_json);
 

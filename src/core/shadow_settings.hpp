@@ -34,9 +34,9 @@ struct CascadeSettings {
 };
 
 struct BiasSettings {
-    float constant = 0.0f;       // depth-bias constant factor (units of the depth format's r)
-    float slope = 2.0f;          // slope-scaled depth bias factor
-    float clamp = 0.005f;        // maximum absolute depth bias (reverse-Z depth units)
+    float constant = 0.0f;  // depth-bias constant factor (units of the depth format's r)
+    float slope = 2.0f;     // slope-scaled depth bias factor
+    float clamp = 0.005f;   // maximum absolute depth bias (reverse-Z depth units)
     // World offset along the normal, in cascade texels. Why 0.5: docs/QUALITY.md measured
     // 0 / 0.5 / 1 / 2 / 4 against ray-traced shadows; 0.5 is acne-free with the slope bias
     // and leaks least (false lit 4.8% vs 6.7% at 1 on builtin:default, 30% vs 34% on trees).
