@@ -17,9 +17,9 @@
 // Descriptor sets and bindings.
 #define PENUMBRA_SET_FRAME 0
 #define PENUMBRA_BINDING_FRAME_UNIFORMS 0
-#define PENUMBRA_BINDING_SHADOW_MAP 1      // sampler2DArrayShadow (hardware comparison)
-#define PENUMBRA_BINDING_SHADOW_DEPTH 2    // the same map, raw depth (PCSS blocker search)
-#define PENUMBRA_BINDING_SHADOW_MOMENTS 3  // filtered moments (vsm/evsm/msm), else the depth map
+#define PENUMBRA_BINDING_SHADOW_MAP 1          // sampler2DArrayShadow (hardware comparison)
+#define PENUMBRA_BINDING_SHADOW_DEPTH 2        // the same map, raw depth (PCSS blocker search)
+#define PENUMBRA_BINDING_SHADOW_MOMENTS 3      // filtered moments (vsm/evsm/msm), else the depth map
 #define PENUMBRA_BINDING_LOCAL_LIGHTS 4        // LocalLightUniforms (spot and point lights)
 #define PENUMBRA_BINDING_LOCAL_SHADOW_MAP 5    // sampler2DArrayShadow: every local light's layers
 #define PENUMBRA_BINDING_LOCAL_SHADOW_DEPTH 6  // the same map, raw depth (PCSS blocker search)

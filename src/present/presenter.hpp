@@ -71,7 +71,7 @@ private:
     UniqueSemaphore image_acquired_;
     gpu::UniqueCommandPool pool_;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    gpu::UniqueFence fence_;  // signalled: no frame in flight
+    gpu::UniqueFence fence_;         // signalled: no frame in flight
     VkExtent2D requested_extent_{};  // the window size the swapchain was last made for
     uint64_t generation_ = 0;
 };

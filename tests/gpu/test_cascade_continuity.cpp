@@ -134,7 +134,8 @@ std::optional<MaskedHit> trace_masked(const Scene& scene, const glm::vec3& origi
             if (u < 0.0f || w < 0.0f || u + w > 1.0f || glm::dot(e2, q) / det <= 0.0f) continue;
             const glm::vec2 uv = v[0]->uv * (1.0f - u - w) + v[1]->uv * u + v[2]->uv * w;
             float alpha = material.base_color.a;
-            if (material.base_color_texture >= 0) alpha *= sample_alpha(scene.textures[material.base_color_texture], uv);
+            if (material.base_color_texture >= 0)
+                alpha *= sample_alpha(scene.textures[material.base_color_texture], uv);
             return MaskedHit{alpha - cutoff};
         }
     }
