@@ -46,6 +46,20 @@ void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& d
     vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
 }
 
+void record_camera_draws(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, VkPipeline single_sided,
+                         VkPipeline double_sided) {
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
+    for (const bool double_sided_pass : {false, true}) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, double_sided_pass ? double_sided : single_sided);
+        for (const Draw& draw : data.draws) {
+            if (data.materials[draw.material].double_sided != double_sided_pass) continue;
+            record_draw(cmd, layout, data, draw, 0);
+        }
+    }
+}
+
 VkPushConstantRange draw_push_constant_range() {
     return {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(shader::DrawPushConstants)};
 }

@@ -26,4 +26,11 @@ void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& d
 
 VkPushConstantRange draw_push_constant_range();
 
+// Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
+// passes do: single-sided materials with `single_sided` (back faces culled), then
+// double-sided ones with `double_sided`. Passes that must cover the same fragments (the
+// lighting and geometry-AOV passes) share this order, so depth ties resolve identically.
+void record_camera_draws(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, VkPipeline single_sided,
+                         VkPipeline double_sided);
+
 }  // namespace penumbra::passes

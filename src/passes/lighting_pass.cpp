@@ -120,16 +120,7 @@ void LightingPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const 
     begin_rendering(cmd);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1, &frame_set,
                             0, nullptr);
-    VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
-    vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
-    for (const bool double_sided : {false, true}) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, double_sided ? double_sided_ : single_sided_);
-        for (const Draw& draw : data.draws) {
-            if (data.materials[draw.material].double_sided != double_sided) continue;
-            record_draw(cmd, pipeline_layout_, data, draw, 0);
-        }
-    }
+    record_camera_draws(cmd, pipeline_layout_, data, single_sided_, double_sided_);
     vkCmdEndRendering(cmd);
 
     for (const gpu::Image* target : {&targets_.color, &targets_.visibility, &targets_.cascade}) {
