@@ -46,6 +46,35 @@ void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& d
     vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
 }
 
+VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear) {
+    VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    attachment.imageView = view;
+    attachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attachment.clearValue.color = clear;
+    return attachment;
+}
+
+void begin_camera_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
+                            VkImageView depth_view, uint32_t width, uint32_t height) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depth_view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {0.0f, 0};
+
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {width, height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &info);
+    set_viewport_and_scissor(cmd, width, height);
+}
+
 void record_camera_draws(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, VkPipeline single_sided,
                          VkPipeline double_sided) {
     VkDeviceSize offset = 0;

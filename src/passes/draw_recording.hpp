@@ -3,6 +3,8 @@
 // its material, vertex layout, viewport and scissor.
 #include <vulkan/vulkan.h>
 
+#include <span>
+
 #include "gpu/pipeline.hpp"
 #include "passes/draw_data.hpp"
 #include "passes/shader_interface.hpp"
@@ -25,6 +27,15 @@ void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& d
                  uint32_t cascade);
 
 VkPushConstantRange draw_push_constant_range();
+
+// A colour attachment cleared to `clear` at the start of the pass and stored at its end.
+VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear);
+
+// Begins the dynamic rendering of a camera pass (one layer, the whole `width` x `height`
+// area) with the given colour attachments and a reverse-Z depth buffer cleared to 0 (far)
+// and not stored, then sets the viewport and scissor to the same area.
+void begin_camera_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
+                            VkImageView depth_view, uint32_t width, uint32_t height);
 
 // Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
 // passes do: single-sided materials with `single_sided` (back faces culled), then

@@ -38,16 +38,6 @@ gpu::UniquePipeline create_pipeline(const gpu::Context& context, VkPipelineLayou
     return gpu::create_graphics_pipeline(context, desc);
 }
 
-VkRenderingAttachmentInfo cleared_attachment(const gpu::Image& image) {
-    VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    attachment.imageView = image.view;
-    attachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    attachment.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // w = 0: no geometry
-    return attachment;
-}
-
 }  // namespace
 
 GeometryAovPass::GeometryAovPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
@@ -78,23 +68,11 @@ GeometryAovPass::GeometryAovPass(const gpu::Context& context, VkDescriptorSetLay
 }
 
 void GeometryAovPass::begin_rendering(VkCommandBuffer cmd) const {
-    const std::array<VkRenderingAttachmentInfo, 2> colors{cleared_attachment(targets_.world_position),
-                                                          cleared_attachment(targets_.world_normal)};
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = targets_.depth.view;
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {0.0f, 0};
-
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {width_, height_}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
-    info.pColorAttachments = colors.data();
-    info.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    set_viewport_and_scissor(cmd, width_, height_);
+    const VkClearColorValue no_geometry{{0.0f, 0.0f, 0.0f, 0.0f}};  // position w = 0: no geometry
+    const std::array<VkRenderingAttachmentInfo, 2> colors{
+        cleared_color_attachment(targets_.world_position.view, no_geometry),
+        cleared_color_attachment(targets_.world_normal.view, no_geometry)};
+    begin_camera_rendering(cmd, colors, targets_.depth.view, width_, height_);
 }
 
 void GeometryAovPass::record(VkCommandBuffer cmd, const DrawData& data) const {

@@ -42,16 +42,6 @@ gpu::UniquePipeline create_lighting_pipeline(const gpu::Context& context, VkPipe
     return gpu::create_graphics_pipeline(context, desc);
 }
 
-VkRenderingAttachmentInfo color_attachment(const gpu::Image& image, VkClearColorValue clear) {
-    VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    attachment.imageView = image.view;
-    attachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    attachment.clearValue.color = clear;
-    return attachment;
-}
-
 }  // namespace
 
 LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
@@ -90,25 +80,11 @@ LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout ma
 
 void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
     const std::array<VkRenderingAttachmentInfo, 3> colors{
-        color_attachment(targets_.color, {{0.52f, 0.62f, 0.75f, 1.0f}}),    // sky (linear; stored as sRGB)
-        color_attachment(targets_.visibility, {{1.0f, 0.0f, 0.0f, 0.0f}}),  // no geometry = fully lit
-        color_attachment(targets_.cascade, VkClearColorValue{.uint32 = {PENUMBRA_NO_CASCADE, 0, 0, 0}}),
+        cleared_color_attachment(targets_.color.view, {{0.52f, 0.62f, 0.75f, 1.0f}}),    // sky (linear; stored as sRGB)
+        cleared_color_attachment(targets_.visibility.view, {{1.0f, 0.0f, 0.0f, 0.0f}}),  // no geometry = fully lit
+        cleared_color_attachment(targets_.cascade.view, VkClearColorValue{.uint32 = {PENUMBRA_NO_CASCADE, 0, 0, 0}}),
     };
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = targets_.depth.view;
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {0.0f, 0};
-
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {width_, height_}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
-    info.pColorAttachments = colors.data();
-    info.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    set_viewport_and_scissor(cmd, width_, height_);
+    begin_camera_rendering(cmd, colors, targets_.depth.view, width_, height_);
 }
 
 void LightingPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const {
