@@ -97,4 +97,8 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet set, const Dra
     gpu::transition(cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::FragmentSampled);
 }
 
+void LocalShadowPass::record_placeholder(VkCommandBuffer cmd) const {
+    gpu::transition(cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::FragmentSampled);
+}
+
 }  // namespace penumbra::passes

@@ -41,6 +41,9 @@ public:
                 const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias,
                 gpu::GpuTimer* timer = nullptr) const;
 
+    // Without shadowed lights: only moves the map into the layout the lighting pass binds.
+    void record_placeholder(VkCommandBuffer cmd) const;
+
 private:
     const gpu::Context& context_;
     uint32_t resolution_;

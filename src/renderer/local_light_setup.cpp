@@ -82,6 +82,23 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(const Scene& scene, con
     return layers;
 }
 
+std::vector<LocalShadowStats> local_shadow_stats(const LocalShadowPlan& plan,
+                                                 const std::vector<passes::LocalShadowLayer>& layers,
+                                                 const passes::DrawData& data) {
+    std::vector<LocalShadowStats> stats;
+    for (const LocalShadowSlot& slot : plan.slots) {
+        LocalShadowStats light{slot.light, static_cast<uint32_t>(slot.view_projection.size()), slot.resolution,
+                               slot.near_plane, 0, 0};
+        for (const passes::LocalShadowLayer& layer : layers) {
+            if (layer.layer < slot.first_layer || layer.layer >= slot.first_layer + light.layers) continue;
+            light.draws += static_cast<uint32_t>(layer.draws.size());
+            for (const uint32_t draw : layer.draws) light.triangles += data.draws[draw].index_count / 3;
+        }
+        stats.push_back(light);
+    }
+    return stats;
+}
+
 std::string local_shadow_budget_warning(const LocalShadowPlan& plan, const LocalShadowSettings& settings) {
     std::string warning;
     if (plan.over_budget > 0) {

@@ -7,6 +7,7 @@
 #include "core/local_lights.hpp"
 #include "core/render_settings.hpp"
 #include "core/scene.hpp"
+#include "renderer/renderer.hpp"
 #include "passes/draw_data.hpp"
 #include "passes/local_shadow_pass.hpp"
 #include "passes/shader_interface.hpp"
@@ -25,6 +26,11 @@ shader::LocalLightUniforms build_local_light_uniforms(const Scene& scene, const 
 // frustum, a point light's sphere of range.
 std::vector<passes::LocalShadowLayer> cull_local_casters(const Scene& scene, const LocalShadowPlan& plan,
                                                          const passes::DrawData& data, bool cull);
+
+// Per shadowed light: its layers, resolution, near plane and the casters submitted for it.
+std::vector<LocalShadowStats> local_shadow_stats(const LocalShadowPlan& plan,
+                                                 const std::vector<passes::LocalShadowLayer>& layers,
+                                                 const passes::DrawData& data);
 
 // The one-line warning for lights beyond the budget; empty when every light fits.
 std::string local_shadow_budget_warning(const LocalShadowPlan& plan, const LocalShadowSettings& settings);

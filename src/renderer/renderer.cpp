@@ -265,6 +265,7 @@ void Renderer::prepare_local_lights() {
     const shader::LocalLightUniforms uniforms = build_local_light_uniforms(scene_, r.local_plan, settings_);
     std::memcpy(r.local_uniforms.mapped, &uniforms, sizeof(uniforms));
     r.local_layers = cull_local_casters(scene_, r.local_plan, draw_data, settings_.shadow.cull_casters);
+    last_frame_.local_shadow_stats = local_shadow_stats(r.local_plan, r.local_layers, draw_data);
 }
 
 void Renderer::record_frame(VkCommandBuffer cmd, const CulledCasters& casters, ReadbackMode readback) {
@@ -280,8 +281,13 @@ void Renderer::record_frame(VkCommandBuffer cmd, const CulledCasters& casters, R
             resources_->shadow_pass.record(cmd, resources_->shadow_frame_set, draw_data, casters.lists,
                                            settings_.shadow.bias, &timer);
         }
-        resources_->local_shadow_pass.record(cmd, resources_->local_shadow_set, draw_data, resources_->local_layers,
-                                             settings_.shadow.bias, &timer);
+        if (resources_->local_plan.layer_count > 0) {
+            resources_->local_shadow_pass.record(cmd, resources_->local_shadow_set, draw_data,
+                                                 resources_->local_layers, settings_.shadow.bias, &timer);
+        } else {
+            // Nothing samples the placeholder map, but the lighting set binds it in this layout.
+            resources_->local_shadow_pass.record_placeholder(cmd);
+        }
         gpu::TimedScope lighting_scope(&timer, cmd, "lighting");
         resources_->lighting_pass.record(cmd, resources_->lighting_frame_set, draw_data);
         if (resources_->geometry_aovs) resources_->geometry_aovs->record(cmd, draw_data);

@@ -51,11 +51,23 @@ struct CpuTimes {
     double submit_wait_ms = 0.0;    // from submission until the fence signals
 };
 
+// One shadowed spot or point light of the frame (docs/local-lights.md).
+struct LocalShadowStats {
+    uint32_t light = 0;       // index into Scene::lights
+    uint32_t layers = 0;      // 1 for a spot, 6 for a point light
+    uint32_t resolution = 0;  // texels per side of each of its layers
+    float near_plane = 0.0f;  // metres (the nearest caster)
+    uint32_t draws = 0;       // submitted over all its layers, after culling
+    uint64_t triangles = 0;
+};
+
 struct FrameInfo {
     CascadeSet cascades;
     std::vector<CascadeStats> cascade_stats;
+    std::vector<LocalShadowStats> local_shadow_stats;  // shadowed local lights, in light order
     // GPU time of each timed scope, in recording order: "frame", then "shadow_cascade_<i>"
-    // (or "shadow_multiview", or "shadow_moments" for the moment filters) and "lighting".
+    // (or "shadow_multiview", or "shadow_moments" for the moment filters), "shadow_local"
+    // (only with shadowed spot/point lights) and "lighting".
     // Empty when the queue has no timestamps.
     std::vector<gpu::ScopeTime> gpu_times;
     CpuTimes cpu_times;
