@@ -28,14 +28,24 @@ const vec3 kCascadeTints[8] = vec3[](vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25
                                      vec3(1.0, 1.0, 0.25), vec3(1.0, 0.3, 1.0), vec3(0.25, 1.0, 1.0),
                                      vec3(1.0, 0.6, 0.2), vec3(0.7, 0.7, 0.7));
 
+// The receiver's geometric plane (receiver-plane bias of the local lights): the cross
+// product of the position's screen-space derivatives, or the shading normal where the
+// triangle is too small or too oblique for them.
+vec3 geometric_normal(vec3 position, vec3 shading_normal) {
+    const vec3 n = cross(dFdx(position), dFdy(position));
+    const float length_squared = dot(n, n);
+    return length_squared > 1e-20 ? n * inversesqrt(length_squared) : shading_normal;
+}
+
 void main() {
     vec3 normal = normalize(in_world_normal);
     if (!gl_FrontFacing) normal = -normal;  // double-sided materials are lit from both sides
     const float view_depth = -(frame.view * vec4(in_world_position, 1.0)).z;
     const bool sun_casts_shadows = frame.sun_radiance.w != 0.0 && cascade_count() > 0;
     const int cascade = sun_casts_shadows ? select_cascade(view_depth) : -1;
-    // Before the discard and every per-pixel branch: it takes screen-space derivatives.
+    // Before the discard and every per-pixel branch: they take screen-space derivatives.
     const ShadowReceiver receiver = prepare_shadow_receiver(cascade, in_world_position, normal);
+    const vec3 plane_normal = geometric_normal(in_world_position, normal);
 
     vec4 base_color = draw.base_color;
     if (draw.flags.y != 0u) base_color *= texture(base_color_texture, in_uv);
@@ -62,7 +72,7 @@ void main() {
         const vec3 to_light = light_vector / max(distance, 1e-4);
         const float cone = spot_cone(light, to_light);
         const bool reaches = distance < light.position_range.w && cone > 0.0 && dot(normal, to_light) > 0.0;
-        const float shadow = reaches ? local_shadow(light, in_world_position, normal) : 0.0;
+        const float shadow = reaches ? local_shadow(light, in_world_position, normal, plane_normal) : 0.0;
         if (i == int(local.counts.y)) visibility = shadow * cone;
         const float falloff = distance_falloff(distance, light.position_range.w);
         color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance.rgb * (falloff * cone * shadow),

@@ -23,8 +23,9 @@
 #define PENUMBRA_BINDING_LOCAL_LIGHTS 4        // LocalLightUniforms (spot and point lights)
 #define PENUMBRA_BINDING_LOCAL_SHADOW_MAP 5    // sampler2DArrayShadow: every local light's layers
 #define PENUMBRA_BINDING_LOCAL_SHADOW_DEPTH 6  // the same map, raw depth (PCSS blocker search)
+#define PENUMBRA_BINDING_LOCAL_MOMENTS 7       // local lights' filtered moments, else their depth map
 // The local shadow pass: set 0, binding 0 = LocalLightUniforms.
-// The moments blur pass: set 0 holds the image it reads.
+// The moments blur pass and the local moments pass: set 0 holds the image they read.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 #define PENUMBRA_SET_MATERIAL 1
 #define PENUMBRA_BINDING_BASE_COLOR_TEXTURE 0
@@ -115,7 +116,8 @@ struct LocalLightUniforms {
     // x: local light count, y: slot of the light written to the visibility target (-1: the sun),
     // z: normal offset in texels, w: one map texel in UV
     vec4 counts;
-    // x: pcf radius (taps), y: pcss max penumbra (texels)
+    // x: pcf radius (taps), y: pcss max penumbra (texels), z: receiver-plane slope limit
+    // (kMaxReceiverSlope, metres of depth per metre across)
     vec4 filter_params;
 };
 
@@ -136,7 +138,16 @@ struct TapCeilingPushConstants {
 
 // The moments blur pass (shaders/moments_blur.frag).
 struct BlurPushConstants {
-    uvec4 params;  // x: layer, y: radius in texels, z: 1 horizontal / 0 vertical
+    // x: layer, y: radius in texels, z: 1 horizontal / 0 vertical, w: texels per side the
+    // layer uses from its top-left corner (0: all)
+    uvec4 params;
+};
+
+// The local lights' moments pass (shaders/local_moments.frag): one layer of the local
+// shadow map's reverse-Z depth converted to moments of the normalised linear distance.
+struct LocalMomentsPushConstants {
+    uvec4 layer;       // x: layer
+    vec4 depth_range;  // x: near plane, y: far plane (range), zw: EVSM exponents (positive, negative)
 };
 
 #endif

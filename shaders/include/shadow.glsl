@@ -123,11 +123,9 @@ float sample_cascade(int cascade, ShadowCoord coord) {
         case PENUMBRA_FILTER_PCSS:
             return shadow_pcss(cascade, coord);
         case PENUMBRA_FILTER_VSM:
-            return shadow_vsm(cascade, coord);
         case PENUMBRA_FILTER_EVSM:
-            return shadow_evsm(cascade, coord);
         case PENUMBRA_FILTER_MSM:
-            return shadow_msm(cascade, coord);
+            return shadow_moment_filter(cascade, coord);
         default:
             return shadow_hard(cascade, coord);
     }

@@ -39,25 +39,21 @@ float chebyshev_upper_bound(vec2 moments, float receiver, float min_variance) {
 }
 
 // vsm: Chebyshev's bound on (d, d^2).
-float shadow_vsm(int cascade, ShadowCoord coord) {
-    const vec4 moments = fetch_moments(cascade, coord.uv);
+float vsm_visibility(vec4 moments, float receiver) {
     const float min_variance = kMomentDepthTolerance * kMomentDepthTolerance;
-    const float p_max = chebyshev_upper_bound(moments.xy, 1.0 - coord.depth, min_variance);
-    return reduce_light_bleeding(p_max, frame.moment_params.x);
+    return chebyshev_upper_bound(moments.xy, receiver, min_variance);
 }
 
 // evsm: the bound on exponentially warped depths (Lauritzen & McCool 2008). The warp
 // makes the receiver's distance to far occluders huge relative to the variance, which
 // suppresses most of VSM's bleeding; the negative warp (4 components) bounds the other
 // side. The tolerance is scaled by the warp's slope, d/dd e^{c w} = 2 c e^{c w}.
-float shadow_evsm(int cascade, ShadowCoord coord) {
-    const vec2 exponents = frame.moment_params.yz;
-    const vec2 warped = evsm_warp(1.0 - coord.depth, exponents);
+float evsm_visibility(vec4 moments, float receiver, vec2 exponents) {
+    const vec2 warped = evsm_warp(receiver, exponents);
     const vec2 tolerance = kMomentDepthTolerance * 2.0 * exponents * abs(warped);
-    const vec4 moments = fetch_moments(cascade, coord.uv);
     float p_max = chebyshev_upper_bound(moments.xy, warped.x, tolerance.x * tolerance.x);
     if (kEvsmComponents == 4u) p_max = min(p_max, chebyshev_upper_bound(moments.zw, warped.y, tolerance.y * tolerance.y));
-    return reduce_light_bleeding(p_max, frame.moment_params.x);
+    return p_max;
 }
 
 // Peters & Klein 2015, Algorithm 3 ("Hamburger 4MSM"): the shadow intensity, the
@@ -92,11 +88,29 @@ float msm_hamburger_intensity(vec4 moments, float receiver, float moment_bias) {
 
 // msm: four moments, optionally stored with the optimized quantization (an affine map,
 // so it commutes with the filtering and is undone after it).
-float shadow_msm(int cascade, ShadowCoord coord) {
-    vec4 moments = fetch_moments(cascade, coord.uv);
+float msm_visibility(vec4 moments, float receiver) {
     if (kMsmQuantized) moments = msm_dequantize(moments);
-    const float intensity = msm_hamburger_intensity(moments, 1.0 - coord.depth, frame.moment_params.w);
-    return reduce_light_bleeding(1.0 - intensity, frame.moment_params.x);
+    return 1.0 - msm_hamburger_intensity(moments, receiver, frame.moment_params.w);
+}
+
+// The visibility of a receiver at `receiver` (distance, 0..1, larger = farther from the
+// light) through filtered `moments`, for the configured moment filter, with light-bleeding
+// reduction. Shared by the sun's cascades and the spot and point lights (local_lights.glsl).
+float moments_visibility(vec4 moments, float receiver) {
+    float visibility;
+    if (kFilterMode == PENUMBRA_FILTER_EVSM) {
+        visibility = evsm_visibility(moments, receiver, frame.moment_params.yz);
+    } else if (kFilterMode == PENUMBRA_FILTER_MSM) {
+        visibility = msm_visibility(moments, receiver);
+    } else {
+        visibility = vsm_visibility(moments, receiver);
+    }
+    return reduce_light_bleeding(visibility, frame.moment_params.x);
+}
+
+// vsm, evsm, msm through one cascade: the receiver's distance is 1 - its reverse-Z depth.
+float shadow_moment_filter(int cascade, ShadowCoord coord) {
+    return moments_visibility(fetch_moments(cascade, coord.uv), 1.0 - coord.depth);
 }
 
 #endif

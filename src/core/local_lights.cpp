@@ -88,6 +88,7 @@ void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vec
     for (LocalShadowSlot& slot : plan.slots) {
         const Light& light = scene.lights[slot.light];
         slot.near_plane = nearest_caster_distance(light.position, caster_boxes, light.range);
+        slot.far_plane = light.range;
         if (light.type == LightType::Spot) {
             slot.view_projection = {spot_shadow_view_projection(light, slot.near_plane)};
         } else {

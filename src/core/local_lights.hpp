@@ -35,6 +35,7 @@ struct LocalShadowSlot {
     uint32_t first_layer = 0;  // spot: 1 layer; point: 6 (faces +X, -X, +Y, -Y, +Z, -Z)
     uint32_t resolution = 0;   // texels per side actually used in each of its layers
     float near_plane = kMinLocalShadowNear;
+    float far_plane = 0.0f;                  // the light's range
     std::vector<glm::mat4> view_projection;  // world -> reverse-Z clip, one per layer
 };
 

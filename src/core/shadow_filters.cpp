@@ -26,6 +26,11 @@ bool is_moment_filter(ShadowFilter filter) {
     return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
 }
 
+glm::vec2 clamped_evsm_exponents(const FilterSettings& filter) {
+    return glm::min(glm::vec2(filter.evsm_positive_exponent, filter.evsm_negative_exponent),
+                    glm::vec2(kEvsmMaxExponentFloat32));
+}
+
 int pcss_filter_taps(PcssQuality quality) {
     switch (quality) {
         case PcssQuality::Low:

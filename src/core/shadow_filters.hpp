@@ -24,6 +24,10 @@ int pcss_filter_taps(PcssQuality quality);
 // float storage (Lauritzen's EVSM: 42 for fp32; 5.54 would be the limit for fp16).
 constexpr float kEvsmMaxExponentFloat32 = 42.0f;
 
+// The EVSM exponents (positive, negative) the shaders use: every moment format is 32-bit
+// float or 16-bit UNORM (MSM only), so they are clamped to the fp32 limit.
+glm::vec2 clamped_evsm_exponents(const FilterSettings& filter);
+
 // The receiver slope (metres of light-space depth per metre across) beyond which the
 // receiver-plane depth gradient is clamped: tan(84 degrees). Steeper gradients come from
 // grazing receivers or from screen-space derivatives taken across a silhouette.

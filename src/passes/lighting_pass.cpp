@@ -55,7 +55,7 @@ LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout ma
     targets_.depth = create_target(context, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT);
 
-    const std::array<VkDescriptorSetLayoutBinding, 7> bindings{{
+    const std::array<VkDescriptorSetLayoutBinding, 8> bindings{{
         {PENUMBRA_BINDING_FRAME_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {PENUMBRA_BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
@@ -69,6 +69,8 @@ LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout ma
          nullptr},
         {PENUMBRA_BINDING_LOCAL_SHADOW_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
          VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {PENUMBRA_BINDING_LOCAL_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+         nullptr},
     }};
     frame_set_layout_ = gpu::create_descriptor_set_layout(context, bindings);
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout_, material_set_layout};

@@ -54,9 +54,7 @@ LocalShadowPass::LocalShadowPass(const gpu::Context& context, VkDescriptorSetLay
 }
 
 void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet set, const DrawData& data,
-                             const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias,
-                             gpu::GpuTimer* timer) const {
-    gpu::TimedScope scope(timer, cmd, "shadow_local");
+                             const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias) const {
     gpu::transition(cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set, 0, nullptr);
     VkDeviceSize offset = 0;

@@ -13,7 +13,6 @@
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
-#include "gpu/timestamps.hpp"
 #include "passes/draw_data.hpp"
 
 namespace penumbra::passes {
@@ -36,10 +35,9 @@ public:
     const gpu::Image& shadow_map() const { return shadow_map_; }
 
     // Renders `layers` (others are cleared to "no caster") and leaves the map ready for
-    // fragment-shader sampling. With a timer, one scope "shadow_local".
+    // fragment-shader sampling.
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const DrawData& data,
-                const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias,
-                gpu::GpuTimer* timer = nullptr) const;
+                const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias) const;
 
     // Without shadowed lights: only moves the map into the layout the lighting pass binds.
     void record_placeholder(VkCommandBuffer cmd) const;

@@ -1,20 +1,16 @@
 #pragma once
-// Moments pass for the prefiltered shadow filters (vsm, evsm, msm; docs/filters.md).
+// Moments pass for the prefiltered shadow filters (vsm, evsm, msm; docs/filters.md) of the sun.
 // For every cascade it renders the casters into one layer of a layered colour target
 // that holds the moments of their distance from the light (shaders/include/moments.glsl),
 // depth-tested against its own layered reverse-Z depth attachment, after a full-screen
 // triangle at the far plane has written the moments of "no caster". Then, optionally,
-// a separable Gaussian blur per layer: a horizontal pass into a scratch image and a
-// vertical pass back (Donnelly & Lauritzen 2006 prefilter the moments this way).
-//
-// Formats: RG32F for VSM and 2-component EVSM, RGBA32F for 4-component EVSM and MSM,
-// RGBA16_UNORM for MSM with the optimized quantization (Peters & Klein 2015).
+// the separable Gaussian blur of passes/moments_blur.hpp (which also names the formats).
 // Casters render per cascade (no multiview variant); the depth attachment is a complete
 // reverse-Z shadow map, so the renderer binds it where a depth map is expected.
 #include <vulkan/vulkan.h>
 
-#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/shadow_settings.hpp"
@@ -22,6 +18,7 @@
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
+#include "passes/moments_blur.hpp"
 
 namespace penumbra::passes {
 
@@ -31,8 +28,6 @@ public:
     MomentsPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
                 uint32_t cascade_count, const FilterSettings& filter);
 
-    static VkFormat moments_format(const FilterSettings& filter);
-
     // Set 0 of the moments pipelines: binding 0 = the frame uniform buffer (vertex and
     // fragment stages: the encoding reads the EVSM exponents).
     VkDescriptorSetLayout frame_set_layout() const { return frame_set_layout_; }
@@ -40,7 +35,8 @@ public:
     const gpu::Image& depth() const { return depth_; }
     // Bilinear where the device filters the moments format linearly, else nearest.
     VkSampler moments_sampler() const { return sampler_; }
-    bool has_blur() const { return blur_radius_ > 0; }
+    // The moments, the depth attachment and the blur's scratch image.
+    uint64_t memory_bytes() const;
 
     // Records moments (and blur) for every cascade; draw_lists[c] are the draws (indices
     // into data.draws) for cascade c. Leaves moments() and depth() in FragmentSampled.
@@ -50,25 +46,17 @@ public:
 private:
     void render_cascade(VkCommandBuffer cmd, const DrawData& data, const std::vector<uint32_t>& draws,
                         uint32_t cascade) const;
-    void blur(VkCommandBuffer cmd) const;
-    void blur_direction(VkCommandBuffer cmd, VkDescriptorSet source, const gpu::Image& target, bool horizontal) const;
 
     uint32_t resolution_;
     uint32_t cascade_count_;
-    uint32_t blur_radius_;
     gpu::Image moments_;
-    gpu::Image scratch_;  // the blur's intermediate (only with a blur)
     gpu::Image depth_;
     gpu::UniqueSampler sampler_;
     gpu::UniqueDescriptorSetLayout frame_set_layout_;
-    gpu::UniqueDescriptorSetLayout blur_set_layout_;
-    gpu::UniqueDescriptorPool blur_pool_;
-    std::array<VkDescriptorSet, 2> blur_sets_{};  // [0] reads moments_, [1] reads scratch_
     gpu::UniquePipelineLayout caster_layout_;
-    gpu::UniquePipelineLayout blur_layout_;
     gpu::UniquePipeline far_plane_;
     gpu::UniquePipeline casters_;
-    gpu::UniquePipeline blur_;
+    std::optional<MomentsBlur> blur_;
 };
 
 }  // namespace penumbra::passes

@@ -39,6 +39,8 @@ static_assert(offsetof(TapCeilingPushConstants, counts) == 16);
 static_assert(sizeof(TapCeilingPushConstants) == 32);
 
 static_assert(sizeof(BlurPushConstants) == 16);
+static_assert(offsetof(LocalMomentsPushConstants, depth_range) == 16);
+static_assert(sizeof(LocalMomentsPushConstants) == 32);
 
 static_assert(sizeof(LocalLight) == 80);
 static_assert(offsetof(LocalLightUniforms, lights) == 64 * PENUMBRA_MAX_LOCAL_SHADOW_LAYERS);

@@ -1,7 +1,5 @@
 #include "renderer/filter_uniforms.hpp"
 
-#include <algorithm>
-
 #include "core/shadow_filters.hpp"
 
 namespace penumbra::renderer {
@@ -17,11 +15,8 @@ void fill_filter_uniforms(shader::FrameUniforms& frame, const Scene& scene, cons
     const FilterSettings& filter = settings.filter;
     frame.filter_params = glm::vec4(static_cast<float>(filter.pcf_radius), filter.poisson_radius,
                                     filter.pcss_max_penumbra, 1.0f / static_cast<float>(settings.cascades.resolution));
-    // Every moment format is 32-bit float or 16-bit UNORM (MSM only), so EVSM's exponents
-    // are clamped to the fp32 limit.
-    frame.moment_params =
-        glm::vec4(filter.light_bleeding_reduction, std::min(filter.evsm_positive_exponent, kEvsmMaxExponentFloat32),
-                  std::min(filter.evsm_negative_exponent, kEvsmMaxExponentFloat32), filter.msm_moment_bias);
+    const glm::vec2 exponents = clamped_evsm_exponents(filter);
+    frame.moment_params = glm::vec4(filter.light_bleeding_reduction, exponents.x, exponents.y, filter.msm_moment_bias);
     frame.filter_options = glm::uvec4(frame_index, 0u, 0u, 0u);
 }
 

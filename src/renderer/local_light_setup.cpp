@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/shadow_filters.hpp"
+
 namespace penumbra::renderer {
 
 static_assert(PENUMBRA_MAX_LOCAL_LIGHTS == kMaxLocalLights);
@@ -57,7 +59,7 @@ shader::LocalLightUniforms build_local_light_uniforms(const Scene& scene, const 
     uniforms.counts = glm::vec4(static_cast<float>(plan.local_lights.size()), static_cast<float>(visibility_slot),
                                 settings.shadow.bias.normal_offset, texel_uv);
     uniforms.filter_params = glm::vec4(static_cast<float>(settings.shadow.filter.pcf_radius),
-                                       settings.shadow.filter.pcss_max_penumbra, 0.0f, 0.0f);
+                                       settings.shadow.filter.pcss_max_penumbra, kMaxReceiverSlope, 0.0f);
     return uniforms;
 }
 
@@ -87,8 +89,8 @@ std::vector<LocalShadowStats> local_shadow_stats(const LocalShadowPlan& plan,
                                                  const passes::DrawData& data) {
     std::vector<LocalShadowStats> stats;
     for (const LocalShadowSlot& slot : plan.slots) {
-        LocalShadowStats light{slot.light, static_cast<uint32_t>(slot.view_projection.size()), slot.resolution,
-                               slot.near_plane, 0, 0};
+        LocalShadowStats light{
+            slot.light, static_cast<uint32_t>(slot.view_projection.size()), slot.resolution, slot.near_plane, 0, 0};
         for (const passes::LocalShadowLayer& layer : layers) {
             if (layer.layer < slot.first_layer || layer.layer >= slot.first_layer + light.layers) continue;
             light.draws += static_cast<uint32_t>(layer.draws.size());

@@ -13,10 +13,9 @@
 #include "gpu/resources.hpp"
 #include "passes/geometry_aov_pass.hpp"
 #include "passes/lighting_pass.hpp"
-#include "passes/local_shadow_pass.hpp"
 #include "passes/shadow_pass.hpp"
 #include "renderer/gpu_scene.hpp"
-#include "renderer/local_light_setup.hpp"
+#include "renderer/local_shadow_resources.hpp"
 #include "renderer/shadow_filter_resources.hpp"
 
 namespace penumbra::renderer {
@@ -95,17 +94,9 @@ struct Renderer::Resources {
     gpu::GpuTimer timer;
     // Spot and point lights (docs/local-lights.md): which lights are shadowed is fixed at
     // construction; their matrices follow the scene's lights every frame.
-    LocalShadowPlan local_plan;
-    passes::LocalShadowPass local_shadow_pass;
-    gpu::Buffer local_uniforms;
-    gpu::UniqueSampler local_depth_sampler;
-    VkDescriptorSet local_shadow_set = VK_NULL_HANDLE;
-    std::vector<passes::LocalShadowLayer> local_layers;  // this frame's culled casters per layer
+    LocalShadowResources local_shadows;
 
     Resources(const gpu::Context& context, const Scene& scene, const RenderSettings& settings)
-        : Resources(context, scene, settings, plan_local_shadows(scene, settings.local_shadows)) {}
-
-    Resources(const gpu::Context& context, const Scene& scene, const RenderSettings& settings, LocalShadowPlan plan)
         : gpu_scene(context, scene),
           shadow_pass(context, gpu_scene.draw_data().material_set_layout, settings.shadow.cascades.resolution,
                       static_cast<uint32_t>(settings.shadow.cascades.count), settings.shadow.strategy),
@@ -118,11 +109,7 @@ struct Renderer::Resources {
           readback(create_readback(context, settings)),
           commands(context),
           timer(context, kMaxTimedScopes),
-          local_plan(std::move(plan)),
-          local_shadow_pass(context, gpu_scene.draw_data().material_set_layout,
-                            std::max(local_plan.atlas_resolution, 16u), local_plan.layer_count),
-          local_uniforms(gpu::create_buffer(context, sizeof(shader::LocalLightUniforms),
-                                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload)) {
+          local_shadows(context, scene, settings, gpu_scene.draw_data().material_set_layout) {
         // Hardware depth comparison with bilinear filtering. Clamp-to-edge rather than a
         // border: the shader already treats lookups outside the map as lit, and lavapipe
         // (Mesa 22.3) returns the border colour for in-range taps of linear-compare array
@@ -135,8 +122,8 @@ struct Renderer::Resources {
         shadow_sampler = gpu::create_sampler(context, sampler);
 
         const std::array<VkDescriptorPoolSize, 2> sizes{
-            {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 4}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5}}};
-        descriptor_pool = gpu::create_descriptor_pool(context, 3, sizes);
+            {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 3}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}}};
+        descriptor_pool = gpu::create_descriptor_pool(context, 2, sizes);
         shadow_frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, shadow_pass.frame_set_layout());
         lighting_frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, lighting_pass.frame_set_layout());
         for (VkDescriptorSet set : {shadow_frame_set, lighting_frame_set}) {
@@ -144,28 +131,11 @@ struct Renderer::Resources {
                                       sizeof(shader::FrameUniforms));
         }
         filters.write_lighting_bindings(lighting_frame_set, shadow_pass.shadow_map(), shadow_sampler);
-        write_local_light_bindings(context);
+        local_shadows.write_lighting_bindings(lighting_frame_set, shadow_sampler);
         if (settings.geometry_aovs) {
             geometry_aovs.emplace(context, gpu_scene.draw_data().material_set_layout, settings.width, settings.height,
                                   frame_uniforms.get(), sizeof(shader::FrameUniforms));
         }
-    }
-
-    void write_local_light_bindings(const gpu::Context& context) {
-        gpu::SamplerDesc raw_depth;
-        raw_depth.filter = VK_FILTER_NEAREST;
-        raw_depth.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-        local_depth_sampler = gpu::create_sampler(context, raw_depth);
-        local_shadow_set = gpu::allocate_descriptor_set(context, descriptor_pool, local_shadow_pass.set_layout());
-        gpu::write_uniform_buffer(context, local_shadow_set, 0, local_uniforms.get(),
-                                  sizeof(shader::LocalLightUniforms));
-        gpu::write_uniform_buffer(context, lighting_frame_set, PENUMBRA_BINDING_LOCAL_LIGHTS, local_uniforms.get(),
-                                  sizeof(shader::LocalLightUniforms));
-        const VkImageView map = local_shadow_pass.shadow_map().view;
-        gpu::write_combined_image_sampler(context, lighting_frame_set, PENUMBRA_BINDING_LOCAL_SHADOW_MAP, map,
-                                          shadow_sampler);
-        gpu::write_combined_image_sampler(context, lighting_frame_set, PENUMBRA_BINDING_LOCAL_SHADOW_DEPTH, map,
-                                          local_depth_sampler);
     }
 };
 
@@ -174,7 +144,7 @@ Renderer::Renderer(const gpu::Context& context, const Scene& scene, const Render
       scene_(scene),
       settings_(settings),
       resources_(std::make_unique<Resources>(context, scene, settings)) {
-    const std::string warning = local_shadow_budget_warning(resources_->local_plan, settings.local_shadows);
+    const std::string warning = resources_->local_shadows.budget_warning(settings.local_shadows);
     if (!warning.empty()) std::cerr << warning << std::endl;
 }
 
@@ -217,10 +187,8 @@ void Renderer::update_settings(const RenderSettings& settings) {
 }
 
 uint64_t Renderer::shadow_map_bytes() const {
-    // Without shadowed local lights their map is a 16 x 16 placeholder: not counted.
-    const uint64_t local =
-        resources_->local_plan.layer_count > 0 ? resources_->local_shadow_pass.shadow_map().memory_size : 0;
-    return resources_->shadow_pass.shadow_map().memory_size + resources_->filters.memory_bytes() + local;
+    return resources_->shadow_pass.shadow_map().memory_size + resources_->filters.memory_bytes() +
+           resources_->local_shadows.memory_bytes();
 }
 
 FrameImages Renderer::render(const Camera& camera, ReadbackMode readback) {
@@ -253,19 +221,10 @@ CulledCasters Renderer::prepare_frame(const Camera& camera) {
     CulledCasters casters =
         cull_casters(last_frame_.cascades, resources_->gpu_scene.draw_data(), settings_.shadow.cull_casters);
     last_frame_.cascade_stats = casters.stats;
-    prepare_local_lights();
+    last_frame_.local_shadow_stats =
+        resources_->local_shadows.prepare(scene_, resources_->gpu_scene.draw_data(), settings_);
     last_frame_.cpu_times.culling_ms = milliseconds_since(start);
     return casters;
-}
-
-void Renderer::prepare_local_lights() {
-    Resources& r = *resources_;
-    const passes::DrawData& draw_data = r.gpu_scene.draw_data();
-    fit_local_shadows(r.local_plan, scene_, draw_bounds(draw_data));
-    const shader::LocalLightUniforms uniforms = build_local_light_uniforms(scene_, r.local_plan, settings_);
-    std::memcpy(r.local_uniforms.mapped, &uniforms, sizeof(uniforms));
-    r.local_layers = cull_local_casters(scene_, r.local_plan, draw_data, settings_.shadow.cull_casters);
-    last_frame_.local_shadow_stats = local_shadow_stats(r.local_plan, r.local_layers, draw_data);
 }
 
 void Renderer::record_frame(VkCommandBuffer cmd, const CulledCasters& casters, ReadbackMode readback) {
@@ -281,13 +240,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, const CulledCasters& casters, R
             resources_->shadow_pass.record(cmd, resources_->shadow_frame_set, draw_data, casters.lists,
                                            settings_.shadow.bias, &timer);
         }
-        if (resources_->local_plan.layer_count > 0) {
-            resources_->local_shadow_pass.record(cmd, resources_->local_shadow_set, draw_data,
-                                                 resources_->local_layers, settings_.shadow.bias, &timer);
-        } else {
-            // Nothing samples the placeholder map, but the lighting set binds it in this layout.
-            resources_->local_shadow_pass.record_placeholder(cmd);
-        }
+        resources_->local_shadows.record(cmd, draw_data, settings_, &timer);
         gpu::TimedScope lighting_scope(&timer, cmd, "lighting");
         resources_->lighting_pass.record(cmd, resources_->lighting_frame_set, draw_data);
         if (resources_->geometry_aovs) resources_->geometry_aovs->record(cmd, draw_data);

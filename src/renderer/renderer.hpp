@@ -110,7 +110,6 @@ public:
 
 private:
     CulledCasters prepare_frame(const Camera& camera);
-    void prepare_local_lights();  // spot/point shadow matrices, uniforms and caster lists
     void record_frame(VkCommandBuffer cmd, const CulledCasters& casters, ReadbackMode readback);
     FrameImages read_images() const;
 

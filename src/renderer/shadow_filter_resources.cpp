@@ -55,9 +55,7 @@ void ShadowFilterResources::record_moments(VkCommandBuffer cmd, const passes::Dr
 
 uint64_t ShadowFilterResources::memory_bytes() const {
     if (!moments_pass_) return 0;
-    // The blur's scratch image has the moments' size and format.
-    const uint64_t moments = moments_pass_->moments().memory_size;
-    return moments * (moments_pass_->has_blur() ? 2u : 1u) + moments_pass_->depth().memory_size;
+    return moments_pass_->memory_bytes();
 }
 
 }  // namespace penumbra::renderer

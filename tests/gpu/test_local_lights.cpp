@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "analytic_shadow.hpp"
+#include "core/shadow_filters.hpp"
 #include "render_fixture.hpp"
 
 namespace penumbra::testing {
@@ -84,17 +85,27 @@ size = [1.5, 0.5, 1.0]
 translation = [0.0, 2.0, 0.0]
 )";
 
-TEST(LocalLights, SpotShadowMatchesThePerspectiveProjectionOfTheBox) {
+struct SpotFootprint {
+    double iou = 0.0;
+    size_t union_pixels = 0;
+    size_t outside_cone = 0;      // ground pixels outside the outer cone
+    size_t lit_outside_cone = 0;  // of those, with any visibility
+    double umbra_mean = 0.0;      // mean visibility inside the shadow, >= 10 cm from its edge
+    double lit_mean = 0.0;        // mean visibility outside it, >= 10 cm from its edge, inside the inner cone
+};
+
+SpotFootprint measure_spot_footprint(ShadowFilter filter) {
     const Scene scene = scene_from_toml(kSpotScene);
     RenderSettings settings = small_settings(320, 240);
-    settings.shadow.filter.mode = ShadowFilter::Hard;
+    settings.shadow.filter.mode = filter;
     const RenderedFrame frame = render_light(scene, settings, 0);
     const Light& spot = scene.lights[0];
     const Aabb box{{-0.75f, 1.75f, -0.5f}, {0.75f, 2.25f, 0.5f}};
     const auto polygon = point_shadow_polygon(box, spot.position);
     const float cos_inner = std::cos(glm::radians(spot.inner_angle_degrees));
     const float cos_outer = std::cos(glm::radians(spot.outer_angle_degrees));
-    size_t intersection = 0, union_count = 0, outside_cone = 0, lit_outside_cone = 0;
+    SpotFootprint result;
+    size_t intersection = 0, umbra = 0, lit = 0;
     for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
         const glm::vec4 p = frame.images.world_position[i];
         if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;  // ground pixels only
@@ -102,25 +113,61 @@ TEST(LocalLights, SpotShadowMatchesThePerspectiveProjectionOfTheBox) {
         const float cos_angle = glm::dot(glm::normalize(point - spot.position), glm::normalize(spot.direction));
         const float visibility = frame.images.visibility[i] / 65535.0f;
         if (cos_angle < cos_outer) {
-            ++outside_cone;
-            if (visibility > 0.0f) ++lit_outside_cone;
+            ++result.outside_cone;
+            if (visibility > 0.0f) ++result.lit_outside_cone;
             continue;
         }
         if (cos_angle < cos_inner) continue;  // the smooth cone edge
-        if (distance_to_polygon_edge(polygon, glm::vec2(point.x, point.z)) < 0.02f) continue;
-        const bool truth = inside_convex_polygon(polygon, glm::vec2(point.x, point.z));
+        const glm::vec2 xz(point.x, point.z);
+        const float edge_distance = distance_to_polygon_edge(polygon, xz);
+        if (edge_distance < 0.02f) continue;
+        const bool truth = inside_convex_polygon(polygon, xz);
         const bool shadowed = visibility < 0.5f;
         intersection += truth && shadowed;
-        union_count += truth || shadowed;
+        result.union_pixels += truth || shadowed;
+        if (edge_distance < 0.1f) continue;
+        (truth ? result.umbra_mean : result.lit_mean) += visibility;
+        ++(truth ? umbra : lit);
     }
-    const double iou = union_count ? double(intersection) / double(union_count) : 0.0;
-    std::printf("spot footprint IoU %.4f (%zu / %zu px), ground outside the cone %zu px, lit there %zu\n", iou,
-                intersection, union_count, outside_cone, lit_outside_cone);
-    EXPECT_GT(union_count, 500u);
-    EXPECT_GE(iou, 0.95);
-    EXPECT_GT(outside_cone, 1000u);
-    EXPECT_EQ(lit_outside_cone, 0u);
+    result.iou = result.union_pixels ? double(intersection) / double(result.union_pixels) : 0.0;
+    result.umbra_mean /= double(std::max<size_t>(umbra, 1));
+    result.lit_mean /= double(std::max<size_t>(lit, 1));
+    EXPECT_GT(umbra, 100u);
+    EXPECT_GT(lit, 1000u);
+    return result;
 }
+
+// Every filter mode on a spot light: the footprint of the box is the perspective
+// projection of the box from the light, dark inside and lit outside, nothing beyond the cone.
+class SpotFilters : public ::testing::TestWithParam<ShadowFilter> {};
+
+TEST_P(SpotFilters, ShadowMatchesThePerspectiveProjectionOfTheBox) {
+    const SpotFootprint footprint = measure_spot_footprint(GetParam());
+    std::printf(
+        "spot footprint IoU %.4f (%zu px), umbra mean %.4f, lit mean %.4f, ground outside the cone %zu px, "
+        "lit there %zu\n",
+        footprint.iou, footprint.union_pixels, footprint.umbra_mean, footprint.lit_mean, footprint.outside_cone,
+        footprint.lit_outside_cone);
+    EXPECT_GT(footprint.union_pixels, 500u);
+    EXPECT_GE(footprint.iou, 0.95);
+    EXPECT_LE(footprint.umbra_mean, 0.02);
+    EXPECT_GE(footprint.lit_mean, 0.98);
+    EXPECT_GT(footprint.outside_cone, 1000u);
+    EXPECT_EQ(footprint.lit_outside_cone, 0u);
+}
+
+std::string filter_test_name(const ::testing::TestParamInfo<ShadowFilter>& info) {
+    for (const auto& [name, filter] : shadow_filter_names()) {
+        if (filter == info.param) return name;
+    }
+    return "unknown";
+}
+
+INSTANTIATE_TEST_SUITE_P(LocalLights, SpotFilters,
+                         ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Poisson,
+                                           ShadowFilter::Pcss, ShadowFilter::Vsm, ShadowFilter::Evsm,
+                                           ShadowFilter::Msm),
+                         filter_test_name);
 
 // A closed room (8 x 6 x 8 m, walls 0.2 m thick) with a point light in the middle and a
 // 0.6 m cube between the light and each of the six surfaces.
@@ -261,10 +308,10 @@ TEST_P(PointLightRoom, EveryCubeFaceShadowsItsWallWithoutSeams) {
     EXPECT_LE(seam_wrong, seam_pixels / 100);
 }
 
-INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom, ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf),
-                         [](const auto& param_info) {
-                             return param_info.param == ShadowFilter::Hard ? "hard" : "pcf";
-                         });
+INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom,
+                         ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Poisson,
+                                           ShadowFilter::Pcss, ShadowFilter::Vsm, ShadowFilter::Msm),
+                         filter_test_name);
 
 // PCSS for a spot: the penumbra of the box grows with the light's radius
 // (w = (d_receiver - d_blocker) * radius / d_blocker: 0.5 m here for radius 0.5).
@@ -377,6 +424,172 @@ TEST(LocalLights, LightsBeyondTheBudgetRenderUnshadowedWithOneWarning) {
             EXPECT_EQ(under_shadowed, 0u) << "light 8 is beyond the budget: unshadowed";
         }
     }
+}
+
+// --- Receiver-plane bias on a spot light: no acne on grazing ground, contact stays. ---
+
+// A low spot light (2 m up, aimed 7 m ahead) over a plane with a 0.6 m cube on it: most of
+// the lit ground is seen at 8 to 30 degrees of elevation, a steep slope in the light's
+// depth. Depth and normal-offset biases are off, so only the receiver-plane bias stands
+// between the ground and acne.
+constexpr char kLowSpotScene[] = R"(
+[camera]
+eye = [5.0, 7.0, -1.0]
+target = [0.0, 0.0, 2.5]
+fov = 60.0
+far = 40.0
+
+[[lights]]
+type = "spot"
+position = [0.0, 2.0, -6.0]
+direction = [0.0, -2.0, 7.0]
+inner_angle = 38.0
+outer_angle = 40.0
+range = 20.0
+radius = 0.02
+intensity = 40.0
+
+[[objects]]
+type = "plane"
+size = [16.0, 20.0]
+
+[[objects]]
+type = "box"
+size = 0.6
+translation = [0.0, 0.3, 1.5]
+)";
+
+struct LocalAcneAndContact {
+    double lit_exact = 0.0;       // lit ground (away from the shadow edge) with visibility >= 0.99
+    double contact_shadow = 0.0;  // shadowed ground next to the cube's base with visibility <= 0.02
+};
+
+LocalAcneAndContact measure_local_acne(ShadowFilter filter, bool receiver_plane_bias) {
+    const Scene scene = scene_from_toml(kLowSpotScene);
+    RenderSettings settings = small_settings(320, 240);
+    settings.shadow.bias = {0.0f, 0.0f, 0.0f, 0.0f};
+    settings.shadow.filter.mode = filter;
+    settings.shadow.filter.receiver_plane_bias = receiver_plane_bias;
+    const RenderedFrame frame = render_light(scene, settings, 0);
+    const Light& spot = scene.lights[0];
+    const Aabb cube{{-0.3f, 0.0f, 1.2f}, {0.3f, 0.6f, 1.8f}};
+    const auto polygon = point_shadow_polygon(cube, spot.position);
+    const float cos_inner = std::cos(glm::radians(spot.inner_angle_degrees));
+    size_t lit = 0, lit_exact = 0, contact = 0, contact_dark = 0;
+    for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+        const glm::vec4 p = frame.images.world_position[i];
+        if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;
+        const glm::vec3 point(p);
+        const glm::vec3 to_point = glm::normalize(point - spot.position);
+        if (glm::dot(to_point, glm::normalize(spot.direction)) < cos_inner) continue;
+        if (-to_point.y < std::sin(glm::radians(8.0f))) continue;  // beyond the slope clamp (tan 84 degrees)
+        const glm::vec2 xz(point.x, point.z);
+        if (distance_to_polygon_edge(polygon, xz) < 0.1f) continue;
+        const float visibility = frame.images.visibility[i] / 65535.0f;
+        if (!inside_convex_polygon(polygon, xz)) {
+            ++lit;
+            lit_exact += visibility >= 0.99f;
+            continue;
+        }
+        const glm::vec2 outside = glm::abs(xz - glm::vec2(0.0f, 1.5f)) - glm::vec2(0.3f);
+        if (glm::length(glm::max(outside, glm::vec2(0.0f))) > 0.5f) continue;  // within 0.5 m of the base
+        ++contact;
+        contact_dark += visibility <= 0.02f;
+    }
+    EXPECT_GT(lit, 5000u);
+    EXPECT_GT(contact, 40u);
+    return {static_cast<double>(lit_exact) / std::max<size_t>(lit, 1),
+            static_cast<double>(contact_dark) / std::max<size_t>(contact, 1)};
+}
+
+TEST(LocalLights, ReceiverPlaneBiasRemovesAcneOnGrazingGroundWithoutDetachingContactShadows) {
+    for (const ShadowFilter filter : {ShadowFilter::Pcf, ShadowFilter::Poisson, ShadowFilter::Pcss}) {
+        const LocalAcneAndContact without = measure_local_acne(filter, false);
+        const LocalAcneAndContact with = measure_local_acne(filter, true);
+        std::printf("spot, filter %d: lit ground exact %.4f without / %.4f with receiver-plane bias; contact %.4f\n",
+                    static_cast<int>(filter), without.lit_exact, with.lit_exact, with.contact_shadow);
+        EXPECT_LT(without.lit_exact, 0.5) << "without any bias the grazing ground should show acne";
+        EXPECT_GE(with.lit_exact, 0.99) << "receiver-plane bias should remove the acne";
+        EXPECT_GE(with.contact_shadow, 0.99) << "the shadow next to the cube's base should stay attached";
+    }
+}
+
+// --- Moment filters on a spot light: vsm bleeds in the classic setup, evsm and msm much less. ---
+
+// The sun's bleeding setup (test_filters.cpp) under a spot light straight above: a 0.5 m
+// square 4.5 m up over a 4 m table 0.8 m up; the camera under the table sees only the
+// table's umbra (truth: visibility 0), crossed by the small square's shadow edge (0.36 m
+// from the centre), where Chebyshev's bound mixes two occluder distances.
+constexpr char kSpotBleedingScene[] = R"(
+[camera]
+eye = [0.0, 0.5, 0.0]
+target = [0.0, 0.0, 0.001]
+up = [0.0, 0.0, -1.0]
+fov = 90.0
+near = 0.05
+far = 3.0
+
+[[lights]]
+type = "spot"
+position = [0.0, 14.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+inner_angle = 28.0
+outer_angle = 30.0
+range = 20.0
+intensity = 40.0
+
+[[objects]]
+type = "plane"
+size = [12.0, 12.0]
+
+[[objects]]
+type = "box"
+size = [4.0, 0.2, 4.0]
+translation = [0.0, 0.8, 0.0]
+
+[[objects]]
+type = "box"
+size = [0.5, 0.2, 0.5]
+translation = [0.0, 4.5, 0.0]
+)";
+
+struct SpotBleeding {
+    float max = 0.0f;
+    float mean = 0.0f;
+};
+
+SpotBleeding measure_spot_bleeding(ShadowFilter filter) {
+    const Scene scene = scene_from_toml(kSpotBleedingScene);
+    RenderSettings settings = small_settings(160, 120);
+    settings.shadow.filter.mode = filter;
+    settings.shadow.filter.blur_radius = 4;
+    settings.shadow.filter.light_bleeding_reduction = 0.0f;  // the raw bound of each technique
+    const RenderedFrame frame = render_light(scene, settings, 0);
+    SpotBleeding bleeding;
+    double sum = 0.0;
+    for (const uint16_t value : frame.images.visibility) {
+        bleeding.max = std::max(bleeding.max, value / 65535.0f);
+        sum += value / 65535.0;
+    }
+    bleeding.mean = static_cast<float>(sum / static_cast<double>(frame.images.visibility.size()));
+    return bleeding;
+}
+
+TEST(LocalLights, SpotEvsmAndMsmBleedLessThanVsm) {
+    const SpotBleeding vsm = measure_spot_bleeding(ShadowFilter::Vsm);
+    const SpotBleeding evsm = measure_spot_bleeding(ShadowFilter::Evsm);
+    const SpotBleeding msm = measure_spot_bleeding(ShadowFilter::Msm);
+    const SpotBleeding pcf = measure_spot_bleeding(ShadowFilter::Pcf);
+    std::printf(
+        "spot light bleeding in the umbra (max / mean): vsm %.3f / %.4f, evsm %.3f / %.4f, msm %.3f / %.4f, "
+        "pcf %.3f / %.4f\n",
+        vsm.max, vsm.mean, evsm.max, evsm.mean, msm.max, msm.mean, pcf.max, pcf.mean);
+    EXPECT_EQ(pcf.max, 0.0f) << "a comparison filter cannot bleed";
+    EXPECT_GT(vsm.max, 0.15f) << "the classic setup should make VSM bleed";
+    EXPECT_LT(evsm.max, 0.5f * vsm.max);
+    EXPECT_LT(msm.max, 0.5f * vsm.max);
+    EXPECT_LT(evsm.mean, 0.5f * vsm.mean);
+    EXPECT_LT(msm.mean, 0.5f * vsm.mean);
 }
 
 }  // namespace
