@@ -47,6 +47,7 @@ LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings
         LocalShadowSlot slot;
         slot.light = i;
         slot.first_layer = plan.layer_count;
+        slot.fixed_resolution = light.shadow_resolution != 0 || settings.sizing == LocalShadowSizing::Fixed;
         slot.resolution = light.shadow_resolution != 0 ? light.shadow_resolution : settings.resolution;
         slot.view_projection.resize(layers);
         plan.layer_count += layers;
@@ -95,6 +96,59 @@ void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vec
             const auto faces = point_shadow_view_projections(light.position, slot.near_plane, light.range);
             slot.view_projection.assign(faces.begin(), faces.end());
         }
+    }
+}
+
+Sphere local_light_bounds(const Light& light) {
+    if (light.type != LightType::Spot) return {light.position, light.range};
+    const float cos_outer = std::cos(glm::radians(light.outer_angle_degrees));
+    const float radius = light.range / (2.0f * std::max(cos_outer, 1e-3f));
+    if (radius >= light.range) return {light.position, light.range};
+    return {light.position + glm::normalize(light.direction) * radius, radius};
+}
+
+namespace {
+
+uint32_t next_power_of_two(float value) {
+    uint32_t power = 1;
+    while (static_cast<float>(power) < value && power < (1u << 30)) power <<= 1;
+    return power;
+}
+
+// Whether a sphere lies entirely outside one of the camera frustum's planes (Gribb-Hartmann).
+bool sphere_outside_frustum(const glm::mat4& view_projection, const Sphere& sphere) {
+    const glm::mat4 m = glm::transpose(view_projection);
+    const std::array<glm::vec4, 6> planes{m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]};
+    for (const glm::vec4& plane : planes) {
+        const float length = glm::length(glm::vec3(plane));
+        if (length == 0.0f) continue;
+        if ((glm::dot(glm::vec3(plane), sphere.center) + plane.w) / length < -sphere.radius) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera, uint32_t viewport_height,
+                                    uint32_t max_resolution) {
+    const uint32_t min_resolution = std::min(kMinCoverageShadowResolution, max_resolution);
+    const Sphere bounds = local_light_bounds(light);
+    const float distance = glm::length(bounds.center - camera.eye);
+    if (distance <= bounds.radius) return max_resolution;
+    if (sphere_outside_frustum(camera.view_projection, bounds)) return min_resolution;
+    // The sphere's angular radius asin(r / d), in pixels at the screen's centre.
+    const float sine = bounds.radius / distance;
+    const float pixels_per_tangent = 0.5f * static_cast<float>(viewport_height) / std::tan(0.5f * camera.fov_y_radians);
+    float pixels_across = 2.0f * pixels_per_tangent * sine / std::sqrt(1.0f - sine * sine);
+    if (light.type == LightType::Point) pixels_across *= 0.5f;
+    return std::clamp(next_power_of_two(pixels_across), min_resolution, max_resolution);
+}
+
+void size_local_shadows(LocalShadowPlan& plan, const Scene& scene, const CameraView& camera, uint32_t viewport_height,
+                        uint32_t max_resolution) {
+    for (LocalShadowSlot& slot : plan.slots) {
+        if (slot.fixed_resolution) continue;
+        slot.resolution = coverage_shadow_resolution(scene.lights[slot.light], camera, viewport_height, max_resolution);
     }
 }
 

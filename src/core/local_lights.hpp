@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/bounds.hpp"
+#include "core/camera_math.hpp"
 #include "core/glm_config.hpp"
 #include "core/scene.hpp"
 
@@ -24,16 +25,26 @@ inline constexpr uint32_t kMaxLocalShadowBudget = 16;  // shadowed local lights 
 inline constexpr uint32_t kMaxLocalShadowLayers = 96;  // 16 point lights x 6 faces
 inline constexpr float kMinLocalShadowNear = 0.05f;    // metres
 
+inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest map coverage sizing picks
+
+// How a light without its own `shadow_resolution` gets its map's size.
+enum class LocalShadowSizing {
+    Coverage,  // each frame, from the light's screen coverage, up to `resolution`
+    Fixed,     // always `resolution`
+};
+
 struct LocalShadowSettings {
     uint32_t budget = 8;         // shadowed local lights; the rest render unshadowed
-    uint32_t resolution = 1024;  // texels per side of a light's map when the light sets none
+    uint32_t resolution = 1024;  // texels per side of a light's map (the largest with coverage sizing)
+    LocalShadowSizing sizing = LocalShadowSizing::Coverage;
 };
 
 // Where one local light's shadow lives and how it was fitted.
 struct LocalShadowSlot {
-    uint32_t light = 0;        // index into Scene::lights
-    uint32_t first_layer = 0;  // spot: 1 layer; point: 6 (faces +X, -X, +Y, -Y, +Z, -Z)
-    uint32_t resolution = 0;   // texels per side actually used in each of its layers
+    uint32_t light = 0;             // index into Scene::lights
+    uint32_t first_layer = 0;       // spot: 1 layer; point: 6 (faces +X, -X, +Y, -Y, +Z, -Z)
+    uint32_t resolution = 0;        // texels per side actually used in each of its layers (this frame)
+    bool fixed_resolution = false;  // set by the light's shadow_resolution or fixed sizing
     float near_plane = kMinLocalShadowNear;
     float far_plane = 0.0f;                  // the light's range
     std::vector<glm::mat4> view_projection;  // world -> reverse-Z clip, one per layer
@@ -43,7 +54,7 @@ struct LocalShadowPlan {
     std::vector<uint32_t> local_lights;  // indices into Scene::lights of the lit spot/point lights (<= 16)
     std::vector<LocalShadowSlot> slots;  // shadowed ones, in light order, within the budget
     uint32_t layer_count = 0;            // layers of the shared map
-    uint32_t atlas_resolution = 0;       // the shared map's texels per side (max of the slots)
+    uint32_t atlas_resolution = 0;       // the shared map's texels per side (the largest a slot may use)
     uint32_t over_budget = 0;            // shadow-casting local lights left unshadowed by the budget
     uint32_t beyond_light_limit = 0;     // local lights past kMaxLocalLights (not lit at all)
 };
@@ -67,6 +78,28 @@ std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position
 // Fills each slot's near plane (nearest caster within range) and matrices for the scene's
 // current light positions; `caster_boxes` are the world bounds of every draw.
 void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes);
+
+// The smallest sphere around what a local light can reach: its range around a point light;
+// for a spot, the sphere through the apex and the cone's rim at the range (centre on the
+// axis at range / (2 cos outer)), or the range sphere when that is smaller (outer > 60 deg).
+struct Sphere {
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;
+};
+Sphere local_light_bounds(const Light& light);
+
+// Texels per side a light's map needs for `camera` (rendering `viewport_height` pixels):
+// one texel per pixel across the light's bounds as seen on the screen (halved per cube
+// face of a point light, whose six faces share the view around it), rounded up to a power
+// of two and clamped to [kMinCoverageShadowResolution, max_resolution]. The camera inside
+// the bounds gets max_resolution; bounds outside the view frustum the minimum.
+uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera, uint32_t viewport_height,
+                                    uint32_t max_resolution);
+
+// Sets this frame's resolution of every slot without a fixed one (coverage sizing, up to
+// `max_resolution`, the settings' resolution).
+void size_local_shadows(LocalShadowPlan& plan, const Scene& scene, const CameraView& camera, uint32_t viewport_height,
+                        uint32_t max_resolution);
 
 // Conservative culling: false only when the box cannot cast into the layer. Spot: outside a
 // plane of its frustum (Gribb-Hartmann planes of the view projection); point: farther than

@@ -57,8 +57,9 @@ void LocalShadowResources::write_lighting_bindings(VkDescriptorSet lighting_set,
 }
 
 std::vector<LocalShadowStats> LocalShadowResources::prepare(const Scene& scene, const passes::DrawData& data,
-                                                            const RenderSettings& settings) {
+                                                            const RenderSettings& settings, const CameraView& camera) {
     fit_local_shadows(plan_, scene, draw_bounds(data));
+    size_local_shadows(plan_, scene, camera, settings.height, settings.local_shadows.resolution);
     const shader::LocalLightUniforms uniforms = build_local_light_uniforms(scene, plan_, settings);
     std::memcpy(uniforms_.mapped, &uniforms, sizeof(uniforms));
     layers_ = cull_local_casters(scene, plan_, data, settings.shadow.cull_casters);

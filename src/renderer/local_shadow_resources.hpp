@@ -30,10 +30,11 @@ public:
     // `comparison_sampler`), the raw depth and the moments (or the raw depth again).
     void write_lighting_bindings(VkDescriptorSet lighting_set, VkSampler comparison_sampler) const;
 
-    // Fits the lights' shadow matrices to the scene's current lights, fills the uniform block
-    // and culls the casters of every layer; returns the per-light statistics.
+    // Fits the lights' shadow matrices to the scene's current lights, sizes their maps by
+    // their coverage of `camera`'s view (coverage sizing), fills the uniform block and culls
+    // the casters of every layer; returns the per-light statistics.
     std::vector<LocalShadowStats> prepare(const Scene& scene, const passes::DrawData& data,
-                                          const RenderSettings& settings);
+                                          const RenderSettings& settings, const CameraView& camera);
 
     // The local shadow pass (and the moments pass) for the prepared frame, timed as
     // "shadow_local"; without shadowed lights only the placeholder's layout transition.

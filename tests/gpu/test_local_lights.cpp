@@ -592,5 +592,41 @@ TEST(LocalLights, SpotEvsmAndMsmBleedLessThanVsm) {
     EXPECT_LT(msm.mean, 0.5f * vsm.mean);
 }
 
+// --- Coverage sizing: the spot's map follows its size on the screen; its shadow stays right. ---
+
+TEST(LocalLights, CoverageSizingShrinksTheMapWithDistanceAndKeepsTheShadow) {
+    Scene scene = scene_from_toml(kSpotScene);
+    RenderSettings settings = small_settings(320, 240);
+    settings.shadow.filter.mode = ShadowFilter::Pcf;
+    uint32_t previous = 1u << 30;
+    for (const float distance : {14.0f, 40.0f, 120.0f}) {
+        scene.camera.eye = glm::normalize(glm::vec3(0.0f, 12.0f, 6.0f)) * distance;
+        scene.camera.far_plane = distance + 40.0f;
+        const RenderedFrame frame = render_light(scene, settings, 0);
+        ASSERT_EQ(frame.info.local_shadow_stats.size(), 1u);
+        const uint32_t resolution = frame.info.local_shadow_stats[0].resolution;
+        // The box's shadow stays under the box: the ground pixel nearest (0, 0, 0) is dark.
+        float best = 1e9f, visibility_at_origin = 1.0f;
+        for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+            const glm::vec4 p = frame.images.world_position[i];
+            if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;
+            const float d = glm::length(glm::vec2(p.x, p.z));
+            if (d < best) {
+                best = d;
+                visibility_at_origin = frame.images.visibility[i] / 65535.0f;
+            }
+        }
+        std::printf("camera %.0f m away: spot map %u texels, visibility under the box %.3f\n", distance, resolution,
+                    visibility_at_origin);
+        EXPECT_LT(resolution, previous) << "farther away, the spot covers fewer pixels";
+        EXPECT_LE(resolution, settings.local_shadows.resolution);
+        EXPECT_LT(visibility_at_origin, 0.05f);
+        previous = resolution;
+    }
+    settings.local_shadows.sizing = LocalShadowSizing::Fixed;
+    const RenderedFrame fixed = render_light(scene, settings, 0);
+    EXPECT_EQ(fixed.info.local_shadow_stats[0].resolution, settings.local_shadows.resolution);
+}
+
 }  // namespace
 }  // namespace penumbra::testing

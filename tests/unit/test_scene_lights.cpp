@@ -158,5 +158,81 @@ TEST(LocalShadowMath, NearPlaneFromTheNearestCaster) {
         << "inside a caster's bounds";
 }
 
+// --- Coverage sizing: a light's map follows its size on the screen. ---
+
+CameraView camera_at(const glm::vec3& eye, const glm::vec3& target) {
+    return make_camera_view(Camera{eye, target, {0.0f, 1.0f, 0.0f}, 60.0f, 0.1f, 500.0f}, 16.0f / 9.0f);
+}
+
+Light point_light(const glm::vec3& position, float range) {
+    Light light;
+    light.type = LightType::Point;
+    light.position = position;
+    light.range = range;
+    return light;
+}
+
+TEST(LocalShadowSizing, SpotBoundsHoldTheApexAndTheRim) {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {1.0f, 5.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.outer_angle_degrees = 30.0f;
+    spot.range = 10.0f;
+    const Sphere bounds = local_light_bounds(spot);
+    const float expected = 10.0f / (2.0f * std::cos(glm::radians(30.0f)));
+    EXPECT_NEAR(bounds.radius, expected, 1e-4f);
+    EXPECT_NEAR(glm::length(bounds.center - spot.position), bounds.radius, 1e-4f) << "the apex is on the sphere";
+    const glm::vec3 rim =
+        spot.position + 10.0f * glm::vec3(std::sin(glm::radians(30.0f)), -std::cos(glm::radians(30.0f)), 0.0f);
+    EXPECT_NEAR(glm::length(bounds.center - rim), bounds.radius, 1e-4f) << "the rim is on the sphere";
+    EXPECT_LE(glm::length(bounds.center - (spot.position + glm::vec3(0, -10, 0))), bounds.radius + 1e-4f)
+        << "the cap's tip is inside";
+    spot.outer_angle_degrees = 75.0f;
+    EXPECT_FLOAT_EQ(local_light_bounds(spot).radius, 10.0f) << "wide cones: the range sphere is smaller";
+    EXPECT_FLOAT_EQ(local_light_bounds(point_light({0, 0, 0}, 7.0f)).radius, 7.0f);
+}
+
+TEST(LocalShadowSizing, ResolutionHalvesWhenTheDistanceDoubles) {
+    const Light light = point_light({0.0f, 0.0f, 0.0f}, 1.0f);
+    // 1 m radius seen from 20 m with a 60-degree fov on 1080 rows: 2 * 540 / tan(30) * tan(asin(1/20)) = 93.6 px
+    // across, 46.8 per cube face -> 64.
+    const uint32_t near = coverage_shadow_resolution(light, camera_at({0, 0, 5}, {0, 0, 0}), 1080, 4096);
+    const uint32_t mid = coverage_shadow_resolution(light, camera_at({0, 0, 10}, {0, 0, 0}), 1080, 4096);
+    const uint32_t far = coverage_shadow_resolution(light, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 4096);
+    EXPECT_EQ(near, 256u);  // 383 px across at 5 m, 192 per face
+    EXPECT_EQ(mid, 128u);
+    EXPECT_EQ(far, 64u);
+    EXPECT_EQ(coverage_shadow_resolution(light, camera_at({0, 0, 5}, {0, 0, 0}), 2160, 4096), 2 * near)
+        << "twice the pixels, twice the texels";
+}
+
+TEST(LocalShadowSizing, ClampsInsideBehindAndAtTheCap) {
+    const Light light = point_light({0.0f, 0.0f, 0.0f}, 3.0f);
+    EXPECT_EQ(coverage_shadow_resolution(light, camera_at({0, 0, 1}, {0, 0, -5}), 1080, 1024), 1024u)
+        << "the camera inside the light's reach";
+    EXPECT_EQ(coverage_shadow_resolution(light, camera_at({0, 0, 20}, {0, 0, 40}), 1080, 1024),
+              kMinCoverageShadowResolution)
+        << "behind the camera";
+    EXPECT_EQ(coverage_shadow_resolution(light, camera_at({0, 0, 3.5f}, {0, 0, 0}), 1080, 512), 512u) << "the cap";
+    EXPECT_EQ(coverage_shadow_resolution(light, camera_at({0, 0, 20}, {0, 0, 40}), 1080, 32), 32u)
+        << "a cap below the minimum wins";
+}
+
+TEST(LocalShadowSizing, FixedLightsKeepTheirResolution) {
+    Scene scene;
+    scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 1.0f));
+    scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 1.0f));
+    scene.lights[1].shadow_resolution = 512;
+    LocalShadowPlan plan = plan_local_shadows(scene, {8, 2048, LocalShadowSizing::Coverage});
+    EXPECT_EQ(plan.atlas_resolution, 2048u);
+    size_local_shadows(plan, scene, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 2048);
+    EXPECT_EQ(plan.slots[0].resolution, 64u);
+    EXPECT_EQ(plan.slots[1].resolution, 512u) << "the light's own shadow_resolution";
+    LocalShadowPlan fixed = plan_local_shadows(scene, {8, 2048, LocalShadowSizing::Fixed});
+    size_local_shadows(fixed, scene, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 2048);
+    EXPECT_EQ(fixed.slots[0].resolution, 2048u);
+}
+
 }  // namespace
 }  // namespace penumbra
