@@ -5,7 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_shared.h"
 
-layout(std140, set = 0, binding = 0) uniform LocalLightBlock { LocalLightUniforms local; };
+layout(std430, set = 0, binding = 0) readonly buffer LocalLightBlock { LocalLightUniforms local; };
 layout(push_constant) uniform PushBlock { DrawPushConstants draw; };
 
 layout(location = 0) in vec3 in_position;

@@ -17,7 +17,7 @@ namespace {
 
 // Raw option values as typed; converted after parsing so errors can name the flag.
 struct RawRenderOptions {
-    std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits;
+    std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits, local_shadow_sizing;
     std::string config;
     bool no_cull = false;
     RawFilterOptions filter;
@@ -63,15 +63,6 @@ Enum parse_choice(const std::string& text, const std::string& flag, const std::m
     throw InputError(flag + ": unknown value \"" + text + "\" (expected " + names + ")");
 }
 
-// N of `--aov shadow:N`: a light index, 0 or more.
-int32_t parse_light_index(const std::string& text) {
-    const bool digits = !text.empty() && text.size() <= 6 &&
-                        std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (!digits)
-        throw InputError("--aov: expected shadow:N with N a light index (0, 1, ...), got \"shadow:" + text + "\"");
-    return static_cast<int32_t>(std::stoi(text));
-}
-
 void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptions& raw) {
     render.add_option("--width", o.width, "Image width in pixels (1..16384, default 1280)")
         ->check(CLI::Range(1u, kMaxImageSize));
@@ -87,13 +78,15 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
     render.add_option("--cascades", o.cascades, "Number of shadow cascades (1..8, default 4)")->check(CLI::Range(1, 8));
     render
         .add_option("--local-shadow-budget", o.local_shadow_budget,
-                    "Spot/point lights with a shadow map (0..16, default 8); the rest render unshadowed")
+                    "Spot/point lights with a shadow map (0..32, default 8); the rest render unshadowed")
         ->check(CLI::Range(0u, kMaxLocalShadowBudget));
     render
         .add_option("--local-shadow-resolution", o.local_shadow_resolution,
                     "Texels per side of a spot/point light's shadow map unless the light sets shadow_resolution "
-                    "(16..8192, default 1024)")
+                    "(16..8192, default 1024; the largest with coverage sizing)")
         ->check(CLI::Range(16u, 8192u));
+    render.add_option("--local-shadow-sizing", raw.local_shadow_sizing,
+                      "Spot/point shadow map size: coverage (from the light's size on screen, default) | fixed");
     render.add_option("--shadow-resolution", o.shadow_resolution, "Shadow map texels per side (512..8192)")
         ->check(CLI::Range(512u, 8192u));
     render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: uniform|log|practical|manual");
@@ -132,6 +125,10 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     if (!raw.fit.empty()) {
         o.fit = parse_choice<FitMode>(raw.fit, "--fit", {{"stable", FitMode::Stable}, {"tight", FitMode::Tight}});
     }
+    if (!raw.local_shadow_sizing.empty()) {
+        o.local_shadow_sizing =
+            parse_choice(raw.local_shadow_sizing, "--local-shadow-sizing", local_shadow_sizing_names());
+    }
     if (!raw.strategy.empty()) {
         o.strategy = parse_choice<ShadowStrategy>(
             raw.strategy, "--shadow-strategy",
@@ -139,7 +136,7 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     }
     if (raw.aov.starts_with("shadow:")) {
         job.aov = Aov::Shadow;
-        job.aov_light = parse_light_index(raw.aov.substr(7));
+        job.aov_light = parse_light_index(raw.aov.substr(7), "--aov");
     } else if (!raw.aov.empty()) {
         job.aov = parse_choice<Aov>(raw.aov, "--aov", {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}});
     }
@@ -201,6 +198,14 @@ void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_
 }
 
 }  // namespace
+
+int32_t parse_light_index(const std::string& text, const std::string& flag) {
+    const bool digits = !text.empty() && text.size() <= 6 &&
+                        std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits)
+        throw InputError(flag + ": expected shadow:N with N a light index (0, 1, ...), got \"shadow:" + text + "\"");
+    return static_cast<int32_t>(std::stoi(text));
+}
 
 Command parse_command_line(int argc, char** argv) {
     CLI::App app{"penumbra: real-time shadows with Vulkan (cascaded shadow maps), rendered headlessly to PNG"};

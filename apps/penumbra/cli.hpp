@@ -1,5 +1,6 @@
 #pragma once
 // Command-line parsing for `penumbra`: turns argv into a command for the library.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <variant>
@@ -29,6 +30,10 @@ struct ExitNow {
 };
 
 using Command = std::variant<DevicesCommand, RenderCommand, BenchCommand, CompareCommand, ViewCommand, ExitNow>;
+
+// N of `shadow:N` (`--aov`, `--screenshot-aov`): a light index, 0 or more. Throws InputError
+// naming `flag`; the scene checks the index later (prepare_render_job).
+int32_t parse_light_index(const std::string& text, const std::string& flag);
 
 // Parses arguments; usage errors are printed as one line on stderr (ExitNow{2}).
 Command parse_command_line(int argc, char** argv);

@@ -1,5 +1,6 @@
 #include "view_options.hpp"
 
+#include "cli.hpp"
 #include "core/errors.hpp"
 
 namespace penumbra::cli {
@@ -10,7 +11,7 @@ void add_view_options(CLI::App& command, view::ViewJob& job, RawViewOptions& raw
     command.add_option("--screenshot", raw.screenshot,
                        "PNG written from the last of --frames frames (and by F12), without the panel");
     command.add_option("--screenshot-aov", raw.screenshot_aov,
-                       "What --screenshot holds: color (default) | shadow | cascade (as `render --aov`)");
+                       "What --screenshot holds: color (default) | shadow | shadow:N | cascade (as `render --aov`)");
     command.add_option("--script", raw.script, "Replay timed actions from FILE (docs/viewer.md)");
     command.add_option("--save-settings", raw.save_settings,
                        "Config file written by F5 / 'Save settings' (default penumbra-view.toml); with --frames, "
@@ -29,11 +30,15 @@ void convert_view_options(const RawViewOptions& raw, view::ViewJob& job) {
     }
     if (raw.screenshot_aov == "shadow") {
         job.screenshot_aov = Aov::Shadow;
+    } else if (raw.screenshot_aov.starts_with("shadow:")) {
+        // The visibility of light N, as `render --aov shadow:N` writes it.
+        job.screenshot_aov = Aov::Shadow;
+        job.render.aov_light = parse_light_index(raw.screenshot_aov.substr(7), "--screenshot-aov");
     } else if (raw.screenshot_aov == "cascade") {
         job.screenshot_aov = Aov::Cascade;
     } else if (!raw.screenshot_aov.empty() && raw.screenshot_aov != "color") {
         throw InputError("--screenshot-aov: unknown value \"" + raw.screenshot_aov +
-                         "\" (expected color, shadow, cascade)");
+                         "\" (expected color, shadow, shadow:N, cascade)");
     }
     if (raw.debug == "cascades") {
         job.render.debug = DebugView::Cascades;

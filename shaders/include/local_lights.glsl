@@ -8,7 +8,10 @@
 #ifndef PENUMBRA_LOCAL_LIGHTS_GLSL
 #define PENUMBRA_LOCAL_LIGHTS_GLSL
 
-layout(std140, set = PENUMBRA_SET_FRAME, binding = PENUMBRA_BINDING_LOCAL_LIGHTS) uniform LocalLightBlock {
+// A storage buffer: with 64 lights and 192 layers the block outgrows the 16 KiB that
+// Vulkan guarantees for uniform buffers. Every member is a vec4 or mat4, so std430 and
+// std140 lay it out alike (src/passes/shader_interface.hpp checks the offsets).
+layout(std430, set = PENUMBRA_SET_FRAME, binding = PENUMBRA_BINDING_LOCAL_LIGHTS) readonly buffer LocalLightBlock {
     LocalLightUniforms local;
 };
 layout(set = PENUMBRA_SET_FRAME,

@@ -20,11 +20,11 @@
 #define PENUMBRA_BINDING_SHADOW_MAP 1          // sampler2DArrayShadow (hardware comparison)
 #define PENUMBRA_BINDING_SHADOW_DEPTH 2        // the same map, raw depth (PCSS blocker search)
 #define PENUMBRA_BINDING_SHADOW_MOMENTS 3      // filtered moments (vsm/evsm/msm), else the depth map
-#define PENUMBRA_BINDING_LOCAL_LIGHTS 4        // LocalLightUniforms (spot and point lights)
+#define PENUMBRA_BINDING_LOCAL_LIGHTS 4        // LocalLightUniforms (spot and point lights), storage buffer
 #define PENUMBRA_BINDING_LOCAL_SHADOW_MAP 5    // sampler2DArrayShadow: every local light's layers
 #define PENUMBRA_BINDING_LOCAL_SHADOW_DEPTH 6  // the same map, raw depth (PCSS blocker search)
 #define PENUMBRA_BINDING_LOCAL_MOMENTS 7       // local lights' filtered moments, else their depth map
-// The local shadow pass: set 0, binding 0 = LocalLightUniforms.
+// The local shadow pass: set 0, binding 0 = LocalLightUniforms (storage buffer).
 // The moments blur pass and the local moments pass: set 0 holds the image they read.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 #define PENUMBRA_SET_MATERIAL 1
@@ -95,8 +95,8 @@ struct FrameUniforms {
 };
 
 // Spot and point lights (docs/local-lights.md, src/core/local_lights.hpp).
-#define PENUMBRA_MAX_LOCAL_LIGHTS 16
-#define PENUMBRA_MAX_LOCAL_SHADOW_LAYERS 96
+#define PENUMBRA_MAX_LOCAL_LIGHTS 64
+#define PENUMBRA_MAX_LOCAL_SHADOW_LAYERS 192
 #define PENUMBRA_LIGHT_SPOT 1.0
 #define PENUMBRA_LIGHT_POINT 2.0
 

@@ -1,10 +1,11 @@
 #pragma once
 // The library entry point behind `penumbra bench`: render N frames of a scene (after a
 // warm-up) along a deterministic camera path, without reading images back, and
-// collect per-pass GPU times (timestamp queries), per-step CPU times and per-cascade
-// draw and triangle counts. Ceiling modes measure the same pipeline state at its
-// limits instead: triangle rate (the shadow pass at a tiny resolution, no culling) or
-// texture sampling rate (a full-screen pass of N shadow-map taps). docs/bench.md.
+// collect per-pass GPU times (timestamp queries), per-step CPU times, and the draw and
+// triangle counts of every cascade and every shadowed spot/point light. Ceiling modes
+// measure the same pipeline state at its limits instead: triangle rate (the shadow pass
+// at a tiny resolution, no culling) or texture sampling rate (a full-screen pass of N
+// shadow-map taps). docs/bench.md.
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -71,6 +72,19 @@ struct CascadeReport {
     CountSummary triangles;  // per frame
 };
 
+// One shadowed spot or point light (renderer::LocalShadowStats), over the measured frames.
+struct LocalShadowReport {
+    uint32_t light = 0;  // index into the scene's lights
+    std::string type;    // "spot" or "point"
+    uint32_t layers = 0;
+    // Texels per side of each of its layers, per frame: the renderer may size a light's map
+    // by its screen coverage, which changes along the camera path.
+    CountSummary resolution;
+    float near_plane = 0.0f;  // metres, the smallest of the frames (lights and casters stand still)
+    CountSummary draws;       // per frame, over all its layers
+    CountSummary triangles;   // per frame, over all its layers
+};
+
 struct CeilingReport {
     std::string mode;  // "triangles" or "taps"
     std::string unit;  // what work_per_frame counts
@@ -89,6 +103,9 @@ struct BenchResult {
     std::vector<std::string> cpu_step_order;
     std::map<std::string, Summary> cpu_ms;
     std::vector<CascadeReport> cascades;
+    std::vector<LocalShadowReport> local_shadows;  // shadowed local lights, in light order
+    // Every shadow map: the cascades, the moments maps of a moment filter and the shared
+    // layered map of the shadowed local lights (not the placeholder without any).
     uint64_t shadow_map_bytes = 0;
     uint32_t frames_without_gpu_times = 0;  // timestamps unsupported or not ready
     std::optional<CeilingReport> ceiling;

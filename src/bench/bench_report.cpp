@@ -87,22 +87,26 @@ Json filter_json(const FilterSettings& filter) {
 
 Json settings_json(const RenderSettings& settings) {
     const ShadowSettings& shadow = settings.shadow;
-    return Json{{"width", settings.width},
-                {"height", settings.height},
-                {"cascades", shadow.cascades.count},
-                {"shadow_resolution", shadow.cascades.resolution},
-                {"strategy", strategy_name(shadow.strategy)},
-                {"cull_casters", shadow.cull_casters},
-                {"split_scheme", split_scheme_name(shadow.cascades.scheme)},
-                {"split_lambda", shadow.cascades.split_lambda},
-                {"max_distance", shadow.cascades.max_distance},
-                {"fit", shadow.cascades.fit == FitMode::Stable ? "stable" : "tight"},
-                {"slope_bias", shadow.bias.slope},
-                {"constant_bias", shadow.bias.constant},
-                {"bias_clamp", shadow.bias.clamp},
-                {"normal_offset", shadow.bias.normal_offset},
-                {"blend_width", shadow.blend_width},
-                {"filter", filter_json(shadow.filter)}};
+    return Json{
+        {"width", settings.width},
+        {"height", settings.height},
+        {"cascades", shadow.cascades.count},
+        {"shadow_resolution", shadow.cascades.resolution},
+        {"strategy", strategy_name(shadow.strategy)},
+        {"cull_casters", shadow.cull_casters},
+        {"split_scheme", split_scheme_name(shadow.cascades.scheme)},
+        {"split_lambda", shadow.cascades.split_lambda},
+        {"max_distance", shadow.cascades.max_distance},
+        {"fit", shadow.cascades.fit == FitMode::Stable ? "stable" : "tight"},
+        {"slope_bias", shadow.bias.slope},
+        {"constant_bias", shadow.bias.constant},
+        {"bias_clamp", shadow.bias.clamp},
+        {"normal_offset", shadow.bias.normal_offset},
+        {"blend_width", shadow.blend_width},
+        {"filter", filter_json(shadow.filter)},
+        {"local_shadow_budget", settings.local_shadows.budget},
+        {"local_shadow_resolution", settings.local_shadows.resolution},
+        {"local_shadow_sizing", settings.local_shadows.sizing == LocalShadowSizing::Fixed ? "fixed" : "coverage"}};
 }
 
 Json run_json(const BenchJob& job) {
@@ -128,6 +132,27 @@ Json ceiling_json(const std::optional<CeilingReport>& ceiling) {
                 {"unit", ceiling->unit},
                 {"work_per_frame", ceiling->work_per_frame},
                 {"per_second", ceiling->per_second}};
+}
+
+Json local_shadow_json(const LocalShadowReport& light) {
+    return Json{{"light", light.light},
+                {"type", light.type},
+                {"layers", light.layers},
+                {"resolution", counts_json(light.resolution)},
+                {"near_plane", light.near_plane},
+                {"draws", counts_json(light.draws)},
+                {"triangles", counts_json(light.triangles)}};
+}
+
+// The shadowed spot/point lights; their map's bytes are part of "shadow_map_bytes".
+Json local_shadows_json(const std::vector<LocalShadowReport>& lights) {
+    Json array = Json::array();
+    uint32_t layers = 0;
+    for (const LocalShadowReport& light : lights) {
+        array.push_back(local_shadow_json(light));
+        layers += light.layers;
+    }
+    return Json{{"shadowed_lights", lights.size()}, {"layers", layers}, {"lights", array}};
 }
 
 std::string format_row(const char* kind, const std::string& name, const Summary& summary) {
@@ -159,10 +184,38 @@ std::string format_cascades(const BenchResult& result) {
                       result.cascades[c].triangles.mean);
         text += line;
     }
-    std::snprintf(line, sizeof(line), "shadow map: %llu bytes (%.1f MiB)\n",
+    return text;
+}
+
+// "1024", or "256-1024" when the resolution changed between frames.
+std::string format_resolution(const CountSummary& resolution) {
+    if (resolution.min == resolution.max) return std::to_string(resolution.min);
+    return std::to_string(resolution.min) + "-" + std::to_string(resolution.max);
+}
+
+std::string format_local_shadows(const BenchResult& result) {
+    if (result.local_shadows.empty()) return "";
+    char line[160];
+    std::snprintf(line, sizeof(line), "%zu shadowed spot/point light(s) (budget %u)\n", result.local_shadows.size(),
+                  result.settings.local_shadows.budget);
+    std::string text = line;
+    text += "light  type   layers  resolution  near (m)  draws/frame  triangles/frame (mean)\n";
+    for (const LocalShadowReport& light : result.local_shadows) {
+        std::snprintf(line, sizeof(line), "%5u  %-5s  %6u  %10s  %8.2f  %11.0f  %21.0f\n", light.light,
+                      light.type.c_str(), light.layers, format_resolution(light.resolution).c_str(),
+                      static_cast<double>(light.near_plane), light.draws.mean, light.triangles.mean);
+        text += line;
+    }
+    return text;
+}
+
+std::string format_shadow_map_bytes(const BenchResult& result) {
+    char line[160];
+    std::snprintf(line, sizeof(line), "shadow maps: %llu bytes (%.1f MiB)%s\n",
                   static_cast<unsigned long long>(result.shadow_map_bytes),
-                  static_cast<double>(result.shadow_map_bytes) / (1024.0 * 1024.0));
-    return text + line;
+                  static_cast<double>(result.shadow_map_bytes) / (1024.0 * 1024.0),
+                  result.local_shadows.empty() ? "" : ", the spot/point lights' layers included");
+    return line;
 }
 
 }  // namespace
@@ -179,6 +232,8 @@ std::string format_bench_table(const BenchResult& result) {
                 " frame(s) had no GPU timestamps (unsupported by the queue, or not ready)\n";
     }
     text += format_cascades(result);
+    text += format_local_shadows(result);
+    text += format_shadow_map_bytes(result);
     if (result.ceiling) {
         std::snprintf(line, sizeof(line), "ceiling %s: %llu %s per frame, %.4g per second\n",
                       result.ceiling->mode.c_str(), static_cast<unsigned long long>(result.ceiling->work_per_frame),
@@ -218,6 +273,7 @@ std::string bench_json(const BenchResult& result) {
         {"cpu_ms", timings_json(result.cpu_step_order, result.cpu_ms)},
         {"frames_without_gpu_times", result.frames_without_gpu_times},
         {"cascades", cascades},
+        {"local_shadows", local_shadows_json(result.local_shadows)},
         {"shadow_map_bytes", result.shadow_map_bytes},
         {"ceiling", ceiling_json(result.ceiling)},
     };

@@ -1,6 +1,7 @@
 // run_bench_job: the frame loops of `penumbra bench` and the collection of their samples.
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <map>
 
 #include "bench/bench_job.hpp"
@@ -44,11 +45,23 @@ private:
     std::map<std::string, std::vector<double>> samples_;
 };
 
+// One shadowed local light's counts, frame after frame. Which lights are shadowed is fixed
+// when the Renderer is created, so every frame reports the same lights in the same order.
+struct LocalShadowSamples {
+    uint32_t light = 0;  // index into the scene's lights
+    uint32_t layers = 0;
+    float near_plane = std::numeric_limits<float>::infinity();
+    std::vector<uint64_t> resolution;  // [frame]
+    std::vector<uint64_t> draws;
+    std::vector<uint64_t> triangles;
+};
+
 struct FrameSamples {
     SampleSet gpu;
     SampleSet cpu;
     std::vector<std::vector<uint64_t>> cascade_draws;  // [cascade][frame]
     std::vector<std::vector<uint64_t>> cascade_triangles;
+    std::vector<LocalShadowSamples> local_shadows;
     uint32_t frames_without_gpu_times = 0;
 
     void add_gpu_times(const std::vector<gpu::ScopeTime>& times) {
@@ -116,6 +129,17 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
     for (size_t c = 0; c < frame.cascade_stats.size(); ++c) {
         samples.cascade_draws[c].push_back(frame.cascade_stats[c].draws);
         samples.cascade_triangles[c].push_back(frame.cascade_stats[c].triangles);
+    }
+    samples.local_shadows.resize(frame.local_shadow_stats.size());
+    for (size_t i = 0; i < frame.local_shadow_stats.size(); ++i) {
+        const renderer::LocalShadowStats& stats = frame.local_shadow_stats[i];
+        LocalShadowSamples& light = samples.local_shadows[i];
+        light.light = stats.light;
+        light.layers = stats.layers;
+        light.near_plane = std::min(light.near_plane, stats.near_plane);
+        light.resolution.push_back(stats.resolution);
+        light.draws.push_back(stats.draws);
+        light.triangles.push_back(stats.triangles);
     }
 }
 
@@ -197,20 +221,37 @@ void apply_triangle_ceiling(RenderSettings& settings) {
     settings.height = kCeilingShadowResolution;
 }
 
-double shadow_median_ms(const BenchResult& result) {
+// The cascades' shadow passes: the triangle ceiling counts cascade triangles only, so the
+// spot/point lights' passes ("shadow_local...") are timed but not part of the rate.
+double cascade_shadow_median_ms(const BenchResult& result) {
     double total = 0.0;
     for (const auto& [name, summary] : result.gpu_ms) {
-        if (name.starts_with("shadow_")) total += summary.median;
+        if (name.starts_with("shadow_") && !name.starts_with("shadow_local")) total += summary.median;
     }
     return total;
 }
 
-void summarize_samples(const FrameSamples& samples, BenchResult& result) {
+LocalShadowReport summarize_local_shadow(const LocalShadowSamples& samples, const Scene& scene) {
+    LocalShadowReport report;
+    report.light = samples.light;
+    report.type = scene.lights.at(samples.light).type == LightType::Spot ? "spot" : "point";
+    report.layers = samples.layers;
+    report.resolution = summarize_counts(samples.resolution);
+    report.near_plane = samples.near_plane;
+    report.draws = summarize_counts(samples.draws);
+    report.triangles = summarize_counts(samples.triangles);
+    return report;
+}
+
+void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchResult& result) {
     samples.gpu.summarize_into(result.gpu_pass_order, result.gpu_ms, "frame");
     samples.cpu.summarize_into(result.cpu_step_order, result.cpu_ms, "frame_wall");
     for (size_t c = 0; c < samples.cascade_draws.size(); ++c) {
         result.cascades.push_back(
             {summarize_counts(samples.cascade_draws[c]), summarize_counts(samples.cascade_triangles[c])});
+    }
+    for (const LocalShadowSamples& light : samples.local_shadows) {
+        result.local_shadows.push_back(summarize_local_shadow(light, scene));
     }
     result.frames_without_gpu_times = samples.frames_without_gpu_times;
 }
@@ -218,7 +259,7 @@ void summarize_samples(const FrameSamples& samples, BenchResult& result) {
 void finish_ceiling(const BenchJob& job, const Scene& scene, const RenderSettings& settings, BenchResult& result) {
     if (job.ceiling == Ceiling::Triangles) {
         const uint64_t work = scene.triangle_count() * static_cast<uint64_t>(settings.shadow.cascades.count);
-        const double ms = shadow_median_ms(result);
+        const double ms = cascade_shadow_median_ms(result);
         result.ceiling = CeilingReport{"triangles", "cascade triangles", work, ms > 0.0 ? work / (ms * 1e-3) : 0.0};
     } else if (job.ceiling == Ceiling::Taps && result.ceiling) {
         const double ms = result.gpu_ms.contains("taps") ? result.gpu_ms.at("taps").median : 0.0;
@@ -246,7 +287,7 @@ BenchResult run_bench_job(const BenchJob& job) {
         const FrameSamples samples = job.ceiling == Ceiling::Taps
                                          ? run_tap_frames(context, job, prepared.settings, result)
                                          : run_renderer_frames(context, job, prepared, result);
-        summarize_samples(samples, result);
+        summarize_samples(samples, prepared.scene, result);
     }
     // Checked after the device and instance are gone, so leak reports count too.
     check_validation(*device_options.log);

@@ -17,6 +17,12 @@ glm::mat4 look_along(const glm::vec3& eye, const glm::vec3& forward, const glm::
 
 }  // namespace
 
+const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
+    static const std::map<std::string, LocalShadowSizing> names{{"coverage", LocalShadowSizing::Coverage},
+                                                                {"fixed", LocalShadowSizing::Fixed}};
+    return names;
+}
+
 uint32_t local_shadow_layers(LightType type) {
     switch (type) {
         case LightType::Spot:

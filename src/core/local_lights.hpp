@@ -10,6 +10,8 @@
 // lighting shader selects the face by the major axis of (receiver - light).
 #include <array>
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "core/bounds.hpp"
@@ -20,18 +22,22 @@
 namespace penumbra {
 
 // Bounds of the local-light settings (`--local-shadow-budget`, `--local-shadow-resolution`).
-inline constexpr uint32_t kMaxLocalLights = 16;        // lit by the lighting shader; more are ignored
-inline constexpr uint32_t kMaxLocalShadowBudget = 16;  // shadowed local lights per frame
-inline constexpr uint32_t kMaxLocalShadowLayers = 96;  // 16 point lights x 6 faces
-inline constexpr float kMinLocalShadowNear = 0.05f;    // metres
+inline constexpr uint32_t kMaxLocalLights = 64;         // lit by the lighting shader; more are ignored
+inline constexpr uint32_t kMaxLocalShadowBudget = 32;   // shadowed local lights per frame
+inline constexpr uint32_t kMaxLocalShadowLayers = 192;  // 32 point lights x 6 faces (Vulkan guarantees 256 layers)
+inline constexpr float kMinLocalShadowNear = 0.05f;     // metres
 
 inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest map coverage sizing picks
 
-// How a light without its own `shadow_resolution` gets its map's size.
+// How a light without its own `shadow_resolution` gets its map's size
+// (`--local-shadow-sizing`, `[shadow] local_shadow_sizing`).
 enum class LocalShadowSizing {
     Coverage,  // each frame, from the light's screen coverage, up to `resolution`
     Fixed,     // always `resolution`
 };
+
+// The names a user writes: "coverage", "fixed".
+const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names();
 
 struct LocalShadowSettings {
     uint32_t budget = 8;         // shadowed local lights; the rest render unshadowed

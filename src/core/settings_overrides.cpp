@@ -29,6 +29,7 @@ void apply_overrides(const SettingsOverrides& overrides, RenderSettings& setting
     assign_if(overrides.shadow_resolution, cascades.resolution);
     assign_if(overrides.local_shadow_budget, settings.local_shadows.budget);
     assign_if(overrides.local_shadow_resolution, settings.local_shadows.resolution);
+    assign_if(overrides.local_shadow_sizing, settings.local_shadows.sizing);
     assign_if(overrides.split_scheme, cascades.scheme);
     assign_if(overrides.split_lambda, cascades.split_lambda);
     if (overrides.splits) {

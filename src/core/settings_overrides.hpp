@@ -30,9 +30,10 @@ struct SettingsOverrides {
     std::optional<float> blend_width;
     std::optional<ShadowStrategy> strategy;
     std::optional<bool> cull_casters;
-    FilterOverrides filter;                           // [shadow] filter keys (docs/filters.md)
-    std::optional<uint32_t> local_shadow_budget;      // --local-shadow-budget
-    std::optional<uint32_t> local_shadow_resolution;  // --local-shadow-resolution
+    FilterOverrides filter;                                // [shadow] filter keys (docs/filters.md)
+    std::optional<uint32_t> local_shadow_budget;           // --local-shadow-budget
+    std::optional<uint32_t> local_shadow_resolution;       // --local-shadow-resolution
+    std::optional<LocalShadowSizing> local_shadow_sizing;  // --local-shadow-sizing
     // [camera] and [sun]
     std::optional<glm::vec3> eye;
     std::optional<glm::vec3> target;

@@ -162,16 +162,30 @@ VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool
     return set;
 }
 
-void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
-                          VkDeviceSize size) {
+namespace {
+
+void write_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer, VkDeviceSize size,
+                  VkDescriptorType type) {
     const VkDescriptorBufferInfo buffer_info{buffer, 0, size};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set;
     write.dstBinding = binding;
     write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    write.descriptorType = type;
     write.pBufferInfo = &buffer_info;
     vkUpdateDescriptorSets(context.device(), 1, &write, 0, nullptr);
+}
+
+}  // namespace
+
+void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                          VkDeviceSize size) {
+    write_buffer(context, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+}
+
+void write_storage_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                          VkDeviceSize size) {
+    write_buffer(context, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
 void write_combined_image_sampler(const Context& context, VkDescriptorSet set, uint32_t binding, VkImageView view,

@@ -59,6 +59,8 @@ VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool
 
 void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
                           VkDeviceSize size);
+void write_storage_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+                          VkDeviceSize size);
 void write_combined_image_sampler(const Context& context, VkDescriptorSet set, uint32_t binding, VkImageView view,
                                   VkSampler sampler);
 

@@ -43,7 +43,7 @@ LocalShadowPass::LocalShadowPass(const gpu::Context& context, VkDescriptorSetLay
     desc.array_view = true;
     shadow_map_ = gpu::create_image(context, desc);
 
-    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
+    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
                                                nullptr};
     set_layout_ = gpu::create_descriptor_set_layout(context, {&binding, 1});
     const VkDescriptorSetLayout set_layouts[] = {set_layout_, material_set_layout};

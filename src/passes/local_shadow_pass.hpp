@@ -30,7 +30,7 @@ public:
     LocalShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
                     uint32_t layer_count);
 
-    // Set 0 of the pipelines: binding 0 = LocalLightUniforms.
+    // Set 0 of the pipelines: binding 0 = LocalLightUniforms (a storage buffer).
     VkDescriptorSetLayout set_layout() const { return set_layout_; }
     const gpu::Image& shadow_map() const { return shadow_map_; }
 

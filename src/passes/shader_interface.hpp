@@ -47,6 +47,6 @@ static_assert(offsetof(LocalLightUniforms, lights) == 64 * PENUMBRA_MAX_LOCAL_SH
 static_assert(offsetof(LocalLightUniforms, counts) ==
               offsetof(LocalLightUniforms, lights) + sizeof(LocalLight) * PENUMBRA_MAX_LOCAL_LIGHTS);
 static_assert(sizeof(LocalLightUniforms) == offsetof(LocalLightUniforms, counts) + 32);
-static_assert(sizeof(LocalLightUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
+static_assert(sizeof(LocalLightUniforms) <= 128u << 20, "Vulkan guarantees 128 MiB storage buffer ranges");
 
 }  // namespace penumbra::shader

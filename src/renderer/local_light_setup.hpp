@@ -7,10 +7,10 @@
 #include "core/local_lights.hpp"
 #include "core/render_settings.hpp"
 #include "core/scene.hpp"
-#include "renderer/renderer.hpp"
 #include "passes/draw_data.hpp"
 #include "passes/local_shadow_pass.hpp"
 #include "passes/shader_interface.hpp"
+#include "renderer/renderer.hpp"
 
 namespace penumbra::renderer {
 

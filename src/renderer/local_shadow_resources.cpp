@@ -28,20 +28,20 @@ LocalShadowResources::LocalShadowResources(const gpu::Context& context, const Sc
       plan_(plan_local_shadows(scene, settings.local_shadows)),
       shadow_pass_(context, material_set_layout, std::max(plan_.atlas_resolution, kPlaceholderResolution),
                    plan_.layer_count),
-      uniforms_(gpu::create_buffer(context, sizeof(shader::LocalLightUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+      uniforms_(gpu::create_buffer(context, sizeof(shader::LocalLightUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                    gpu::MemoryKind::HostUpload)),
       depth_sampler_(create_raw_depth_sampler(context)) {
-    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
     pool_ = gpu::create_descriptor_pool(context, 1, {&size, 1});
     shadow_set_ = gpu::allocate_descriptor_set(context, pool_, shadow_pass_.set_layout());
-    gpu::write_uniform_buffer(context, shadow_set_, 0, uniforms_.get(), sizeof(shader::LocalLightUniforms));
+    gpu::write_storage_buffer(context, shadow_set_, 0, uniforms_.get(), sizeof(shader::LocalLightUniforms));
     if (is_moment_filter(settings.shadow.filter.mode) && plan_.layer_count > 0) {
         moments_pass_.emplace(context, shadow_pass_.shadow_map(), depth_sampler_, settings.shadow.filter);
     }
 }
 
 void LocalShadowResources::write_lighting_bindings(VkDescriptorSet lighting_set, VkSampler comparison_sampler) const {
-    gpu::write_uniform_buffer(context_, lighting_set, PENUMBRA_BINDING_LOCAL_LIGHTS, uniforms_.get(),
+    gpu::write_storage_buffer(context_, lighting_set, PENUMBRA_BINDING_LOCAL_LIGHTS, uniforms_.get(),
                               sizeof(shader::LocalLightUniforms));
     const VkImageView map = shadow_pass_.shadow_map().view;
     gpu::write_combined_image_sampler(context_, lighting_set, PENUMBRA_BINDING_LOCAL_SHADOW_MAP, map,

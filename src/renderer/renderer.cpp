@@ -121,8 +121,9 @@ struct Renderer::Resources {
         sampler.compare_op = VK_COMPARE_OP_GREATER_OR_EQUAL;
         shadow_sampler = gpu::create_sampler(context, sampler);
 
-        const std::array<VkDescriptorPoolSize, 2> sizes{
-            {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 3}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}}};
+        const std::array<VkDescriptorPoolSize, 3> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}}};
         descriptor_pool = gpu::create_descriptor_pool(context, 2, sizes);
         shadow_frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, shadow_pass.frame_set_layout());
         lighting_frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, lighting_pass.frame_set_layout());
@@ -176,7 +177,8 @@ bool requires_new_renderer(const RenderSettings& current, const RenderSettings& 
            current.shadow.strategy != next.shadow.strategy || !same_filter ||
            is_shadow_map(current.debug) != is_shadow_map(next.debug) ||
            current.local_shadows.budget != next.local_shadows.budget ||
-           current.local_shadows.resolution != next.local_shadows.resolution;
+           current.local_shadows.resolution != next.local_shadows.resolution ||
+           current.local_shadows.sizing != next.local_shadows.sizing;
 }
 
 void Renderer::update_settings(const RenderSettings& settings) {

@@ -199,7 +199,7 @@ constexpr std::array<BuiltinScene, 2> kBuiltinScenes{{
 std::vector<std::string> builtin_scene_names() {
     std::vector<std::string> names;
     for (const BuiltinScene& scene : kBuiltinScenes) names.emplace_back(scene.name);
-    names.emplace_back("forest");  // procedural; takes ?count=N (scene/forest_scene.hpp)
+    names.emplace_back("forest");  // procedural; takes ?count=N&spots=N&points=N (scene/forest_scene.hpp)
     return names;
 }
 
@@ -209,7 +209,7 @@ Scene builtin_scene(const std::string& name) {
     const size_t query_start = name.find('?');
     const std::string base = name.substr(0, query_start);
     const std::string query = query_start == std::string::npos ? "" : name.substr(query_start + 1);
-    if (base == "forest") return make_forest_scene(parse_forest_count(query, origin));
+    if (base == "forest") return make_forest_scene(parse_forest_parameters(query, origin));
     for (const BuiltinScene& scene : kBuiltinScenes) {
         if (scene.name != base) continue;
         if (query_start != std::string::npos)

@@ -1,8 +1,12 @@
 #include "scene/forest_scene.hpp"
 
+#include <array>
 #include <cmath>
+#include <set>
+#include <sstream>
 
 #include "core/errors.hpp"
+#include "core/local_lights.hpp"
 #include "scene/primitives.hpp"
 
 namespace penumbra {
@@ -56,19 +60,37 @@ glm::vec2 tree_position(uint32_t index, uint32_t count) {
     return glm::vec2{x, z} - 0.5f * kForestSize;
 }
 
-void add_tree(Scene& scene, uint32_t index, uint32_t count) {
-    const glm::vec2 base = tree_position(index, count);
-    const float trunk_height = lerp(3.0f, 6.0f, random01(index, 2));
-    const float trunk_radius = lerp(0.18f, 0.35f, random01(index, 3));
-    const float crown_radius = lerp(1.5f, 3.0f, random01(index, 4));
-    const float crown_height = crown_radius * lerp(1.2f, 1.8f, random01(index, 5));
-    const glm::vec3 zero{0.0f};
-    scene.instances.push_back({kTrunk, compose_transform({base.x, 0.5f * trunk_height, base.y}, zero,
-                                                         {trunk_radius, trunk_height, trunk_radius})});
+// The random shape of tree `index`, shared by its instances and the lights placed by it.
+struct TreeShape {
+    glm::vec2 base{0.0f};  // x, z of the trunk's foot
+    float trunk_height = 0.0f;
+    float trunk_radius = 0.0f;
+    float crown_radius = 0.0f;
+    float crown_height = 0.0f;  // half-height of the ellipsoid
+
     // The crown overlaps the trunk's top third, so the two read as one tree from afar.
-    const float crown_center = trunk_height + 0.6f * crown_height;
-    scene.instances.push_back(
-        {kCrown, compose_transform({base.x, crown_center, base.y}, zero, {crown_radius, crown_height, crown_radius})});
+    float crown_center() const { return trunk_height + 0.6f * crown_height; }
+    float top() const { return crown_center() + crown_height; }
+};
+
+TreeShape tree_shape(uint32_t index, uint32_t count) {
+    TreeShape tree;
+    tree.base = tree_position(index, count);
+    tree.trunk_height = lerp(3.0f, 6.0f, random01(index, 2));
+    tree.trunk_radius = lerp(0.18f, 0.35f, random01(index, 3));
+    tree.crown_radius = lerp(1.5f, 3.0f, random01(index, 4));
+    tree.crown_height = tree.crown_radius * lerp(1.2f, 1.8f, random01(index, 5));
+    return tree;
+}
+
+void add_tree(Scene& scene, uint32_t index, uint32_t count) {
+    const TreeShape tree = tree_shape(index, count);
+    const glm::vec2 base = tree.base;
+    const glm::vec3 zero{0.0f};
+    scene.instances.push_back({kTrunk, compose_transform({base.x, 0.5f * tree.trunk_height, base.y}, zero,
+                                                         {tree.trunk_radius, tree.trunk_height, tree.trunk_radius})});
+    scene.instances.push_back({kCrown, compose_transform({base.x, tree.crown_center(), base.y}, zero,
+                                                         {tree.crown_radius, tree.crown_height, tree.crown_radius})});
     const float rock_angle = 6.2831853f * random01(index, 6);
     const float rock_distance = lerp(2.0f, 4.0f, random01(index, 7));
     const glm::vec3 rock_size{lerp(0.6f, 1.6f, random01(index, 8)), lerp(0.4f, 1.0f, random01(index, 9)),
@@ -79,9 +101,61 @@ void add_tree(Scene& scene, uint32_t index, uint32_t count) {
         {kRock, compose_transform(rock_position, {0.0f, glm::degrees(rock_angle), 0.0f}, rock_size)});
 }
 
+// Light `index` of `lights` goes by the middle tree of its equal share of the tree indices;
+// tree indices run row by row over the grid, so the lights spread over the whole square.
+uint32_t tree_for_light(uint32_t index, uint32_t lights, uint32_t count) {
+    return static_cast<uint32_t>((uint64_t{2} * index + 1) * count / (uint64_t{2} * lights));
+}
+
+// A unit vector in the ground plane at a random angle (light `index`, hash stream `stream`).
+glm::vec2 ground_direction(uint32_t index, uint64_t stream) {
+    const float angle = 6.2831853f * random01(index, stream);
+    return {std::cos(angle), std::sin(angle)};
+}
+
+// Hash streams of the lights, apart from the trees' streams 0..10.
+constexpr uint64_t kSpotStream = 100;
+constexpr uint64_t kPointStream = 200;
+
+// 10 m above the tree's top and 5 m to a side, aimed at the middle of its trunk, so the cone
+// (70 degrees wide) holds the tree, its rock and the ground around it.
+Light forest_spot(uint32_t index, uint32_t spots, uint32_t count) {
+    const TreeShape tree = tree_shape(tree_for_light(index, spots, count), count);
+    const glm::vec2 side = tree.base + 5.0f * ground_direction(index, kSpotStream);
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {side.x, tree.top() + 10.0f, side.y};
+    spot.direction = glm::normalize(glm::vec3{tree.base.x, 0.5f * tree.trunk_height, tree.base.y} - spot.position);
+    spot.inner_angle_degrees = 25.0f;
+    spot.outer_angle_degrees = 35.0f;
+    spot.range = 2.5f * spot.position.y;  // reaches the ground well outside the cone's axis
+    // Radiance about 1.5 at the ground below (inverse square): half the sun's.
+    spot.intensity = 1.5f * spot.position.y * spot.position.y;
+    spot.color = {1.0f, 0.85f, 0.6f};
+    spot.radius = 0.2f;
+    return spot;
+}
+
+// A lantern 2.5 m up, just outside the crown of its tree: every cube face sees casters.
+Light forest_point(uint32_t index, uint32_t points, uint32_t count) {
+    const TreeShape tree = tree_shape(tree_for_light(index, points, count), count);
+    const glm::vec2 side = tree.base + (tree.crown_radius + 1.5f) * ground_direction(index, kPointStream);
+    Light point;
+    point.type = LightType::Point;
+    point.position = {side.x, 2.5f, side.y};
+    point.range = 20.0f;
+    point.intensity = 40.0f;
+    point.color = {1.0f, 0.7f, 0.4f};
+    point.radius = 0.1f;
+    return point;
+}
+
 }  // namespace
 
-Scene make_forest_scene(uint32_t count) {
+Scene make_forest_scene(uint32_t count) { return make_forest_scene(ForestParameters{count, 0, 0}); }
+
+Scene make_forest_scene(const ForestParameters& parameters) {
+    const uint32_t count = parameters.count;
     Scene scene;
     // From inside the forest, looking across it: the shadow distance (150 m) is full of trees.
     scene.camera.eye = {0.0f, 20.0f, 90.0f};
@@ -90,6 +164,8 @@ Scene make_forest_scene(uint32_t count) {
     Light sun;
     sun.color = {1.0f, 0.96f, 0.9f};
     scene.lights.push_back(sun);
+    for (uint32_t i = 0; i < parameters.spots; ++i) scene.lights.push_back(forest_spot(i, parameters.spots, count));
+    for (uint32_t i = 0; i < parameters.points; ++i) scene.lights.push_back(forest_point(i, parameters.points, count));
     add_materials(scene);
     add_meshes(scene);
     scene.instances.reserve(1 + size_t{3} * count);
@@ -98,18 +174,62 @@ Scene make_forest_scene(uint32_t count) {
     return scene;
 }
 
-uint32_t parse_forest_count(const std::string& query, const std::string& origin) {
-    if (query.empty()) return kForestDefaultCount;
-    const std::string expected = "expected count=N with N between 1 and " + std::to_string(kForestMaxCount);
-    if (!query.starts_with("count=")) throw InputError(origin + ": " + expected + ", got \"" + query + "\"");
-    const std::string digits = query.substr(6);
+namespace {
+
+struct ForestParameterSpec {
+    const char* key;
+    uint32_t min;
+    uint32_t max;
+    uint32_t ForestParameters::*field;
+};
+
+constexpr std::array<ForestParameterSpec, 3> kForestParameterSpecs{{
+    {"count", 1, kForestMaxCount, &ForestParameters::count},
+    {"spots", 0, kMaxLocalLights, &ForestParameters::spots},
+    {"points", 0, kMaxLocalLights, &ForestParameters::points},
+}};
+
+uint32_t parse_parameter_value(const ForestParameterSpec& spec, const std::string& digits, const std::string& origin) {
     const bool numeric =
         !digits.empty() && digits.size() <= 9 && digits.find_first_not_of("0123456789") == std::string::npos;
-    const unsigned long count = numeric ? std::stoul(digits) : 0;
-    if (count < 1 || count > kForestMaxCount) {
-        throw InputError(origin + ": count: " + expected + ", got \"" + digits + "\"");
+    const unsigned long value = numeric ? std::stoul(digits) : 0;
+    if (!numeric || value < spec.min || value > spec.max) {
+        throw InputError(origin + ": " + spec.key + ": expected an integer from " + std::to_string(spec.min) + " to " +
+                         std::to_string(spec.max) + ", got \"" + digits + "\"");
     }
-    return static_cast<uint32_t>(count);
+    return static_cast<uint32_t>(value);
+}
+
+const ForestParameterSpec* find_parameter(const std::string& key) {
+    for (const ForestParameterSpec& spec : kForestParameterSpecs) {
+        if (key == spec.key) return &spec;
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+ForestParameters parse_forest_parameters(const std::string& query, const std::string& origin) {
+    ForestParameters parameters;
+    if (query.empty()) return parameters;
+    std::set<std::string> seen;
+    std::istringstream items(query);
+    for (std::string item; std::getline(items, item, '&');) {
+        const size_t equals = item.find('=');
+        const ForestParameterSpec* spec = find_parameter(item.substr(0, equals));
+        if (equals == std::string::npos || !spec) {
+            throw InputError(origin + ": expected count=N, spots=N or points=N joined by '&', got \"" + item + "\"");
+        }
+        if (!seen.insert(spec->key).second) throw InputError(origin + ": " + spec->key + ": given twice");
+        parameters.*(spec->field) = parse_parameter_value(*spec, item.substr(equals + 1), origin);
+    }
+    if (query.back() == '&') throw InputError(origin + ": expected count=N, spots=N or points=N after the last '&'");
+    if (parameters.spots + parameters.points > kMaxLocalLights) {
+        throw InputError(origin + ": spots + points: at most " + std::to_string(kMaxLocalLights) +
+                         " spot and point lights are lit, got " + std::to_string(parameters.spots) + " + " +
+                         std::to_string(parameters.points));
+    }
+    return parameters;
 }
 
 }  // namespace penumbra

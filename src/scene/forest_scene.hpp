@@ -7,6 +7,11 @@
 // count=100 is 0.1 M, count=1000 is 1 M and count=10000 is 10 M triangles (plus the
 // ground's 8,192). The trees cover the whole square at every count, so triangle density
 // (and every cascade's work) grows linearly with N. Deterministic: the same N always gives the same scene.
+//
+// "builtin:forest?count=N&spots=S&points=P" adds S shadow-casting spot lights, each above a
+// tree and aimed down at it, and P shadow-casting point lights at lantern height beside
+// trees, both spread over the forest by tree index (docs/bench.md). Lights follow the sun in
+// Scene::lights: spots first, then points, so light 1 is the first spot.
 #include <cstdint>
 #include <string>
 
@@ -20,10 +25,18 @@ constexpr uint32_t kForestGroundTriangles = 64 * 64 * 2;
 constexpr uint32_t kForestDefaultCount = 1000;
 constexpr uint32_t kForestMaxCount = 100000;
 constexpr float kForestSize = 400.0f;  // side of the square the trees cover, metres
+struct ForestParameters {
+    uint32_t count = kForestDefaultCount;  // trees
+    // Spots plus points at most kMaxLocalLights: the lighting shader lights no more.
+    uint32_t spots = 0;   // shadow-casting spot lights aimed down at trees
+    uint32_t points = 0;  // shadow-casting point lights between the trees
+};
 
 Scene make_forest_scene(uint32_t count);
+Scene make_forest_scene(const ForestParameters& parameters);
 
-// Parses the query after "forest?" ("" or "count=N"); throws InputError naming `origin`.
-uint32_t parse_forest_count(const std::string& query, const std::string& origin);
+// Parses the query after "forest?": "" or "KEY=N" pairs joined by '&', KEY one of count,
+// spots, points, each at most once. Throws InputError naming `origin`, the key and the value.
+ForestParameters parse_forest_parameters(const std::string& query, const std::string& origin);
 
 }  // namespace penumbra

@@ -13,20 +13,6 @@ std::string format_vec3(const glm::vec3& value) {
     return "[" + format_number(value.x) + ", " + format_number(value.y) + ", " + format_number(value.z) + "]";
 }
 
-toml::table parse_toml_text(std::string_view text, const std::string& origin) {
-    try {
-        return toml::parse(text, origin);
-    } catch (const toml::parse_error& error) {
-        std::string description(error.description());
-        for (char& c : description) {
-            if (c == '\n' || c == '\r') c = ' ';
-        }
-        const toml::source_position where = error.source().begin;
-        throw InputError(origin + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
-                         ": malformed TOML: " + description);
-    }
-}
-
 void require_non_negative(TomlTableReader& reader, std::string_view key, const glm::vec3& color) {
     if (color.r < 0.0f || color.g < 0.0f || color.b < 0.0f) {
         reader.fail(key, "components must be >= 0, got " + format_vec3(color));

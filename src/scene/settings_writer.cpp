@@ -96,6 +96,13 @@ void write_filter(std::ostream& out, const FilterSettings& f) {
     out << k::kMsmQuantization << " = " << boolean(f.msm_optimized_quantization) << "\n";
 }
 
+// The spot and point lights' shadow maps (docs/local-lights.md); the same keys as the flags.
+void write_local_shadows(std::ostream& out, const LocalShadowSettings& local) {
+    out << "local_shadow_budget = " << local.budget << "\n";
+    out << "local_shadow_resolution = " << local.resolution << "\n";
+    out << "local_shadow_sizing = \"" << (local.sizing == LocalShadowSizing::Fixed ? "fixed" : "coverage") << "\"\n";
+}
+
 }  // namespace
 
 std::string format_settings_file(const RenderSettings& settings, const Camera& camera, const Light* sun) {
@@ -104,6 +111,7 @@ std::string format_settings_file(const RenderSettings& settings, const Camera& c
     out << "[output]\nwidth = " << settings.width << "\nheight = " << settings.height << "\n\n[shadow]\n";
     write_cascades(out, settings.shadow);
     write_filter(out, settings.shadow.filter);
+    write_local_shadows(out, settings.local_shadows);
     out << "\n[camera]\neye = " << vec3(camera.eye) << "\ntarget = " << vec3(camera.target)
         << "\nup = " << vec3(camera.up) << "\nfov = " << real(camera.fov_y_degrees)
         << "\nnear = " << real(camera.near_plane) << "\nfar = " << real(camera.far_plane) << "\n";

@@ -10,7 +10,9 @@
 namespace penumbra {
 namespace {
 
-std::string quoted(std::string_view text) {
+constexpr size_t kAnySize = std::numeric_limits<size_t>::max();
+
+std::string quote(std::string_view text) {
     std::string result = "\"";
     for (char c : text) {
         if (c == '"' || c == '\\') result += '\\';
@@ -27,7 +29,7 @@ std::string join_keys(const std::vector<std::string>& keys) {
 }
 
 std::string value_text(const toml::node& node) {
-    if (const auto* text = node.as_string()) return quoted(text->get());
+    if (const auto* text = node.as_string()) return quote(text->get());
     if (const auto* integer = node.as_integer()) return std::to_string(integer->get());
     if (const auto* floating = node.as_floating_point()) return format_number(floating->get());
     if (const auto* boolean = node.as_boolean()) return boolean->get() ? "true" : "false";
@@ -62,7 +64,35 @@ std::string type_name(const toml::node& node) {
     }
 }
 
+[[noreturn]] void throw_parse_error(const toml::parse_error& error, const std::string& origin, bool with_position) {
+    std::string description(error.description());
+    // toml++ descriptions may span lines; the message must stay one line.
+    for (char& c : description) {
+        if (c == '\n' || c == '\r') c = ' ';
+    }
+    const toml::source_position where = error.source().begin;
+    const std::string position =
+        with_position ? ":" + std::to_string(where.line) + ":" + std::to_string(where.column) : "";
+    throw InputError(origin + position + ": malformed TOML: " + description);
+}
+
 }  // namespace
+
+toml::table parse_toml_text(std::string_view text, const std::string& origin, bool with_position) {
+    try {
+        return toml::parse(text, origin);
+    } catch (const toml::parse_error& error) {
+        throw_parse_error(error, origin, with_position);
+    }
+}
+
+toml::table parse_toml_file(const std::filesystem::path& file) {
+    try {
+        return toml::parse_file(file.string());
+    } catch (const toml::parse_error& error) {
+        throw_parse_error(error, file.string(), true);
+    }
+}
 
 void throw_scene_error(const std::string& origin, const std::string& key_path, const std::string& problem) {
     throw InputError(origin + ": " + key_path + ": " + problem);
@@ -125,22 +155,53 @@ std::optional<double> TomlTableReader::optional_number(std::string_view key) {
     return value;
 }
 
+std::optional<float> TomlTableReader::optional_float(std::string_view key) {
+    const std::optional<double> value = optional_number(key);
+    return value ? std::optional<float>(static_cast<float>(*value)) : std::nullopt;
+}
+
 float TomlTableReader::number_or(std::string_view key, float fallback) {
     return static_cast<float>(optional_number(key).value_or(fallback));
 }
 
-bool TomlTableReader::boolean_or(std::string_view key, bool fallback) {
+std::optional<int64_t> TomlTableReader::optional_integer(std::string_view key, int64_t min, int64_t max) {
     const toml::node* node = find(key);
-    if (node == nullptr) return fallback;
+    if (node == nullptr) return std::nullopt;
+    if (const auto* floating = node->as_floating_point()) {
+        std::ostringstream text;  // toml++ writes 2.0 as "2.0", which says why it is not an integer
+        text << *floating;
+        fail(key, "expected an integer, got " + text.str());
+    }
+    if (!node->is_integer()) fail(key, "expected an integer, got " + describe_toml_value(*node));
+    const int64_t value = node->as_integer()->get();
+    if (value < min || value > max) {
+        fail(key,
+             std::to_string(value) + " is out of range (" + std::to_string(min) + ".." + std::to_string(max) + ")");
+    }
+    return value;
+}
+
+std::optional<bool> TomlTableReader::optional_boolean(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
     if (!node->is_boolean()) fail(key, "expected true or false, got " + describe_toml_value(*node));
     return node->as_boolean()->get();
 }
 
+bool TomlTableReader::boolean_or(std::string_view key, bool fallback) {
+    return optional_boolean(key).value_or(fallback);
+}
+
+void TomlTableReader::fail_unknown_value(std::string_view key, const std::string& value,
+                                         const std::vector<std::string>& expected) const {
+    fail(key, "unknown value " + quote(value) + " (expected " + join_keys(expected) + ")");
+}
+
 std::vector<double> TomlTableReader::number_array(std::string_view key, const toml::array& array, size_t min_size,
                                                   size_t max_size) const {
-    const std::string expected = min_size == max_size ? "an array of " + std::to_string(min_size) + " numbers"
-                                                      : "an array of " + std::to_string(min_size) + " to " +
-                                                            std::to_string(max_size) + " numbers";
+    std::string expected = "an array of " + std::to_string(min_size) + " to " + std::to_string(max_size) + " numbers";
+    if (min_size == max_size) expected = "an array of " + std::to_string(min_size) + " numbers";
+    if (min_size == 0 && max_size == kAnySize) expected = "an array of numbers";
     if (array.size() < min_size || array.size() > max_size) {
         fail(key, "expected " + expected + ", got " + describe_toml_value(array));
     }
@@ -167,6 +228,14 @@ std::optional<glm::vec3> TomlTableReader::optional_vec3(std::string_view key) {
     if (!node->is_array()) fail(key, "expected an array of 3 numbers, got " + describe_toml_value(*node));
     const std::vector<double> values = number_array(key, *node->as_array(), 3, 3);
     return glm::vec3{values[0], values[1], values[2]};
+}
+
+std::optional<std::vector<float>> TomlTableReader::optional_number_list(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_array()) fail(key, "expected an array of numbers, got " + describe_toml_value(*node));
+    const std::vector<double> values = number_array(key, *node->as_array(), 0, kAnySize);
+    return std::vector<float>(values.begin(), values.end());
 }
 
 glm::vec3 TomlTableReader::vec3_or(std::string_view key, const glm::vec3& fallback) {
@@ -215,11 +284,11 @@ std::vector<const toml::table*> TomlTableReader::table_array(std::string_view ke
     return tables;
 }
 
-void TomlTableReader::reject_unknown_keys() const {
+void TomlTableReader::reject_unknown_keys(std::string_view what) const {
     for (const auto& [key, node] : table_) {
         const std::string_view name = key.str();
         if (std::find(known_keys_.begin(), known_keys_.end(), name) != known_keys_.end()) continue;
-        fail(name, "unknown key " + quoted(name) + " (expected " + join_keys(known_keys_) + ")");
+        fail(name, "unknown " + std::string(what) + " " + quote(name) + " (expected " + join_keys(known_keys_) + ")");
     }
 }
 

@@ -1,8 +1,14 @@
 #pragma once
-// Checked, typed reads from one table of a TOML scene file. Every problem becomes one
-// InputError line "<origin>: <key path>: <problem, with the offending value>", and every
-// key the parser asks about is remembered, so that reject_unknown_keys() turns a typo
-// ("colour", or "radius" on a box) into an error instead of a silently ignored setting.
+// Checked, typed reads from one table of a TOML file (a scene or a config file). Every
+// problem becomes one InputError line "<origin>: <key path>: <problem, with the offending
+// value>", and every key the parser asks about is remembered, so that reject_unknown_keys()
+// turns a typo ("colour", or "radius" on a box) into an error instead of a silently ignored
+// setting.
+#include <concepts>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +29,14 @@ std::string format_number(double value);
 // "a string \"cone\"", "an array [1, 2]"...: the offending value for an error message.
 std::string describe_toml_value(const toml::node& node);
 
+// Parses TOML text. A syntax error becomes one InputError line
+// "<origin>:<line>:<column>: malformed TOML: <description>" (without the position when
+// `with_position` is false, for text that is itself one line of a larger file).
+toml::table parse_toml_text(std::string_view text, const std::string& origin, bool with_position = true);
+
+// Reads and parses a TOML file; errors name the file as parse_toml_text() does.
+toml::table parse_toml_file(const std::filesystem::path& file);
+
 class TomlTableReader {
 public:
     // `path` is the table's key path ("camera", "objects[2]"), empty for the root.
@@ -40,8 +54,30 @@ public:
     std::optional<std::string> optional_string(std::string_view key);
     std::string required_string(std::string_view key);
     std::optional<double> optional_number(std::string_view key);  // integers accepted; finite only
+    std::optional<float> optional_float(std::string_view key);
     float number_or(std::string_view key, float fallback);
+    // An integer (2.0 is not one) in [min, max].
+    std::optional<int64_t> optional_integer(std::string_view key, int64_t min, int64_t max);
+    template <std::integral Integer>
+    std::optional<Integer> optional_integer_as(std::string_view key, int64_t min = std::numeric_limits<Integer>::min(),
+                                               int64_t max = std::numeric_limits<Integer>::max()) {
+        const std::optional<int64_t> value = optional_integer(key, min, max);
+        return value ? std::optional<Integer>(static_cast<Integer>(*value)) : std::nullopt;
+    }
+    std::optional<bool> optional_boolean(std::string_view key);
     bool boolean_or(std::string_view key, bool fallback);
+    // A string naming one of `choices` (the error lists them all).
+    template <typename Enum>
+    std::optional<Enum> optional_choice(std::string_view key, const std::map<std::string, Enum>& choices) {
+        const std::optional<std::string> name = optional_string(key);
+        if (!name) return std::nullopt;
+        if (const auto found = choices.find(*name); found != choices.end()) return found->second;
+        std::vector<std::string> names;
+        for (const auto& choice : choices) names.push_back(choice.first);
+        fail_unknown_value(key, *name, names);
+    }
+    // An array of any number of numbers.
+    std::optional<std::vector<float>> optional_number_list(std::string_view key);
     // An array of exactly N numbers.
     std::optional<glm::vec2> optional_vec2(std::string_view key);
     std::optional<glm::vec3> optional_vec3(std::string_view key);
@@ -56,11 +92,13 @@ public:
     std::vector<const toml::table*> table_array(std::string_view key);
 
     // Throws for the first key of the table that no read or accept() asked about,
-    // listing the keys this table understands.
-    void reject_unknown_keys() const;
+    // listing the keys this table understands: "<key path>: unknown <what> \"<key>\" (expected ...)".
+    void reject_unknown_keys(std::string_view what = "key") const;
 
 private:
     const toml::node* find(std::string_view key);
+    [[noreturn]] void fail_unknown_value(std::string_view key, const std::string& value,
+                                         const std::vector<std::string>& expected) const;
     std::vector<double> number_array(std::string_view key, const toml::array& array, size_t min_size,
                                      size_t max_size) const;
 

@@ -2,8 +2,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace penumbra::testing {
+
+std::string ground_scene_toml(const glm::vec3& light_direction, const std::string& objects) {
+    char header[512];
+    std::snprintf(header, sizeof(header), R"(
+[camera]
+eye = [0.0, 9.0, 7.0]
+target = [0.0, 0.0, 0.0]
+fov = 50.0
+near = 0.1
+far = 60.0
+
+[[lights]]
+type = "directional"
+direction = [%f, %f, %f]
+
+[[objects]]
+type = "plane"
+size = [30.0, 30.0]
+)",
+                  light_direction.x, light_direction.y, light_direction.z);
+    return header + objects;
+}
 
 PixelRay pixel_ray(const Camera& camera, uint32_t width, uint32_t height, uint32_t x, uint32_t y) {
     const glm::vec3 forward = glm::normalize(camera.target - camera.eye);

@@ -4,12 +4,28 @@
 // by a directional light (the convex hull of the box corners projected along the
 // light onto the plane).
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/bounds.hpp"
 #include "core/scene.hpp"
 
 namespace penumbra::testing {
+
+// The ground scene of the footprint and compare tests: a 30 x 30 m plane at y = 0
+// (|x|, |z| <= kGroundSceneHalfSize) seen from (0, 9, 7), a directional light along
+// `light_direction`, and `objects` (TOML [[objects]] tables) above the ground.
+inline constexpr float kGroundSceneHalfSize = 15.0f;
+std::string ground_scene_toml(const glm::vec3& light_direction, const std::string& objects);
+
+// A 3 x 0.5 x 2 m box floating 2 m above that ground: its [[objects]] table and its bounds.
+inline constexpr const char* kFloatingBoxToml = R"(
+[[objects]]
+type = "box"
+size = [3.0, 0.5, 2.0]
+translation = [0.0, 2.0, 0.0]
+)";
+inline const Aabb kFloatingBoxBounds{{-1.5f, 1.75f, -1.0f}, {1.5f, 2.25f, 1.0f}};
 
 struct PixelRay {
     glm::vec3 origin;

@@ -3,42 +3,28 @@
 // pieces behind it (statistics, camera and light paths, the forest scene). Timings are
 // only checked for being present and positive: lavapipe's numbers mean nothing here.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "bench/paths.hpp"
 #include "bench/statistics.hpp"
+#include "cli_runner.hpp"
 #include "core/errors.hpp"
 #include "scene/forest_scene.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using penumbra::testing::read_text;
+using penumbra::testing::RunResult;
 
 namespace {
 
 constexpr const char* kForest = "'builtin:forest?count=30'";
 // Small and quick on lavapipe; --validate makes any validation message fail the run.
 constexpr const char* kSmall = " --frames 3 --warmup 1 --width 96 --height 64 --shadow-resolution 512 --validate";
-
-struct RunResult {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string read_text(const fs::path& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
 
 // Triangles the renderer submits for one pass over every instance, counted from the meshes.
 uint64_t triangles_submitted_by(const penumbra::Scene& scene) {
@@ -49,25 +35,8 @@ uint64_t triangles_submitted_by(const penumbra::Scene& scene) {
     return triangles;
 }
 
-class BenchCli : public ::testing::Test {
+class BenchCli : public penumbra::testing::CliTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / (std::string("penumbra_bench_") + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    RunResult run(const std::string& arguments) const {
-        const fs::path out = dir_ / "stdout.txt";
-        const fs::path err = dir_ / "stderr.txt";
-        const std::string command = "cd '" + dir_.string() + "' && '" + PENUMBRA_BINARY + "' " + arguments + " > '" +
-                                    out.string() + "' 2> '" + err.string() + "'";
-        const int status = std::system(command.c_str());
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
-    }
-
     // Runs `bench` with --json and returns the parsed report (fails the test on error).
     json run_json(const std::string& arguments) const {
         const RunResult result = run("bench " + arguments + " --json report.json");
@@ -77,14 +46,9 @@ protected:
     }
 
     void expect_usage_error(const std::string& arguments, const std::string& needle) const {
-        const RunResult result = run("bench " + arguments + " --json report.json");
-        EXPECT_EQ(result.exit_code, 2) << result.err;
-        EXPECT_NE(result.err.find(needle), std::string::npos) << result.err;
-        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+        expect_failure(run("bench " + arguments + " --json report.json"), 2, needle);
         EXPECT_FALSE(fs::exists(dir_ / "report.json"));
     }
-
-    fs::path dir_;
 };
 
 void expect_positive_timings(const json& timings, const std::vector<std::string>& names) {

@@ -1,74 +1,19 @@
 // The `penumbra` command line: exit codes, one-line error messages naming the problem
 // and its origin, and no output file left behind on failure.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "cli_runner.hpp"
 #include "image/png_io.hpp"
 
 namespace fs = std::filesystem;
+using penumbra::testing::RunResult;
 
 namespace {
 
-struct RunResult {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string read_text(const fs::path& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / (std::string("penumbra_cli_") + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    RunResult run(const std::string& arguments, const std::string& environment = "") const {
-        const fs::path out = dir_ / "stdout.txt";
-        const fs::path err = dir_ / "stderr.txt";
-        const std::string command = "cd '" + dir_.string() + "' && " + environment + " '" + PENUMBRA_BINARY + "' " +
-                                    arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
-        const int status = std::system(command.c_str());
-        RunResult result;
-        result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        result.out = read_text(out);
-        result.err = read_text(err);
-        return result;
-    }
-
-    fs::path write_file(const std::string& name, const std::string& text) const {
-        const fs::path path = dir_ / name;
-        std::ofstream(path) << text;
-        return path;
-    }
-
-    // The failure contract: exit code, exactly one stderr line containing `needle`, no output.
-    void expect_failure(const RunResult& result, int code, const std::string& needle) const {
-        EXPECT_EQ(result.exit_code, code) << result.err;
-        EXPECT_NE(result.err.find(needle), std::string::npos) << "stderr: " << result.err;
-        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "stderr: " << result.err;
-        EXPECT_FALSE(fs::exists(dir_ / "out.png"));
-        for (const auto& entry : fs::directory_iterator(dir_)) {
-            EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "left " << entry.path();
-        }
-    }
-
-    fs::path dir_;
-};
+using Cli = penumbra::testing::CliTest;
 
 constexpr const char* kValidScene = R"(
 [camera]
@@ -319,7 +264,8 @@ TEST_F(Cli, LocalLightVisibilityAov) {
     }
     expect_failure(run("render scene.toml --aov shadow:3 -o out.png"), 2, "--aov shadow:3");
     expect_failure(run("render scene.toml --aov shadow:x -o out.png"), 2, "--aov");
-    expect_failure(run("render scene.toml --local-shadow-budget 17 -o out.png"), 2, "--local-shadow-budget");
+    expect_failure(run("render scene.toml --local-shadow-budget 33 -o out.png"), 2, "--local-shadow-budget");
+    expect_failure(run("render scene.toml --local-shadow-sizing screen -o out.png"), 2, "--local-shadow-sizing");
 }
 
 TEST_F(Cli, LocalLightsBeyondTheBudgetWarnOnce) {

@@ -2,50 +2,17 @@
 // rasterizer's own surface points, the metrics respond to the artefacts they name, and
 // bad input fails with one line and exit code 2.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "analytic_shadow.hpp"
+#include "cli_runner.hpp"
 #include "compare/compare_job.hpp"
 #include "render_fixture.hpp"
 
 namespace penumbra::testing {
 namespace {
-
-std::string scene_text(const glm::vec3& light, const std::string& objects) {
-    char header[512];
-    std::snprintf(header, sizeof(header), R"(
-[camera]
-eye = [0.0, 9.0, 7.0]
-target = [0.0, 0.0, 0.0]
-fov = 50.0
-near = 0.1
-far = 60.0
-
-[[lights]]
-type = "directional"
-direction = [%f, %f, %f]
-
-[[objects]]
-type = "plane"
-size = [30.0, 30.0]
-)",
-                  light.x, light.y, light.z);
-    return header + objects;
-}
-
-const char* kFloatingBox = R"(
-[[objects]]
-type = "box"
-size = [3.0, 0.5, 2.0]
-translation = [0.0, 2.0, 0.0]
-)";
 
 const char* kSphere = R"(
 [[objects]]
@@ -96,7 +63,7 @@ Agreement check_against_analytic(const compare::CompareResult& result, const Cam
             const glm::vec4 position = result.images.world_position[i];
             if (position.w < 0.5f || std::abs(position.y) > 1e-4f || !frame.evaluated[i]) continue;
             const PixelRay ray = pixel_ray(camera, frame.width, frame.height, x, y);
-            const auto ground = intersect_ground(ray, 15.0f);
+            const auto ground = intersect_ground(ray, kGroundSceneHalfSize);
             if (!ground) continue;
             const glm::vec3 expected = ray.origin + ray.direction * *ground;
             agreement.worst_position_error =
@@ -111,10 +78,9 @@ Agreement check_against_analytic(const compare::CompareResult& result, const Cam
 }
 
 void expect_box_agreement(const glm::vec3& light_direction) {
-    const std::string text = scene_text(light_direction, kFloatingBox);
+    const std::string text = ground_scene_toml(light_direction, kFloatingBoxToml);
     const compare::CompareResult result = compare_scene(text, small_settings(240, 180));
-    const Aabb box{{-1.5f, 1.75f, -1.0f}, {1.5f, 2.25f, 1.0f}};
-    const auto polygon = shadow_polygon(box, glm::normalize(light_direction));
+    const auto polygon = shadow_polygon(kFloatingBoxBounds, glm::normalize(light_direction));
     const Agreement agreement =
         check_against_analytic(result, scene_from_toml(text).camera, [&](const glm::vec3& p) -> std::optional<bool> {
             const glm::vec2 ground(p.x, p.z);
@@ -132,7 +98,7 @@ TEST(CompareReference, BoxWithSlantedLightMatchesTheAnalyticFootprint) { expect_
 
 TEST(CompareReference, SphereShadowIsTheProjectedEllipse) {
     const glm::vec3 light = glm::normalize(glm::vec3(0.7f, -1.0f, -0.4f));
-    const std::string text = scene_text(light, kSphere);
+    const std::string text = ground_scene_toml(light, kSphere);
     const compare::CompareResult result = compare_scene(text, small_settings(240, 180));
     const glm::vec3 center(0.5f, 1.6f, 0.0f);
     // The shadow is the sphere projected along the light: the ground points whose line toward
@@ -152,7 +118,7 @@ TEST(CompareReference, SphereShadowIsTheProjectedEllipse) {
 const glm::vec3 kSlantedLight{-0.6f, -1.0f, 0.35f};
 
 TEST(CompareMetrics, ZeroBiasRaisesFalseShadow) {
-    const std::string text = scene_text(kSlantedLight, kSlabAndBox);
+    const std::string text = ground_scene_toml(kSlantedLight, kSlabAndBox);
     RenderSettings settings = small_settings(240, 180);
     const compare::CompareResult biased = compare_scene(text, settings);
     settings.shadow.bias.slope = 0.0f;
@@ -163,7 +129,7 @@ TEST(CompareMetrics, ZeroBiasRaisesFalseShadow) {
 }
 
 TEST(CompareMetrics, LargeNormalOffsetRaisesFalseLit) {
-    const std::string text = scene_text(kSlantedLight, kSlabAndBox);
+    const std::string text = ground_scene_toml(kSlantedLight, kSlabAndBox);
     RenderSettings settings = small_settings(240, 180);
     const compare::CompareResult normal = compare_scene(text, settings);
     settings.shadow.bias.normal_offset = 10.0f;
@@ -172,7 +138,7 @@ TEST(CompareMetrics, LargeNormalOffsetRaisesFalseLit) {
 }
 
 TEST(CompareMetrics, CoarserShadowMapRaisesTheEdgeError) {
-    const std::string text = scene_text(kSlantedLight, kFloatingBox);
+    const std::string text = ground_scene_toml(kSlantedLight, kFloatingBoxToml);
     RenderSettings settings = small_settings(240, 180);
     settings.shadow.cascades.count = 1;
     settings.shadow.cascades.resolution = 4096;
@@ -184,7 +150,7 @@ TEST(CompareMetrics, CoarserShadowMapRaisesTheEdgeError) {
 }
 
 TEST(CompareMetrics, StableFitShimmersLessThanTightUnderCameraMotion) {
-    const std::string text = scene_text(kSlantedLight, kSlabAndBox);
+    const std::string text = ground_scene_toml(kSlantedLight, kSlabAndBox);
     RenderSettings settings = small_settings(240, 180);
     settings.shadow.cascades.fit = FitMode::Stable;
     const compare::CompareResult stable = compare_scene(text, settings, 1, 8);
@@ -196,53 +162,24 @@ TEST(CompareMetrics, StableFitShimmersLessThanTightUnderCameraMotion) {
 }
 
 // The command line: bad input fails before anything is rendered or written.
-struct RunResult {
-    int exit_code = -1;
-    std::string err;
-};
-
-RunResult run_penumbra(const std::filesystem::path& dir, const std::string& arguments) {
-    const std::filesystem::path err = dir / "stderr.txt";
-    const std::string command = "cd '" + dir.string() + "' && '" + PENUMBRA_BINARY + "' " + arguments +
-                                " > /dev/null 2> '" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    std::ifstream file(err);
-    std::stringstream text;
-    text << file.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-class CompareCli : public ::testing::Test {
+class CompareCli : public CliTest {
 protected:
-    void SetUp() override {
-        dir_ = std::filesystem::temp_directory_path() /
-               (std::string("penumbra_compare_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        std::filesystem::remove_all(dir_);
-        std::filesystem::create_directories(dir_);
-    }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
-
     void expect_one_line_failure(const std::string& arguments, const std::string& needle) const {
-        const RunResult result = run_penumbra(dir_, arguments);
-        EXPECT_EQ(result.exit_code, 2) << result.err;
-        EXPECT_NE(result.err.find(needle), std::string::npos) << result.err;
-        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+        expect_failure(run(arguments), 2, needle);
         EXPECT_FALSE(std::filesystem::exists(dir_ / "out")) << "output left behind";
     }
-
-    std::filesystem::path dir_;
 };
 
 TEST_F(CompareCli, SceneWithoutDirectionalLightIsRejected) {
-    std::ofstream(dir_ / "dark.toml") << "[[objects]]\ntype = \"plane\"\nsize = [10.0, 10.0]\n";
+    write_file("dark.toml", "[[objects]]\ntype = \"plane\"\nsize = [10.0, 10.0]\n");
     expect_one_line_failure("compare dark.toml --out-dir out", "directional light");
 }
 
 TEST_F(CompareCli, ZeroRaysAreRejected) { expect_one_line_failure("compare --rays 0 --out-dir out", "--rays"); }
 
 TEST_F(CompareCli, WritesTheReportAndImages) {
-    const RunResult result = run_penumbra(
-        dir_, "compare builtin:box-on-plane --width 96 --height 64 --rays 4 --stability-frames 2 --out-dir out");
+    const RunResult result =
+        run("compare builtin:box-on-plane --width 96 --height 64 --rays 4 --stability-frames 2 --out-dir out");
     ASSERT_EQ(result.exit_code, 0) << result.err;
     for (const char* name : {"compare.json", "render_shadow.png", "reference_hard.png", "reference_soft.png",
                              "error.png", "soft_error.png", "side_by_side.png"}) {

@@ -343,27 +343,35 @@ TEST(LocalLights, SpotPcssPenumbraGrowsWithTheLightRadius) {
     EXPECT_GT(large, 3 * std::max<size_t>(small, 20));
 }
 
-// Nine shadowed spot lights in a row, each over its own box: with a budget of 8 the ninth
-// renders unshadowed with a one-line warning, and the first eight still shadow correctly.
-std::string nine_spots_scene() {
-    std::string text = R"(
+// Shadowed spot lights in a grid (5 m apart, `columns` per row), each over its own box.
+glm::vec2 grid_light_xz(int index, int count, int columns) {
+    const int rows = (count + columns - 1) / columns;
+    const float x = 5.0f * (static_cast<float>(index % columns) - 0.5f * static_cast<float>(columns - 1));
+    const float z = 5.0f * (static_cast<float>(index / columns) - 0.5f * static_cast<float>(rows - 1));
+    return {x, z};
+}
+
+std::string spot_grid_scene(int count, int columns, float camera_height) {
+    char buffer[512];
+    std::snprintf(buffer, sizeof(buffer), R"(
 [camera]
-eye = [0.0, 24.0, 0.1]
+eye = [0.0, %f, 0.1]
 target = [0.0, 0.0, 0.0]
 fov = 60.0
 far = 100.0
 
 [[objects]]
 type = "plane"
-size = [60.0, 20.0]
-)";
-    char buffer[512];
-    for (int i = 0; i < 9; ++i) {
-        const float x = -16.0f + 4.0f * static_cast<float>(i);
+size = [60.0, 40.0]
+)",
+                  camera_height);
+    std::string text = buffer;
+    for (int i = 0; i < count; ++i) {
+        const glm::vec2 xz = grid_light_xz(i, count, columns);
         std::snprintf(buffer, sizeof(buffer), R"(
 [[lights]]
 type = "spot"
-position = [%f, 5.0, 0.0]
+position = [%f, 5.0, %f]
 direction = [0.0, -1.0, 0.0]
 inner_angle = 25.0
 outer_angle = 28.0
@@ -374,55 +382,79 @@ intensity = 20.0
 [[objects]]
 type = "box"
 size = 0.8
-translation = [%f, 2.0, 0.0]
+translation = [%f, 2.0, %f]
 )",
-                      x, x);
+                      xz.x, xz.y, xz.x, xz.y);
         text += buffer;
     }
     return text;
 }
 
+struct UnderAndBeside {
+    size_t under = 0, under_shadowed = 0;  // ground within 0.3 m of the light's axis
+    size_t beside = 0, beside_lit = 0;     // 1 to 1.8 m to the side: past the box shadow, inside the inner cone
+};
+
+UnderAndBeside measure_under_and_beside(const RenderedFrame& frame, glm::vec2 light_xz) {
+    UnderAndBeside result;
+    for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+        const glm::vec4 p = frame.images.world_position[i];
+        if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;
+        const float dx = std::abs(p.x - light_xz.x), dz = std::abs(p.z - light_xz.y);
+        const float visibility = frame.images.visibility[i] / 65535.0f;
+        if (dx < 0.3f && dz < 0.3f) {
+            ++result.under;
+            result.under_shadowed += visibility < 0.5f;
+        } else if (dx > 1.0f && dx < 1.8f && dz < 0.3f) {
+            ++result.beside;
+            result.beside_lit += visibility > 0.5f;
+        }
+    }
+    return result;
+}
+
+// Renders light `light` of the grid's visibility and checks: one warning line naming
+// `beyond` lights over `budget`; the light's box shadow under it exactly when `shadowed`;
+// lit beside it.
+void expect_grid_light(const Scene& scene, const RenderSettings& settings, int light, int count, int columns,
+                       bool shadowed, const std::string& warning) {
+    ::testing::internal::CaptureStderr();
+    const RenderedFrame frame = render_light(scene, settings, light);
+    const std::string errors = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+    EXPECT_NE(errors.find(warning), std::string::npos) << errors;
+    const UnderAndBeside counts = measure_under_and_beside(frame, grid_light_xz(light, count, columns));
+    std::printf("light %d: %zu/%zu px under the box shadowed, %zu/%zu beside lit\n", light, counts.under_shadowed,
+                counts.under, counts.beside_lit, counts.beside);
+    ASSERT_GT(counts.under, 10u);
+    ASSERT_GT(counts.beside, 10u);
+    EXPECT_EQ(counts.beside_lit, counts.beside) << "light " << light;
+    EXPECT_EQ(counts.under_shadowed, shadowed ? counts.under : 0u) << "light " << light;
+}
+
+// Nine shadowed spot lights in a row: with a budget of 8 the ninth renders unshadowed with
+// a one-line warning, and the first eight still shadow correctly.
 TEST(LocalLights, LightsBeyondTheBudgetRenderUnshadowedWithOneWarning) {
-    const Scene scene = scene_from_toml(nine_spots_scene());
+    const Scene scene = scene_from_toml(spot_grid_scene(9, 9, 28.0f));
     RenderSettings settings = small_settings(480, 200);
     settings.shadow.filter.mode = ShadowFilter::Pcf;
     settings.local_shadows.resolution = 256;
     ASSERT_EQ(settings.local_shadows.budget, 8u);
     for (const int light : {0, 7, 8}) {
-        ::testing::internal::CaptureStderr();
-        const RenderedFrame frame = render_light(scene, settings, light);
-        const std::string errors = ::testing::internal::GetCapturedStderr();
-        EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
-        EXPECT_NE(errors.find("1 shadow-casting spot/point light(s) beyond the local shadow budget of 8"),
-                  std::string::npos)
-            << errors;
-        // Under the light, straight below the box: the box's shadow (or none past the budget);
-        // 1 to 1.8 m to the side, past the box shadow and inside the inner cone: lit.
-        const float x = -16.0f + 4.0f * static_cast<float>(light);
-        size_t under = 0, under_shadowed = 0, beside = 0, beside_lit = 0;
-        for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
-            const glm::vec4 p = frame.images.world_position[i];
-            if (p.w == 0.0f || std::abs(p.y) > 1e-3f) continue;
-            const float dx = std::abs(p.x - x), dz = std::abs(p.z);
-            const float visibility = frame.images.visibility[i] / 65535.0f;
-            if (dx < 0.3f && dz < 0.3f) {
-                ++under;
-                under_shadowed += visibility < 0.5f;
-            } else if (dx > 1.0f && dx < 1.8f && dz < 0.3f) {
-                ++beside;
-                beside_lit += visibility > 0.5f;
-            }
-        }
-        std::printf("light %d: %zu/%zu px under the box shadowed, %zu/%zu beside lit\n", light, under_shadowed, under,
-                    beside_lit, beside);
-        ASSERT_GT(under, 10u);
-        ASSERT_GT(beside, 10u);
-        EXPECT_EQ(beside_lit, beside) << "light " << light;
-        if (light < 8) {
-            EXPECT_EQ(under_shadowed, under) << "light " << light << " is within the budget";
-        } else {
-            EXPECT_EQ(under_shadowed, 0u) << "light 8 is beyond the budget: unshadowed";
-        }
+        expect_grid_light(scene, settings, light, 9, 9, light < 8,
+                          "1 shadow-casting spot/point light(s) beyond the local shadow budget of 8");
+    }
+}
+
+// Forty spots, the largest budget (32): all forty are lit, the first 32 shadowed.
+TEST(LocalLights, FortyLightsWithTheLargestBudget) {
+    const Scene scene = scene_from_toml(spot_grid_scene(40, 8, 36.0f));
+    RenderSettings settings = small_settings(480, 320);
+    settings.shadow.filter.mode = ShadowFilter::Pcf;
+    settings.local_shadows.budget = kMaxLocalShadowBudget;
+    for (const int light : {0, 31, 32, 39}) {
+        expect_grid_light(scene, settings, light, 40, 8, light < 32,
+                          "8 shadow-casting spot/point light(s) beyond the local shadow budget of 32");
     }
 }
 

@@ -4,42 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 
 #include "analytic_shadow.hpp"
 #include "render_fixture.hpp"
 
 namespace penumbra::testing {
 namespace {
-
-constexpr float kGroundHalfSize = 15.0f;
-
-std::string floating_box_scene(const glm::vec3& light) {
-    char text[1024];
-    std::snprintf(text, sizeof(text), R"(
-[camera]
-eye = [0.0, 9.0, 7.0]
-target = [0.0, 0.0, 0.0]
-fov = 50.0
-near = 0.1
-far = 60.0
-
-[[lights]]
-type = "directional"
-direction = [%f, %f, %f]
-
-[[objects]]
-type = "plane"
-size = [30.0, 30.0]
-
-[[objects]]
-type = "box"
-size = [3.0, 0.5, 2.0]
-translation = [0.0, 2.0, 0.0]
-)",
-                  light.x, light.y, light.z);
-    return text;
-}
 
 struct FootprintResult {
     double iou = 0.0;
@@ -58,12 +28,12 @@ float texel_size_at(const CascadeSet& cascades, float distance) {
 }
 
 FootprintResult measure_footprint(const glm::vec3& light_direction) {
-    const Scene scene = scene_from_toml(floating_box_scene(light_direction));
+    const Scene scene = scene_from_toml(ground_scene_toml(light_direction, kFloatingBoxToml));
     const RenderSettings settings = small_settings(320, 240);
     const RenderedFrame frame = render_with_validation(scene, settings);
     EXPECT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
 
-    const Aabb box{{-1.5f, 1.75f, -1.0f}, {1.5f, 2.25f, 1.0f}};
+    const Aabb& box = kFloatingBoxBounds;
     const glm::vec3 light = glm::normalize(light_direction);
     const auto polygon = shadow_polygon(box, light);
     size_t intersection = 0, union_count = 0, lit = 0, lit_exact = 0, umbra = 0, umbra_exact = 0;
@@ -71,7 +41,7 @@ FootprintResult measure_footprint(const glm::vec3& light_direction) {
     for (uint32_t y = 0; y < settings.height; ++y) {
         for (uint32_t x = 0; x < settings.width; ++x) {
             const PixelRay ray = pixel_ray(scene.camera, settings.width, settings.height, x, y);
-            const auto ground = intersect_ground(ray, kGroundHalfSize);
+            const auto ground = intersect_ground(ray, kGroundSceneHalfSize);
             const auto box_hit = intersect_box(ray, box);
             if (!ground || (box_hit && *box_hit < *ground)) continue;
             ++result.ground_pixels;

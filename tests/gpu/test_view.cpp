@@ -4,69 +4,27 @@
 // a window resize) takes effect and saves a config that `render` reproduces; and
 // without a window system the viewer fails with one line and exit code 3.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "cli_runner.hpp"
 #include "image/png_io.hpp"
 
 namespace fs = std::filesystem;
+using penumbra::testing::read_text;
+using penumbra::testing::RunResult;
 
 namespace {
 
-struct RunResult {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string read_text(const fs::path& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
 bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-class View : public ::testing::Test {
+class View : public penumbra::testing::CliTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        // The process id keeps runs from several build folders at once apart.
-        dir_ = fs::temp_directory_path() /
-               (std::string("penumbra_view_") + info->name() + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    RunResult run(const std::string& arguments, const std::string& prefix = "") const {
-        const fs::path out = dir_ / "stdout.txt";
-        const fs::path err = dir_ / "stderr.txt";
-        const std::string command = "cd '" + dir_.string() + "' && " + prefix + " '" + PENUMBRA_BINARY + "' " +
-                                    arguments + " > '" + out.string() + "' 2> '" + err.string() + "'";
-        const int status = std::system(command.c_str());
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
-    }
-
     // A private X server with a 24-bit screen (xvfb-run's default is 8-bit).
     RunResult run_in_window(const std::string& arguments) const {
         return run(arguments, "xvfb-run -a -s '-screen 0 1280x1024x24'");
     }
-
-    fs::path write_file(const std::string& name, const std::string& text) const {
-        const fs::path path = dir_ / name;
-        std::ofstream(path) << text;
-        return path;
-    }
-
-    fs::path dir_;
 };
 
 // Fraction of pixels where any channel differs by more than `tolerance`.
@@ -91,10 +49,7 @@ double fraction_differing(const penumbra::PngImage& a, const penumbra::PngImage&
 constexpr const char* kSize = " --width 320 --height 240";
 
 TEST_F(View, WithoutWindowSystemFailsWithOneLineAndExitCode3) {
-    const RunResult result = run("view --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY");
-    EXPECT_EQ(result.exit_code, 3) << result.err;
-    EXPECT_NE(result.err.find("no window system"), std::string::npos) << result.err;
-    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    expect_failure(run("view --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY"), 3, "no window system");
 }
 
 TEST_F(View, ScreenshotColourMatchesRender) {
@@ -186,10 +141,7 @@ TEST_F(View, RecreationsStayValidationClean) {
 
 TEST_F(View, BadScriptIsAnInputErrorNamingTheLine) {
     write_file("bad.txt", "0 set shadow.cascades = 2\n1 fly-to-the-moon\n");
-    const RunResult result = run("view --frames 2 --script bad.txt");
-    EXPECT_EQ(result.exit_code, 2) << result.err;
-    EXPECT_NE(result.err.find("bad.txt:2: unknown action \"fly-to-the-moon\""), std::string::npos) << result.err;
-    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    expect_failure(run("view --frames 2 --script bad.txt"), 2, "bad.txt:2: unknown action \"fly-to-the-moon\"");
 }
 
 }  // namespace

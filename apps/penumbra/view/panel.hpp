@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's Dear ImGui panel: every shadow setting live, the camera and sun, debug
-// views, per-cascade statistics, GPU time per pass and the shadow-map layers.
+// views, per-cascade and per-local-light statistics, GPU time per pass and the shadow-map
+// layers.
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@ namespace penumbra::view {
 // What the panel reports about the last rendered frame.
 struct PanelStats {
     const renderer::FrameInfo* frame = nullptr;  // null before the first frame
+    const std::vector<Light>* lights = nullptr;  // the scene's lights (local_shadow_stats index them)
     double frame_ms = 0.0;                       // wall-clock time between frames, smoothed
     double render_ms = 0.0;                      // CPU time in Renderer::render (includes its GPU wait)
     uint64_t shadow_map_bytes = 0;
@@ -27,6 +29,10 @@ void draw_panel(ViewState& state, const PanelStats& stats);
 
 // Controls of the settings sections, on `settings` in place (used by draw_panel).
 void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* frame);
+
+// The "Local lights" section: the local shadow budget and resolution on `local` in place,
+// and the last frame's shadowed spot/point lights (used by draw_panel).
+void draw_local_lights(LocalShadowSettings& local, const PanelStats& stats);
 
 // Statistics sections (used by draw_panel).
 void draw_statistics(const PanelStats& stats);

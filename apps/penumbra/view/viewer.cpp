@@ -64,6 +64,7 @@ void Viewer::step(float seconds) {
     parts_.ui.begin_frame();
     handle_input(state_, seconds);
     stats_.frame = renderer_ ? &renderer_->last_frame() : nullptr;
+    stats_.lights = &state_.scene.lights;
     stats_.shadow_map_bytes = renderer_ ? renderer_->shadow_map_bytes() : 0;
     draw_panel(state_, stats_);
     parts_.ui.end_frame();
