@@ -60,6 +60,27 @@ def matrix(scenes_dir):
              for taps in (1, 16, 64)]
     runs += [("camera path", "flythrough", None, ["--camera-path", "flythrough"]),
              ("light path", "rotate", None, ["--light-path", "rotate"])]
+    runs += local_light_runs()
+    return runs
+
+
+def local_light_runs():
+    """Spot and point lights over the baseline forest (docs/local-lights.md): count, kind,
+    filter, sizing. The sun keeps its baseline settings except where the filter changes both."""
+    def forest(spots=0, points=0):
+        return f"{BASELINE_SCENE}&spots={spots}&points={points}"
+    runs = [("local lights", "none", forest(), [])]
+    runs += [("local lights", f"{n} spot{'s' if n > 1 else ''}", forest(spots=n), []) for n in (1, 8)]
+    runs += [("local lights", "32 spots (budget 32)", forest(spots=32), ["--local-shadow-budget", "32"]),
+             ("local lights", "64 spots, 32 shadowed", forest(spots=64), ["--local-shadow-budget", "32"]),
+             ("local lights", "1 point", forest(points=1), []),
+             ("local lights", "8 points (48 faces)", forest(points=8), [])]
+    runs += [("local filter", f"8 spots, {name}", forest(spots=8), args)
+             for name, args in FILTERS if name in ("hard", "pcf r=1", "poisson", "pcss medium", "vsm", "msm")]
+    runs += [("local sizing", "8 spots, coverage (default)", forest(spots=8), []),
+             ("local sizing", "8 spots, fixed 1024", forest(spots=8), ["--local-shadow-sizing", "fixed"]),
+             ("local sizing", "8 spots, fixed 2048", forest(spots=8),
+              ["--local-shadow-sizing", "fixed", "--local-shadow-resolution", "2048"])]
     return runs
 
 
@@ -114,7 +135,19 @@ def run_one(binary, scene, arguments, json_path, common, timeout):
 
 
 def shadow_ms(report):
-    return sum(v["median"] for k, v in report["gpu_ms"].items() if k.startswith("shadow_"))
+    """The sun's shadow passes (the spot/point lights' pass is its own column)."""
+    return sum(v["median"] for k, v in report["gpu_ms"].items()
+               if k.startswith("shadow_") and k != "shadow_local")
+
+
+def local_summary(report):
+    """Shadowed local lights, their layers and the mean map size: '8 / 8 L / 512'."""
+    lights = report.get("local_shadows", {}).get("lights", [])
+    if not lights:
+        return ""
+    layers = sum(light["layers"] for light in lights)
+    resolution = sum(light["resolution"]["mean"] for light in lights) / len(lights)
+    return f"{len(lights)} / {layers} L / {resolution:.0f}"
 
 
 def fmt(value, digits=3):
@@ -124,7 +157,7 @@ def fmt(value, digits=3):
 def report_row(entry):
     r = entry["report"]
     if r is None:
-        return f"| {entry['variant']} | {entry['status']}: {entry['reason']} | | | | | | |"
+        return f"| {entry['variant']} | {entry['status']}: {entry['reason']} | | | | | | | | |"
     gpu, cpu = r["gpu_ms"], r["cpu_ms"]
     frame = gpu.get("frame", {})
     lighting = gpu.get("lighting", {}).get("median")
@@ -132,22 +165,27 @@ def report_row(entry):
     triangles = sum(c["triangles"]["mean"] for c in r["cascades"])
     ceiling = r.get("ceiling")
     extra = f"{ceiling['per_second']:.4g} {ceiling['unit']}/s" if ceiling else f"{triangles / 1e6:.2f}M"
+    local = gpu.get("shadow_local", {}).get("median")
     return (f"| {entry['variant']} | {fmt(frame.get('median'))} | {fmt(frame.get('p95'))} | {fmt(shadow_ms(r))} | "
-            f"{fmt(moments)} | {fmt(lighting)} | {fmt(cpu.get('recording', {}).get('median'))} | {extra} |")
+            f"{fmt(moments)} | {fmt(local)} | {local_summary(r)} | {fmt(lighting)} | "
+            f"{fmt(cpu.get('recording', {}).get('median'))} | {extra} |")
 
 
 def write_report(path, entries, header):
     lines = [f"# Penumbra benchmark matrix", "", *header, "",
              "Times are medians over the measured frames in milliseconds (frame: also p95). "
-             "Shadow = sum of the shadow-pass scopes; last column: shadow triangles submitted per frame "
-             "(sum over cascades), or the ceiling rate.", ""]
+             "Shadow = sum of the sun's shadow-pass scopes; local = the spot/point lights' pass "
+             "(depth, and moments with a moment filter), with shadowed lights / layers / mean map size; "
+             "last column: the sun's shadow triangles submitted per frame (sum over cascades), or the "
+             "ceiling rate.", ""]
     axis = None
     for entry in entries:
         if entry["axis"] != axis:
             axis = entry["axis"]
             lines += ["", f"## {axis}", "",
-                      "| variant | frame | frame p95 | shadow | moments | lighting | CPU recording | triangles / rate |",
-                      "|---|---|---|---|---|---|---|---|"]
+                      "| variant | frame | frame p95 | shadow | moments | local | local lights | lighting | "
+                      "CPU recording | triangles / rate |",
+                      "|---|---|---|---|---|---|---|---|---|---|"]
         lines.append(report_row(entry))
     with open(path, "w") as file:
         file.write("\n".join(lines) + "\n")

@@ -66,15 +66,22 @@ void main() {
     // facing) replaces the sun's in the visibility target.
     const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
     for (int i = 0; i < local_light_count(); ++i) {
-        const LocalLight light = local.lights[i];
-        const vec3 light_vector = light.position_range.xyz - in_world_position;
+        // Only the position and range first: most lights do not reach most pixels, and
+        // those pixels skip the cone, the shadow lookup and the BRDF.
+        const vec4 position_range = local.lights[i].position_range;
+        const vec3 light_vector = position_range.xyz - in_world_position;
         const float distance = length(light_vector);
         const vec3 to_light = light_vector / max(distance, 1e-4);
-        const float cone = spot_cone(light, to_light);
-        const bool reaches = distance < light.position_range.w && cone > 0.0 && dot(normal, to_light) > 0.0;
-        const float shadow = reaches ? local_shadow(light, in_world_position, normal, plane_normal) : 0.0;
+        const bool in_range = distance < position_range.w && dot(normal, to_light) > 0.0;
+        const float cone = in_range ? spot_cone(local.lights[i], to_light) : 0.0;
+        if (cone <= 0.0) {
+            if (i == int(local.counts.y)) visibility = 0.0;
+            continue;
+        }
+        const LocalLight light = local.lights[i];
+        const float shadow = local_shadow(light, in_world_position, normal, plane_normal);
         if (i == int(local.counts.y)) visibility = shadow * cone;
-        const float falloff = distance_falloff(distance, light.position_range.w);
+        const float falloff = distance_falloff(distance, position_range.w);
         color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance.rgb * (falloff * cone * shadow),
                            draw.material.y, draw.material.z);
     }
