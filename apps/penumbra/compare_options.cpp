@@ -1,10 +1,17 @@
 #include "compare_options.hpp"
 
+#include <cstdint>
+#include <limits>
+
 namespace penumbra::cli {
 
 void add_compare_options(CLI::App& compare, compare::CompareJob& job, std::string& json) {
-    compare.add_option("--rays", job.rays, "Soft-reference shadow rays per pixel over the sun's disk (default 64)")
+    compare.add_option("--rays", job.rays, "Soft-reference shadow rays per pixel over the light's disk (default 64)")
         ->check(CLI::Range(1u, compare::kMaxRays));
+    compare
+        .add_option("--light", job.light,
+                    "Compare light N of the scene's [[lights]] (a spot or point light; default: the sun)")
+        ->check(CLI::Range(0, std::numeric_limits<int32_t>::max()));
     compare
         .add_option("--edge-band", job.edge_band,
                     "Pixels around true shadow edges excluded from the *_outside_edges numbers (default 2)")

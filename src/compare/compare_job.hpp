@@ -21,9 +21,14 @@ constexpr uint32_t kMaxRays = 4096;
 constexpr uint32_t kMaxStabilityFrames = 64;
 constexpr uint32_t kMaxEdgeBand = 64;
 
+// A spot light's pixels count where its cone factor exceeds this: the render's shadow term
+// is the AOV divided by the cone (docs/QUALITY.md), which the faintest rim would amplify.
+constexpr float kMinConeFactor = 0.05f;
+
 struct CompareJob {
     RenderJob render;               // scene, config, overrides, device, validation; output and aov unused
     uint32_t rays = 64;             // soft reference rays per pixel, 1..kMaxRays
+    int32_t light = -1;             // --light N: index into the scene's [[lights]]; -1 = the sun
     uint32_t edge_band = 2;         // pixels around true shadow edges left out of the *_outside_edges numbers
     uint32_t stability_frames = 8;  // frames under camera motion (1 = no stability measurement)
     std::filesystem::path out_dir = "compare";
@@ -33,9 +38,10 @@ struct CompareJob {
 struct PixelCounts {
     uint64_t total = 0;
     uint64_t geometry = 0;
-    uint64_t facing_away = 0;             // geometry with N.L <= 0
+    uint64_t facing_away = 0;             // geometry with N.L <= 0 (L toward the sun or the light point)
     uint64_t beyond_shadow_distance = 0;  // facing the sun, but no cascade covers it
-    uint64_t evaluated = 0;               // what the metrics count
+    uint64_t outside_light = 0;  // spot/point: facing it, but beyond its range or cone (cone <= kMinConeFactor)
+    uint64_t evaluated = 0;      // what the metrics count
 };
 
 struct CompareTimings {
@@ -57,6 +63,9 @@ struct CompareResult {
     std::string scene;
     RenderSettings settings;
     CompareJob job;
+    int32_t light_index = -1;          // the compared light in the scene's [[lights]]
+    std::optional<Light> local_light;  // set when it is a spot or point light (not the sun)
+    std::string stability_note;        // why stability was not measured (spot/point lights), or empty
     glm::vec3 to_sun{0.0f};
     float sun_angular_diameter_degrees = 0.0f;
     uint64_t triangles = 0;                 // traced (every instance)
@@ -69,7 +78,8 @@ struct CompareResult {
     CompareImages images;
 };
 
-// Throws InputError (bad job, or a scene without a directional light), DeviceError or
+// Throws InputError (bad job, a scene without a directional light for the sun, or a
+// --light that is out of range or casts no rendered shadow), DeviceError or
 // ValidationFailure. Writes nothing.
 CompareResult run_compare_job(const CompareJob& job);
 

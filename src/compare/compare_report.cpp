@@ -82,17 +82,43 @@ Json pixels_json(const PixelCounts& pixels) {
             {"geometry", pixels.geometry},
             {"facing_away", pixels.facing_away},
             {"beyond_shadow_distance", pixels.beyond_shadow_distance},
+            {"outside_light", pixels.outside_light},
             {"evaluated", pixels.evaluated}};
 }
 
+Json vec3_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+const char* light_type_name(const CompareResult& result) {
+    if (!result.local_light) return "sun";
+    return result.local_light->type == LightType::Spot ? "spot" : "point";
+}
+
+// Which light was compared: its index in [[lights]], its kind and what shapes its reference.
+Json light_json(const CompareResult& result) {
+    Json light = {{"index", result.light_index}, {"type", light_type_name(result)}};
+    if (!result.local_light) return light;
+    const Light& local = *result.local_light;
+    light["position"] = vec3_json(local.position);
+    light["range"] = local.range;
+    light["radius"] = local.radius;
+    if (local.type == LightType::Spot) {
+        light["direction"] = vec3_json(glm::normalize(local.direction));
+        light["inner_angle_degrees"] = local.inner_angle_degrees;
+        light["outer_angle_degrees"] = local.outer_angle_degrees;
+        light["min_cone_factor"] = kMinConeFactor;
+    }
+    return light;
+}
+
 Json reference_json(const CompareResult& result) {
-    return {{"tracer", "embree3"},
-            {"triangles", result.triangles},
-            {"rays_per_pixel", result.job.rays},
-            {"to_sun", {result.to_sun.x, result.to_sun.y, result.to_sun.z}},
-            {"sun_angular_diameter_degrees", result.sun_angular_diameter_degrees},
-            {"edge_band_px", result.job.edge_band},
-            {"nearest_texel_world_size", result.nearest_texel_world_size}};
+    Json reference = {{"tracer", "embree3"}, {"triangles", result.triangles}, {"rays_per_pixel", result.job.rays}};
+    if (!result.local_light) {  // a local light's position and radius are in "light"
+        reference["to_sun"] = vec3_json(result.to_sun);
+        reference["sun_angular_diameter_degrees"] = result.sun_angular_diameter_degrees;
+    }
+    reference["edge_band_px"] = result.job.edge_band;
+    reference["nearest_texel_world_size"] = result.nearest_texel_world_size;
+    return reference;
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
@@ -114,11 +140,11 @@ std::string format_compare_summary(const CompareResult& result) {
     const quality::SoftShadowMetrics& soft = result.soft;
     char text[1024];
     std::snprintf(text, sizeof(text),
-                  "penumbra compare: %s, %ux%u, filter %s, %llu evaluated pixels, %u rays (%s)\n"
+                  "penumbra compare: %s, %s light %d, %ux%u, filter %s, %llu evaluated pixels, %u rays (%s)\n"
                   "  hard: false shadow %.3f%% (%.3f%% outside edges), false lit %.3f%% (%.3f%% outside edges)\n"
                   "  soft: mean |error| %.4f, p95 %.4f, edge %.4f, penumbra width %.2f px (reference %.2f)\n",
-                  result.scene.c_str(), result.settings.width, result.settings.height,
-                  filter_name(result.settings.shadow.filter.mode).c_str(),
+                  result.scene.c_str(), light_type_name(result), result.light_index, result.settings.width,
+                  result.settings.height, filter_name(result.settings.shadow.filter.mode).c_str(),
                   static_cast<unsigned long long>(result.pixels.evaluated), result.job.rays, result.device_name.c_str(),
                   hard.false_shadow.percent(), hard.false_shadow_outside_edges.percent(), hard.false_lit.percent(),
                   hard.false_lit_outside_edges.percent(), soft.mean_abs_error, soft.p95_abs_error,
@@ -131,6 +157,7 @@ std::string format_compare_summary(const CompareResult& result) {
                       result.stability.max_change, result.stability.flicker_percent);
         summary += text;
     }
+    if (!result.stability_note.empty()) summary += "  stability: " + result.stability_note + "\n";
     return summary;
 }
 
@@ -142,11 +169,13 @@ std::string compare_json(const CompareResult& result) {
         {"device", result.device_name},
         {"scene", result.scene},
         {"settings", settings_json(result.settings)},
+        {"light", light_json(result)},
         {"reference", reference_json(result)},
         {"pixels", pixels_json(result.pixels)},
         {"hard", hard_json(result.hard)},
         {"soft", soft_json(result.soft)},
         {"stability", stability_json(result.stability)},
+        {"stability_note", result.stability_note.empty() ? Json(nullptr) : Json(result.stability_note)},
         {"timings_ms",
          {{"render", result.timings.render_ms}, {"bvh", result.timings.bvh_ms}, {"trace", result.timings.trace_ms}}},
         {"images", images}};

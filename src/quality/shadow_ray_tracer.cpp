@@ -149,6 +149,10 @@ ShadowRayTracer::ShadowRayTracer(const Scene& scene) : embree_(std::make_unique<
 ShadowRayTracer::~ShadowRayTracer() = default;
 
 bool ShadowRayTracer::occluded(const glm::vec3& origin, const glm::vec3& direction) const {
+    return occluded(origin, direction, std::numeric_limits<float>::infinity());
+}
+
+bool ShadowRayTracer::occluded(const glm::vec3& origin, const glm::vec3& direction, float max_distance) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
@@ -159,7 +163,7 @@ bool ShadowRayTracer::occluded(const glm::vec3& origin, const glm::vec3& directi
     ray.dir_y = direction.y;
     ray.dir_z = direction.z;
     ray.tnear = 0.0f;
-    ray.tfar = std::numeric_limits<float>::infinity();
+    ray.tfar = max_distance;
     ray.mask = 0xFFFFFFFFu;
     rtcOccluded1(embree_->top, &context, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf when the ray is occluded

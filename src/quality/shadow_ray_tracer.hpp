@@ -22,6 +22,10 @@ public:
     // for t in (0, infinity).
     bool occluded(const glm::vec3& origin, const glm::vec3& direction) const;
 
+    // The same for t in (0, max_distance), with `direction` a unit vector: a segment toward
+    // a light point (spot and point lights), so that nothing behind the light occludes.
+    bool occluded(const glm::vec3& origin, const glm::vec3& direction, float max_distance) const;
+
     uint64_t triangle_count() const { return triangles_; }
 
 private:
