@@ -74,6 +74,14 @@ float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& b
     return std::clamp(nearest, kMinLocalShadowNear, std::max(kMinLocalShadowNear, max_far * 0.5f));
 }
 
+float local_shadow_near_plane(const Light& light, float nearest_caster) {
+    const float half_fov =
+        light.type == LightType::Spot ? glm::radians(light.outer_angle_degrees) : glm::radians(45.0f);
+    const float corner_tangent = std::sqrt(2.0f) * std::tan(half_fov);
+    const float corner_cosine = 1.0f / std::sqrt(1.0f + corner_tangent * corner_tangent);
+    return std::max(kMinLocalShadowNear, nearest_caster * corner_cosine);
+}
+
 glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane) {
     const float fov = glm::radians(2.0f * spot.outer_angle_degrees);
     const glm::mat4 view = look_along(spot.position, spot.direction, glm::vec3(0.0f, 1.0f, 0.0f));
@@ -94,7 +102,8 @@ std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position
 void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes) {
     for (LocalShadowSlot& slot : plan.slots) {
         const Light& light = scene.lights[slot.light];
-        slot.near_plane = nearest_caster_distance(light.position, caster_boxes, light.range);
+        slot.near_plane =
+            local_shadow_near_plane(light, nearest_caster_distance(light.position, caster_boxes, light.range));
         slot.far_plane = light.range;
         if (light.type == LightType::Spot) {
             slot.view_projection = {spot_shadow_view_projection(light, slot.near_plane)};

@@ -75,6 +75,14 @@ LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings
 // Distance from `point` to the nearest of `boxes` (0 inside one), clamped to [min_near, max_far).
 float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& boxes, float max_far);
 
+// The near plane of a local light's layers: the nearest caster's distance times the cosine
+// of the angle between a layer's axis and its frustum's corner ray. A caster at distance d
+// seen at angle t off the axis lies at view depth d cos t, so the nearest caster's distance
+// alone would clip casters off the axis (a table beside a point light, under its -Y face);
+// the corner ray has the largest angle in the frustum: tan t = sqrt(2) tan(fov / 2)
+// (1 / sqrt(3) for a 90-degree cube face). Never below kMinLocalShadowNear.
+float local_shadow_near_plane(const Light& light, float nearest_caster);
+
 // Reverse-Z perspective of a spot's cone: fov = 2 * outer angle, near, far = range.
 glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane);
 

@@ -234,5 +234,31 @@ TEST(LocalShadowSizing, FixedLightsKeepTheirResolution) {
     EXPECT_EQ(fixed.slots[0].resolution, 2048u);
 }
 
+// A caster off a cube face's axis, near the corner of the -Y face: its nearest point is
+// 2.0 m from the light but only 1.2 m deep along the face's axis. The near plane must not
+// clip it (it did when the near plane was the nearest caster's distance itself).
+TEST(LocalShadowMath, NearPlaneKeepsCastersOffTheAxis) {
+    Scene scene;
+    scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 10.0f));
+    const Aabb box{{1.1f, -1.3f, 1.1f}, {1.3f, -1.2f, 1.3f}};
+    LocalShadowPlan plan = plan_local_shadows(scene, {});
+    fit_local_shadows(plan, scene, {box});
+    ASSERT_EQ(plan.slots.size(), 1u);
+    const float nearest = glm::length(glm::vec3(1.1f, -1.2f, 1.1f));
+    EXPECT_NEAR(plan.slots[0].near_plane, nearest / std::sqrt(3.0f), 1e-4f);
+    const glm::vec4 clip = plan.slots[0].view_projection[3] * glm::vec4(1.1f, -1.2f, 1.1f, 1.0f);  // face -Y
+    EXPECT_GT(clip.w, 0.0f);
+    EXPECT_LE(clip.z / clip.w, 1.0f) << "the caster's nearest corner is behind the near plane";
+    EXPECT_LE(std::abs(clip.x / clip.w), 1.0f);
+    EXPECT_LE(std::abs(clip.y / clip.w), 1.0f);
+    // A spot: the corner ray of a 30-degree cone is at atan(sqrt(2) tan 30) = 39.2 degrees.
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.outer_angle_degrees = 30.0f;
+    const float corner = std::atan(std::sqrt(2.0f) * std::tan(glm::radians(30.0f)));
+    EXPECT_NEAR(local_shadow_near_plane(spot, 4.0f), 4.0f * std::cos(corner), 1e-4f);
+    EXPECT_FLOAT_EQ(local_shadow_near_plane(spot, 0.01f), kMinLocalShadowNear);
+}
+
 }  // namespace
 }  // namespace penumbra
