@@ -1,6 +1,7 @@
 // Spot and point lights (docs/local-lights.md): physically based falloff, the smooth spot
 // cone, and shadows from one layered map holding every shadowed light's layers (a spot:
-// one perspective layer; a point: six cube-face layers, face chosen by the major axis).
+// one perspective layer; a point or a spot wider than 60 degrees: six cube-face layers,
+// face chosen by the major axis).
 // Included by the lighting shader after the shadow library, whose filters it mirrors for
 // perspective layers: hard, pcf, poisson and pcss compare against the depth map (with
 // receiver-plane bias), vsm, evsm and msm read the moments of the linear distance that
@@ -36,7 +37,7 @@ float spot_cone(LocalLight light, vec3 to_light) {
     return smoothstep(light.cone.x, max(light.cone.y, light.cone.x + 1e-4), cos_angle);
 }
 
-// Cube face of a direction from a point light: +X, -X, +Y, -Y, +Z, -Z (src/core/local_lights.hpp).
+// Cube face of a direction from the light: +X, -X, +Y, -Y, +Z, -Z (src/core/local_lights.hpp).
 int cube_face(vec3 direction) {
     const vec3 a = abs(direction);
     if (a.x >= a.y && a.x >= a.z) return direction.x >= 0.0 ? 0 : 1;
@@ -95,7 +96,7 @@ bool local_uses_receiver_plane_bias() {
 LocalShadowCoord project_to_local_shadow(LocalLight light, vec3 world_position, vec3 normal, vec3 plane_normal) {
     const vec3 from_light = world_position - light.position_range.xyz;
     int layer = int(light.shadow.x);
-    if (light.direction_type.w == PENUMBRA_LIGHT_POINT) layer += cube_face(from_light);
+    if (light.cone.z > 0.5) layer += cube_face(from_light);
     const float texel_uv = local_texel_uv() / light.shadow.w;  // one of the light's own texels, in its UV
     const float texel_world = light.shadow.z * texel_uv * length(from_light);
     const vec3 offset_position = world_position + normal * (local.counts.z * texel_world);

@@ -104,7 +104,9 @@ struct LocalLight {
     vec4 position_range;  // xyz: world position; w: range (metres)
     vec4 direction_type;  // xyz: unit travel direction (spot); w: PENUMBRA_LIGHT_SPOT or _POINT
     vec4 radiance;        // rgb: colour * intensity; w: light radius (metres)
-    vec4 cone;            // x: cos(outer angle), y: cos(inner angle) (spot; -1, -1 for points)
+    // x: cos(outer angle), y: cos(inner angle) (spot; -1, -1 for points); z: 1 when the
+    // shadow is a cube of six faces (points, spots wider than kMaxPerspectiveSpotAngle)
+    vec4 cone;
     // x: first shadow layer (-1: unshadowed), y: near plane, z: 2 tan(fov / 2) of a layer,
     // w: the used fraction of the map per side (light resolution / map resolution)
     vec4 shadow;

@@ -8,6 +8,10 @@
 namespace penumbra {
 namespace {
 
+// The axes of the cube faces, in layer order.
+const std::array<glm::vec3, 6> kCubeFaceAxes{glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
+                                             glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
+
 // A view matrix looking from `eye` along `forward`, with any up not parallel to it.
 glm::mat4 look_along(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& preferred_up) {
     const glm::vec3 f = glm::normalize(forward);
@@ -23,15 +27,18 @@ const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
     return names;
 }
 
-uint32_t local_shadow_layers(LightType type) {
-    switch (type) {
-        case LightType::Spot:
-            return 1;
-        case LightType::Point:
-            return 6;
-        default:
-            return 0;
-    }
+bool local_shadow_is_cube(const Light& light) {
+    return light.type == LightType::Point ||
+           (light.type == LightType::Spot && light.outer_angle_degrees > kMaxPerspectiveSpotAngle);
+}
+
+uint32_t local_shadow_layers(const Light& light) {
+    if (light.type == LightType::Directional) return 0;
+    return local_shadow_is_cube(light) ? 6 : 1;
+}
+
+float local_shadow_half_fov(const Light& light) {
+    return glm::radians(local_shadow_is_cube(light) ? 45.0f : light.outer_angle_degrees);
 }
 
 LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings& settings) {
@@ -45,7 +52,7 @@ LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings
         }
         plan.local_lights.push_back(i);
         if (!light.cast_shadows) continue;
-        const uint32_t layers = local_shadow_layers(light.type);
+        const uint32_t layers = local_shadow_layers(light);
         if (plan.slots.size() >= settings.budget || plan.layer_count + layers > kMaxLocalShadowLayers) {
             plan.over_budget += 1;
             continue;
@@ -75,9 +82,7 @@ float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& b
 }
 
 float local_shadow_near_plane(const Light& light, float nearest_caster) {
-    const float half_fov =
-        light.type == LightType::Spot ? glm::radians(light.outer_angle_degrees) : glm::radians(45.0f);
-    const float corner_tangent = std::sqrt(2.0f) * std::tan(half_fov);
+    const float corner_tangent = std::sqrt(2.0f) * std::tan(local_shadow_half_fov(light));
     const float corner_cosine = 1.0f / std::sqrt(1.0f + corner_tangent * corner_tangent);
     return std::max(kMinLocalShadowNear, nearest_caster * corner_cosine);
 }
@@ -90,13 +95,20 @@ glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane) {
 
 std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position, float near_plane, float far_plane) {
     const glm::mat4 projection = perspective_reverse_z(glm::radians(90.0f), 1.0f, near_plane, far_plane);
-    const std::array<glm::vec3, 6> axes{glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
-                                        glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
     std::array<glm::mat4, 6> faces{};
     for (size_t face = 0; face < 6; ++face) {
-        faces[face] = projection * look_along(position, axes[face], glm::vec3(0.0f, 1.0f, 0.0f));
+        faces[face] = projection * look_along(position, kCubeFaceAxes[face], glm::vec3(0.0f, 1.0f, 0.0f));
     }
     return faces;
+}
+
+bool cube_face_reaches_cone(const Light& light, size_t face) {
+    if (light.type != LightType::Spot) return true;
+    const glm::vec3 axis = kCubeFaceAxes.at(face);
+    const float degrees_from_spot_axis =
+        glm::degrees(std::acos(std::clamp(glm::dot(axis, glm::normalize(light.direction)), -1.0f, 1.0f)));
+    const float face_corner_degrees = glm::degrees(std::atan(std::sqrt(2.0f)));
+    return degrees_from_spot_axis - face_corner_degrees < light.outer_angle_degrees;
 }
 
 void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes) {
@@ -105,7 +117,7 @@ void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vec
         slot.near_plane =
             local_shadow_near_plane(light, nearest_caster_distance(light.position, caster_boxes, light.range));
         slot.far_plane = light.range;
-        if (light.type == LightType::Spot) {
+        if (!local_shadow_is_cube(light)) {
             slot.view_projection = {spot_shadow_view_projection(light, slot.near_plane)};
         } else {
             const auto faces = point_shadow_view_projections(light.position, slot.near_plane, light.range);
@@ -155,7 +167,7 @@ uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera
     const float sine = bounds.radius / distance;
     const float pixels_per_tangent = 0.5f * static_cast<float>(viewport_height) / std::tan(0.5f * camera.fov_y_radians);
     float pixels_across = 2.0f * pixels_per_tangent * sine / std::sqrt(1.0f - sine * sine);
-    if (light.type == LightType::Point) pixels_across *= 0.5f;
+    if (local_shadow_is_cube(light)) pixels_across *= 0.5f;
     return std::clamp(next_power_of_two(pixels_across), min_resolution, max_resolution);
 }
 

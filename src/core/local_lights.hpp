@@ -3,11 +3,12 @@
 // a shadow map within the budget, where their layers lie in the shared layered map, their
 // light-space matrices and per-light caster culling. No Vulkan (docs/local-lights.md).
 //
-// A spot light gets one layer: a reverse-Z perspective projection fitted to its cone
-// (fov = 2 * outer angle, near = the nearest caster's distance clamped to >= 0.05 m,
-// far = range). A point light gets six consecutive layers, one per cube face, in the
-// order +X, -X, +Y, -Y, +Z, -Z, each a 90-degree reverse-Z perspective projection; the
-// lighting shader selects the face by the major axis of (receiver - light).
+// A spot light up to kMaxPerspectiveSpotAngle gets one layer: a reverse-Z perspective
+// projection fitted to its cone (fov = 2 * outer angle, near from the nearest caster,
+// far = range). A point light, and a spot wider than that, gets six consecutive layers,
+// one per cube face, in the order +X, -X, +Y, -Y, +Z, -Z, each a 90-degree reverse-Z
+// perspective projection; the lighting shader selects the face by the major axis of
+// (receiver - light) and applies a spot's cone on top.
 #include <array>
 #include <cstdint>
 #include <map>
@@ -26,6 +27,11 @@ inline constexpr uint32_t kMaxLocalLights = 64;         // lit by the lighting s
 inline constexpr uint32_t kMaxLocalShadowBudget = 32;   // shadowed local lights per frame
 inline constexpr uint32_t kMaxLocalShadowLayers = 192;  // 32 point lights x 6 faces (Vulkan guarantees 256 layers)
 inline constexpr float kMinLocalShadowNear = 0.05f;     // metres
+// The widest spot (outer half-angle, degrees) shadowed by one perspective layer. Past it a
+// perspective texel at the cone's edge covers more than 1 / cos^2(60) = 4 times the
+// footprint of one on the axis (and 90 degrees cannot be projected at all), while a cube
+// face's corner texel covers at most 3 times its centre's: wider spots use a cube.
+inline constexpr float kMaxPerspectiveSpotAngle = 60.0f;
 
 inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest map coverage sizing picks
 
@@ -48,7 +54,7 @@ struct LocalShadowSettings {
 // Where one local light's shadow lives and how it was fitted.
 struct LocalShadowSlot {
     uint32_t light = 0;             // index into Scene::lights
-    uint32_t first_layer = 0;       // spot: 1 layer; point: 6 (faces +X, -X, +Y, -Y, +Z, -Z)
+    uint32_t first_layer = 0;       // 1 layer, or 6 for a cube (faces +X, -X, +Y, -Y, +Z, -Z)
     uint32_t resolution = 0;        // texels per side actually used in each of its layers (this frame)
     bool fixed_resolution = false;  // set by the light's shadow_resolution or fixed sizing
     float near_plane = kMinLocalShadowNear;
@@ -65,8 +71,17 @@ struct LocalShadowPlan {
     uint32_t beyond_light_limit = 0;     // local lights past kMaxLocalLights (not lit at all)
 };
 
-// Shadow-map layers a light type takes: 1 for a spot, 6 for a point, 0 for a directional light.
-uint32_t local_shadow_layers(LightType type);
+// Whether a local light's shadow is a cube of six faces: a point light, or a spot wider
+// than kMaxPerspectiveSpotAngle. Otherwise a spot's shadow is one perspective layer.
+bool local_shadow_is_cube(const Light& light);
+
+// Shadow-map layers a light takes: 1 for a perspective spot, 6 for a cube, 0 for a
+// directional light.
+uint32_t local_shadow_layers(const Light& light);
+
+// Half the field of view of each of a local light's shadow layers: a perspective spot's
+// outer angle, 45 degrees for a cube face (radians).
+float local_shadow_half_fov(const Light& light);
 
 // The camera-independent part: which lights are lit and shadowed, their layers and resolutions.
 // Matrices are filled by fit_local_shadows().
@@ -83,11 +98,19 @@ float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& b
 // (1 / sqrt(3) for a 90-degree cube face). Never below kMinLocalShadowNear.
 float local_shadow_near_plane(const Light& light, float nearest_caster);
 
-// Reverse-Z perspective of a spot's cone: fov = 2 * outer angle, near, far = range.
+// Reverse-Z perspective of a spot's cone: fov = 2 * outer angle, near, far = range
+// (for spots up to kMaxPerspectiveSpotAngle).
 glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane);
 
-// The six cube faces of a point light (+X, -X, +Y, -Y, +Z, -Z), 90-degree reverse-Z perspectives.
+// The six cube faces around a light (+X, -X, +Y, -Y, +Z, -Z), 90-degree reverse-Z perspectives.
 std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position, float near_plane, float far_plane);
+
+// Whether cube face `face` (+X, -X, +Y, -Y, +Z, -Z) of a local light can hold anything the
+// light reaches: always for a point light; for a wide spot, unless every direction of the
+// face lies outside the cone. A face's directions are within atan(sqrt(2)) = 54.74 degrees
+// (its corner ray) of its axis, so a face whose axis is farther than outer + 54.74 degrees
+// from the spot's axis is dark and need not be rendered.
+bool cube_face_reaches_cone(const Light& light, size_t face);
 
 // Fills each slot's near plane (nearest caster within range) and matrices for the scene's
 // current light positions; `caster_boxes` are the world bounds of every draw.
@@ -104,7 +127,7 @@ Sphere local_light_bounds(const Light& light);
 
 // Texels per side a light's map needs for `camera` (rendering `viewport_height` pixels):
 // one texel per pixel across the light's bounds as seen on the screen (halved per cube
-// face of a point light, whose six faces share the view around it), rounded up to a power
+// face of a cube, whose six faces share the view around the light), rounded up to a power
 // of two and clamped to [kMinCoverageShadowResolution, max_resolution]. The camera inside
 // the bounds gets max_resolution; bounds outside the view frustum the minimum.
 uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera, uint32_t viewport_height,
@@ -115,9 +138,9 @@ uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera
 void size_local_shadows(LocalShadowPlan& plan, const Scene& scene, const CameraView& camera, uint32_t viewport_height,
                         uint32_t max_resolution);
 
-// Conservative culling: false only when the box cannot cast into the layer. Spot: outside a
-// plane of its frustum (Gribb-Hartmann planes of the view projection); point: farther than
-// the range from the light.
+// Conservative culling: false only when the box cannot cast into the layer: outside a plane
+// of its frustum (Gribb-Hartmann planes of the view projection), or, for a cube face,
+// farther than the range from the light.
 bool caster_may_shadow_frustum(const glm::mat4& view_projection, const Aabb& box);
 bool caster_may_shadow_sphere(const glm::vec3& center, float radius, const Aabb& box);
 

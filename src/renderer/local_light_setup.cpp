@@ -25,9 +25,10 @@ shader::LocalLight pack_light(const Light& light) {
     packed.direction_type =
         glm::vec4(glm::normalize(light.direction), spot ? PENUMBRA_LIGHT_SPOT : PENUMBRA_LIGHT_POINT);
     packed.radiance = glm::vec4(light.color * light.intensity, light.radius);
+    const float cube_shadow = local_shadow_is_cube(light) ? 1.0f : 0.0f;
     packed.cone = spot ? glm::vec4(std::cos(glm::radians(light.outer_angle_degrees)),
-                                   std::cos(glm::radians(light.inner_angle_degrees)), 0.0f, 0.0f)
-                       : glm::vec4(-1.0f, -1.0f, 0.0f, 0.0f);
+                                   std::cos(glm::radians(light.inner_angle_degrees)), cube_shadow, 0.0f)
+                       : glm::vec4(-1.0f, -1.0f, cube_shadow, 0.0f);
     packed.shadow = glm::vec4(-1.0f, 0.0f, 0.0f, 1.0f);
     return packed;
 }
@@ -44,9 +45,7 @@ shader::LocalLightUniforms build_local_light_uniforms(const Scene& scene, const 
         if (static_cast<int32_t>(index) == settings.visibility_light) visibility_slot = static_cast<int>(slot);
         for (const LocalShadowSlot& shadow : plan.slots) {
             if (shadow.light != index) continue;
-            const Light& light = scene.lights[index];
-            const float half_fov =
-                light.type == LightType::Spot ? glm::radians(light.outer_angle_degrees) : glm::radians(45.0f);
+            const float half_fov = local_shadow_half_fov(scene.lights[index]);
             uniforms.lights[slot].shadow =
                 glm::vec4(static_cast<float>(shadow.first_layer), shadow.near_plane, 2.0f * std::tan(half_fov),
                           static_cast<float>(shadow.resolution) / static_cast<float>(plan.atlas_resolution));
@@ -68,14 +67,18 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(const Scene& scene, con
     std::vector<passes::LocalShadowLayer> layers;
     for (const LocalShadowSlot& slot : plan.slots) {
         const Light& light = scene.lights[slot.light];
+        const bool cube = local_shadow_is_cube(light);
         for (size_t face = 0; face < slot.view_projection.size(); ++face) {
             passes::LocalShadowLayer layer{slot.first_layer + static_cast<uint32_t>(face), slot.resolution, {}};
+            // A cube face of a wide spot that its cone cannot reach stays cleared.
+            if (cube && !cube_face_reaches_cone(light, face)) {
+                layers.push_back(std::move(layer));
+                continue;
+            }
             for (uint32_t d = 0; d < data.draws.size(); ++d) {
                 const Aabb& box = data.draws[d].world_bounds;
-                const bool may_cast = light.type == LightType::Spot
-                                          ? caster_may_shadow_frustum(slot.view_projection[face], box)
-                                          : caster_may_shadow_sphere(light.position, light.range, box) &&
-                                                caster_may_shadow_frustum(slot.view_projection[face], box);
+                const bool may_cast = caster_may_shadow_frustum(slot.view_projection[face], box) &&
+                                      (!cube || caster_may_shadow_sphere(light.position, light.range, box));
                 if (!cull || may_cast) layer.draws.push_back(d);
             }
             layers.push_back(std::move(layer));

@@ -54,7 +54,7 @@ struct CpuTimes {
 // One shadowed spot or point light of the frame (docs/local-lights.md).
 struct LocalShadowStats {
     uint32_t light = 0;       // index into Scene::lights
-    uint32_t layers = 0;      // 1 for a spot, 6 for a point light
+    uint32_t layers = 0;      // 1 for a spot, 6 for a cube (point lights, spots wider than 60 degrees)
     uint32_t resolution = 0;  // texels per side of each of its layers
     float near_plane = 0.0f;  // metres (the nearest caster)
     uint32_t draws = 0;       // submitted over all its layers, after culling

@@ -54,8 +54,9 @@ LightType read_light_type(TomlTableReader& reader) {
     reader.fail("type", "unknown light type \"" + type + "\" (expected directional, spot or point)");
 }
 
-// Keys of spot and point lights, validated: 0 < inner <= outer < 90 degrees (a spot's shadow
-// frustum has fov = 2 * outer), range > 0, radius >= 0, shadow_resolution 16..8192.
+// Keys of spot and point lights, validated: 0 <= inner <= outer < 180 degrees (half-angles
+// from the axis; a spot wider than 60 degrees is shadowed by a cube, docs/local-lights.md),
+// range > 0, radius >= 0, shadow_resolution 16..8192.
 void read_local_light_keys(TomlTableReader& reader, Light& light) {
     light.position = reader.vec3_or("position", light.position);
     light.range = reader.number_or("range", light.range);
@@ -71,9 +72,9 @@ void read_local_light_keys(TomlTableReader& reader, Light& light) {
     if (light.type == LightType::Spot) {
         light.inner_angle_degrees = reader.number_or("inner_angle", light.inner_angle_degrees);
         light.outer_angle_degrees = reader.number_or("outer_angle", light.outer_angle_degrees);
-        if (light.outer_angle_degrees <= 0.0f || light.outer_angle_degrees >= 90.0f) {
+        if (light.outer_angle_degrees <= 0.0f || light.outer_angle_degrees >= 180.0f) {
             reader.fail("outer_angle",
-                        "must be between 0 and 90 degrees (exclusive; the shadow fov is twice it), got " +
+                        "must be between 0 and 180 degrees (exclusive; a half-angle from the axis), got " +
                             format_number(light.outer_angle_degrees));
         }
         if (light.inner_angle_degrees < 0.0f || light.inner_angle_degrees > light.outer_angle_degrees) {

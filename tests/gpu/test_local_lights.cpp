@@ -313,6 +313,80 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom,
                                            ShadowFilter::Pcss, ShadowFilter::Vsm, ShadowFilter::Msm),
                          filter_test_name);
 
+// A spot wider than one perspective layer can hold (outer half-angle 120 degrees, pointing
+// down from the point light's place in the room): its shadow is a cube like a point light's.
+// Inside the inner cone (100 degrees) every wall but the ceiling shows its cube's shadow where
+// a ray cast says, seams included; outside the outer cone nothing is lit (most of the ceiling).
+class WideSpotRoom : public ::testing::TestWithParam<ShadowFilter> {};
+
+TEST_P(WideSpotRoom, CubeShadowInsideTheConeNothingLitOutside) {
+    std::string text = kRoomScene;
+    const std::string point = "type = \"point\"";
+    text.replace(text.find(point), point.size(),
+                 "type = \"spot\"\ndirection = [0.0, -1.0, 0.0]\ninner_angle = 100.0\nouter_angle = 120.0");
+    Scene scene = scene_from_toml(text);
+    RenderSettings settings = small_settings(240, 180);
+    settings.shadow.filter.mode = GetParam();
+    settings.local_shadows.resolution = 512;
+    const glm::vec3 light = scene.lights[0].position;
+    const Camera views[2] = {{{3.6f, 5.6f, 3.6f}, {-4.0f, 0.0f, -4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f},
+                             {{-3.6f, 0.4f, -3.6f}, {4.0f, 6.0f, 4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f}};
+    size_t shadowed_per_wall[6] = {}, agree_per_wall[6] = {}, checked_per_wall[6] = {};
+    size_t outside_cone = 0, lit_outside_cone = 0, seam_pixels = 0, seam_wrong = 0;
+    for (const Camera& view : views) {
+        scene.camera = view;
+        const RenderedFrame frame = render_light(scene, settings, 0);
+        ASSERT_EQ(frame.info.local_shadow_stats.size(), 1u);
+        EXPECT_EQ(frame.info.local_shadow_stats[0].layers, 6u) << "a 120-degree spot is shadowed by a cube";
+        for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
+            const glm::vec4 p = frame.images.world_position[i];
+            if (p.w == 0.0f) continue;
+            const int wall = room_wall(glm::vec3(p));
+            if (wall < 0) continue;
+            const glm::vec3 to_point = glm::vec3(p) - light;
+            const float degrees_from_axis = glm::degrees(std::acos(-to_point.y / glm::length(to_point)));
+            const uint16_t visibility = frame.images.visibility[i];
+            if (degrees_from_axis > 121.0f) {
+                ++outside_cone;
+                lit_outside_cone += visibility > 0;
+                continue;
+            }
+            if (degrees_from_axis > 99.0f) continue;  // the cone's falloff
+            const bool inner = room_point_shadowed(light, glm::vec3(p), -0.03f);
+            if (inner != room_point_shadowed(light, glm::vec3(p), 0.03f)) continue;  // a shadow edge
+            const bool shadowed = visibility < 32768;
+            ++checked_per_wall[wall];
+            agree_per_wall[wall] += shadowed == inner;
+            shadowed_per_wall[wall] += shadowed && inner;
+            glm::vec3 a = glm::abs(to_point);
+            std::sort(&a[0], &a[0] + 3);
+            if (a[2] - a[1] < 0.02f * a[2]) {
+                ++seam_pixels;
+                seam_wrong += shadowed != inner;
+            }
+        }
+    }
+    for (int wall : {0, 1, 3, 4, 5}) {
+        const double agreement = checked_per_wall[wall] ? double(agree_per_wall[wall]) / checked_per_wall[wall] : 0.0;
+        std::printf("wall %d: %zu px checked, agreement %.4f, %zu px in the cube's shadow\n", wall,
+                    checked_per_wall[wall], agreement, shadowed_per_wall[wall]);
+        EXPECT_GT(checked_per_wall[wall], 200u) << "wall " << wall;
+        EXPECT_GE(agreement, 0.99) << "wall " << wall;
+        EXPECT_GT(shadowed_per_wall[wall], 20u) << "wall " << wall << ": no cube shadow (missing face?)";
+    }
+    std::printf("outside the cone %zu px, lit %zu; seam pixels %zu, wrong %zu\n", outside_cone, lit_outside_cone,
+                seam_pixels, seam_wrong);
+    EXPECT_GT(outside_cone, 2000u);
+    EXPECT_EQ(lit_outside_cone, 0u);
+    EXPECT_GT(seam_pixels, 50u);
+    EXPECT_LE(seam_wrong, seam_pixels / 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(LocalLights, WideSpotRoom,
+                         ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Pcss,
+                                           ShadowFilter::Msm),
+                         filter_test_name);
+
 // PCSS for a spot: the penumbra of the box grows with the light's radius
 // (w = (d_receiver - d_blocker) * radius / d_blocker: 0.5 m here for radius 0.5).
 size_t spot_penumbra_pixels(float radius) {

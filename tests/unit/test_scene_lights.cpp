@@ -65,17 +65,27 @@ TEST(SceneLights, KeysOfOtherLightTypesAreRejected) {
     EXPECT_THAT(scene_error("[[lights]]\nrange = 3\n"), HasSubstr("unknown key \"range\""));
 }
 
+TEST(SceneLights, WideSpotUpTo180Degrees) {
+    const Scene scene = testing::parse_scene_text(
+        "[[lights]]\ntype = \"spot\"\ninner_angle = 100\nouter_angle = 179.5\nposition = [0, 3, 0]\n");
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_FLOAT_EQ(scene.lights[0].inner_angle_degrees, 100.0f);
+    EXPECT_FLOAT_EQ(scene.lights[0].outer_angle_degrees, 179.5f);
+}
+
 TEST(SceneLights, OuterAngleSmallerThanInner) {
     EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\ninner_angle = 40\nouter_angle = 30\n"),
               "scene.toml: lights[0].inner_angle: must be between 0 and outer_angle (30) degrees, got 40");
 }
 
-TEST(SceneLights, AnglesOfNinetyOrMore) {
-    EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 90\n"),
-              "scene.toml: lights[0].outer_angle: must be between 0 and 90 degrees (exclusive; the shadow fov is "
-              "twice it), got 90");
-    EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 180\n"),
-                HasSubstr("lights[0].outer_angle: must be between 0 and 90"));
+TEST(SceneLights, AnglesOf180OrMore) {
+    EXPECT_EQ(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 180\n"),
+              "scene.toml: lights[0].outer_angle: must be between 0 and 180 degrees (exclusive; a half-angle from "
+              "the axis), got 180");
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 240\n"),
+                HasSubstr("lights[0].outer_angle: must be between 0 and 180"));
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\ninner_angle = 180\nouter_angle = 170\n"),
+                HasSubstr("lights[0].inner_angle: must be between 0 and outer_angle (170) degrees, got 180"));
     EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\ninner_angle = 200\nouter_angle = 45\n"),
                 HasSubstr("lights[0].inner_angle:"));
     EXPECT_THAT(scene_error("[[lights]]\ntype = \"spot\"\nouter_angle = 0\n"), HasSubstr("lights[0].outer_angle:"));
@@ -115,6 +125,65 @@ TEST(LocalShadowPlan, BudgetAndLayers) {
     EXPECT_EQ(plan.layer_count, 8u);
     EXPECT_EQ(plan.over_budget, 2u);
     EXPECT_EQ(plan.atlas_resolution, 256u);
+}
+
+// Spots up to 60 degrees get one perspective layer; wider ones (up to 180) a cube of six
+// faces like a point light, with 90-degree faces.
+TEST(LocalShadowPlan, WideSpotsAreShadowedByACube) {
+    Scene scene;
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 3.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.range = 10.0f;
+    spot.outer_angle_degrees = kMaxPerspectiveSpotAngle;
+    scene.lights.push_back(spot);
+    spot.outer_angle_degrees = 60.5f;
+    scene.lights.push_back(spot);
+    spot.outer_angle_degrees = 150.0f;
+    scene.lights.push_back(spot);
+    EXPECT_FALSE(local_shadow_is_cube(scene.lights[0]));
+    EXPECT_TRUE(local_shadow_is_cube(scene.lights[1]));
+    EXPECT_TRUE(local_shadow_is_cube(scene.lights[2]));
+    EXPECT_FLOAT_EQ(local_shadow_half_fov(scene.lights[0]), glm::radians(60.0f));
+    EXPECT_FLOAT_EQ(local_shadow_half_fov(scene.lights[2]), glm::radians(45.0f));
+
+    LocalShadowPlan plan = plan_local_shadows(scene, {8, 256});
+    fit_local_shadows(plan, scene, {Aabb{{-10, -1, -10}, {10, 0, 10}}});
+    ASSERT_EQ(plan.slots.size(), 3u);
+    EXPECT_EQ(plan.slots[0].view_projection.size(), 1u);
+    EXPECT_EQ(plan.slots[1].first_layer, 1u);
+    EXPECT_EQ(plan.slots[2].first_layer, 7u);
+    EXPECT_EQ(plan.layer_count, 13u);
+    const auto faces = point_shadow_view_projections(spot.position, plan.slots[2].near_plane, spot.range);
+    ASSERT_EQ(plan.slots[2].view_projection.size(), 6u);
+    for (size_t face = 0; face < 6; ++face) EXPECT_EQ(plan.slots[2].view_projection[face], faces[face]) << face;
+    // The ground 3 m below: the near plane keeps its farthest-off-axis point in the -Y face.
+    EXPECT_NEAR(plan.slots[2].near_plane, 3.0f / std::sqrt(3.0f), 1e-4f);
+}
+
+// A spot pointing down: with a 120-degree cone, the +Y face (180 degrees from the axis;
+// its corner rays 125.3 degrees) is dark; with 130 degrees its corners are lit.
+TEST(LocalShadowMath, CubeFacesOutsideAWideConeAreDark) {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.outer_angle_degrees = 120.0f;
+    for (size_t face : {0u, 1u, 3u, 4u, 5u}) EXPECT_TRUE(cube_face_reaches_cone(spot, face)) << face;
+    EXPECT_FALSE(cube_face_reaches_cone(spot, 2));
+    spot.outer_angle_degrees = 130.0f;
+    EXPECT_TRUE(cube_face_reaches_cone(spot, 2));
+    // A spot along a diagonal, 70 degrees: faces +X, +Y, +Z are 54.7 degrees from its axis
+    // and lit; -X, -Y, -Z are 125.3 degrees away, 70.5 past their corners: dark.
+    spot.direction = glm::normalize(glm::vec3(1.0f));
+    spot.outer_angle_degrees = 70.0f;
+    for (size_t face : {0u, 2u, 4u}) EXPECT_TRUE(cube_face_reaches_cone(spot, face)) << face;
+    for (size_t face : {1u, 3u, 5u}) EXPECT_FALSE(cube_face_reaches_cone(spot, face)) << face;
+    spot.outer_angle_degrees = 71.0f;
+    EXPECT_TRUE(cube_face_reaches_cone(spot, 1));
+    Light point;
+    point.type = LightType::Point;
+    for (size_t face = 0; face < 6; ++face) EXPECT_TRUE(cube_face_reaches_cone(point, face)) << face;
 }
 
 TEST(LocalShadowMath, SpotFrustumCoversTheConeAndCulls) {
