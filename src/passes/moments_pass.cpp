@@ -81,11 +81,13 @@ void MomentsPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const D
         render_cascade(cmd, data, draw_lists[cascade], cascade);
     }
     gpu::transition(cmd, depth_, gpu::ImageState::DepthAttachment, gpu::ImageState::FragmentSampled);
-    if (blur_) {
-        std::vector<BlurLayer> layers;
-        for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) layers.push_back({cascade, resolution_});
-        blur_->record(cmd, moments_, layers);
+    // A cascade without casters holds the far plane's moments in every texel, and a blur
+    // leaves a uniform layer as it is: only cascades with casters are blurred.
+    std::vector<BlurLayer> blurred;
+    for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
+        if (!draw_lists[cascade].empty()) blurred.push_back({cascade, resolution_});
     }
+    if (blur_ && !blurred.empty()) blur_->record(cmd, moments_, blurred);
     gpu::transition(cmd, moments_, gpu::ImageState::ColorAttachment, gpu::ImageState::FragmentSampled);
 }
 

@@ -9,10 +9,16 @@ glm::vec3 sun_travel_direction(const Scene& scene) {
     return sun ? glm::normalize(sun->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
 }
 
-CulledCasters cull_casters(const CascadeSet& cascades, const passes::DrawData& data, bool cull) {
+bool sun_casts_shadows(const Scene& scene) {
+    const Light* sun = scene.sun();
+    return sun && sun->cast_shadows;
+}
+
+CulledCasters cull_casters(const Scene& scene, const CascadeSet& cascades, const passes::DrawData& data, bool cull) {
     CulledCasters result;
     result.lists.resize(cascades.cascades.size());
     result.stats.resize(cascades.cascades.size());
+    if (!sun_casts_shadows(scene)) return result;
     for (size_t c = 0; c < cascades.cascades.size(); ++c) {
         for (uint32_t d = 0; d < data.draws.size(); ++d) {
             const passes::Draw& draw = data.draws[d];
@@ -35,7 +41,7 @@ shader::FrameUniforms build_frame_uniforms(const CameraView& camera, const Scene
     frame.ambient = glm::vec4(scene.ambient, 0.0f);
 
     const Light* sun = scene.sun();
-    const bool shadowed = sun && sun->cast_shadows;
+    const bool shadowed = sun_casts_shadows(scene);
     if (sun) {
         frame.sun_direction = glm::vec4(-glm::normalize(sun->direction), 1.0f);
         frame.sun_radiance = glm::vec4(sun->color * sun->intensity, shadowed ? 1.0f : 0.0f);

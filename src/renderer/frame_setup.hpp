@@ -27,8 +27,12 @@ struct CulledCasters {
 // The direction the sun's light travels; straight down when the scene has no sun.
 glm::vec3 sun_travel_direction(const Scene& scene);
 
-// Draws that may cast into each cascade (all draws when culling is off).
-CulledCasters cull_casters(const CascadeSet& cascades, const passes::DrawData& data, bool cull);
+// Whether the scene has a sun and it casts shadows (`cast_shadows`, default true).
+bool sun_casts_shadows(const Scene& scene);
+
+// Draws that may cast into each cascade (all draws when culling is off; none when the sun
+// casts no shadows, so the cascades are only cleared).
+CulledCasters cull_casters(const Scene& scene, const CascadeSet& cascades, const passes::DrawData& data, bool cull);
 
 // frame_index rotates the shadow filters' sampling patterns from frame to frame.
 shader::FrameUniforms build_frame_uniforms(const CameraView& camera, const Scene& scene, const CascadeSet& cascades,

@@ -221,7 +221,7 @@ CulledCasters Renderer::prepare_frame(const Camera& camera) {
 
     start = Clock::now();
     CulledCasters casters =
-        cull_casters(last_frame_.cascades, resources_->gpu_scene.draw_data(), settings_.shadow.cull_casters);
+        cull_casters(scene_, last_frame_.cascades, resources_->gpu_scene.draw_data(), settings_.shadow.cull_casters);
     last_frame_.cascade_stats = casters.stats;
     last_frame_.local_shadow_stats =
         resources_->local_shadows.prepare(scene_, resources_->gpu_scene.draw_data(), settings_, view);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "core/shadow_filters.hpp"
 #include "render_fixture.hpp"
 #include "scene/scene_loader.hpp"
 
@@ -31,16 +32,28 @@ TEST(DefaultScene, RendersValidationCleanWithShadowsAndLight) {
     EXPECT_GT(colours.size(), 200u);
 }
 
+// `cast_shadows = false` on the sun: no shadow anywhere, and no caster is drawn into the
+// cascades (they are only cleared), with a depth filter and with a moment filter.
 TEST(DefaultScene, SunWithoutShadowsIsFullyLitWhereItFacesTheLight) {
     Scene scene = load_scene(std::string(kDefaultSceneName));
     for (Light& light : scene.lights) light.cast_shadows = false;
-    const RenderedFrame frame = render_with_validation(scene, small_settings(120, 68));
-    ASSERT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
-    // Only surfaces facing away from the sun (N.L <= 0) may be dark: the lit ground dominates.
-    const auto& visibility = frame.images.visibility;
-    const size_t partial =
-        std::count_if(visibility.begin(), visibility.end(), [](uint16_t v) { return v != 0 && v != 65535; });
-    EXPECT_EQ(partial, 0u) << "without shadows visibility is exactly 0 (facing away) or 1";
+    for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Vsm}) {
+        RenderSettings settings = small_settings(120, 68);
+        settings.shadow.filter.mode = filter;
+        const RenderedFrame frame = render_with_validation(scene, settings);
+        ASSERT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
+        // Only surfaces facing away from the sun (N.L <= 0) may be dark: the lit ground dominates.
+        const auto& visibility = frame.images.visibility;
+        const size_t partial =
+            std::count_if(visibility.begin(), visibility.end(), [](uint16_t v) { return v != 0 && v != 65535; });
+        EXPECT_EQ(partial, 0u) << "without shadows visibility is exactly 0 (facing away) or 1";
+        const size_t lit = std::count(visibility.begin(), visibility.end(), uint16_t{65535});
+        EXPECT_GT(lit, visibility.size() / 2);
+        ASSERT_FALSE(frame.info.cascade_stats.empty());
+        for (const renderer::CascadeStats& cascade : frame.info.cascade_stats) {
+            EXPECT_EQ(cascade.draws, 0u) << "a sun without shadows renders no casters";
+        }
+    }
 }
 
 }  // namespace
