@@ -1,5 +1,6 @@
 #include "scene/forest_scene.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <set>
@@ -118,16 +119,16 @@ constexpr uint64_t kSpotStream = 100;
 constexpr uint64_t kPointStream = 200;
 
 // 10 m above the tree's top and 5 m to a side, aimed at the middle of its trunk, so the cone
-// (70 degrees wide) holds the tree, its rock and the ground around it.
-Light forest_spot(uint32_t index, uint32_t spots, uint32_t count) {
+// (70 degrees wide by default) holds the tree, its rock and the ground around it.
+Light forest_spot(uint32_t index, uint32_t spots, uint32_t count, uint32_t outer_angle_degrees) {
     const TreeShape tree = tree_shape(tree_for_light(index, spots, count), count);
     const glm::vec2 side = tree.base + 5.0f * ground_direction(index, kSpotStream);
     Light spot;
     spot.type = LightType::Spot;
     spot.position = {side.x, tree.top() + 10.0f, side.y};
     spot.direction = glm::normalize(glm::vec3{tree.base.x, 0.5f * tree.trunk_height, tree.base.y} - spot.position);
-    spot.inner_angle_degrees = 25.0f;
-    spot.outer_angle_degrees = 35.0f;
+    spot.outer_angle_degrees = static_cast<float>(outer_angle_degrees);
+    spot.inner_angle_degrees = std::max(0.0f, spot.outer_angle_degrees - 10.0f);
     spot.range = 2.5f * spot.position.y;  // reaches the ground well outside the cone's axis
     // Radiance about 1.5 at the ground below (inverse square): half the sun's.
     spot.intensity = 1.5f * spot.position.y * spot.position.y;
@@ -164,7 +165,9 @@ Scene make_forest_scene(const ForestParameters& parameters) {
     Light sun;
     sun.color = {1.0f, 0.96f, 0.9f};
     scene.lights.push_back(sun);
-    for (uint32_t i = 0; i < parameters.spots; ++i) scene.lights.push_back(forest_spot(i, parameters.spots, count));
+    for (uint32_t i = 0; i < parameters.spots; ++i) {
+        scene.lights.push_back(forest_spot(i, parameters.spots, count, parameters.spot_angle));
+    }
     for (uint32_t i = 0; i < parameters.points; ++i) scene.lights.push_back(forest_point(i, parameters.points, count));
     add_materials(scene);
     add_meshes(scene);
@@ -183,11 +186,15 @@ struct ForestParameterSpec {
     uint32_t ForestParameters::*field;
 };
 
-constexpr std::array<ForestParameterSpec, 3> kForestParameterSpecs{{
+constexpr std::array<ForestParameterSpec, 4> kForestParameterSpecs{{
     {"count", 1, kForestMaxCount, &ForestParameters::count},
     {"spots", 0, kMaxLocalLights, &ForestParameters::spots},
     {"points", 0, kMaxLocalLights, &ForestParameters::points},
+    {"spot_angle", 1, 179, &ForestParameters::spot_angle},
 }};
+
+// The keys of kForestParameterSpecs, as error messages name them.
+const std::string kForestParameterList = "count=N, spots=N, points=N or spot_angle=N";
 
 uint32_t parse_parameter_value(const ForestParameterSpec& spec, const std::string& digits, const std::string& origin) {
     const bool numeric =
@@ -218,12 +225,12 @@ ForestParameters parse_forest_parameters(const std::string& query, const std::st
         const size_t equals = item.find('=');
         const ForestParameterSpec* spec = find_parameter(item.substr(0, equals));
         if (equals == std::string::npos || !spec) {
-            throw InputError(origin + ": expected count=N, spots=N or points=N joined by '&', got \"" + item + "\"");
+            throw InputError(origin + ": expected " + kForestParameterList + " joined by '&', got \"" + item + "\"");
         }
         if (!seen.insert(spec->key).second) throw InputError(origin + ": " + spec->key + ": given twice");
         parameters.*(spec->field) = parse_parameter_value(*spec, item.substr(equals + 1), origin);
     }
-    if (query.back() == '&') throw InputError(origin + ": expected count=N, spots=N or points=N after the last '&'");
+    if (query.back() == '&') throw InputError(origin + ": expected " + kForestParameterList + " after the last '&'");
     if (parameters.spots + parameters.points > kMaxLocalLights) {
         throw InputError(origin + ": spots + points: at most " + std::to_string(kMaxLocalLights) +
                          " spot and point lights are lit, got " + std::to_string(parameters.spots) + " + " +

@@ -10,8 +10,10 @@
 //
 // "builtin:forest?count=N&spots=S&points=P" adds S shadow-casting spot lights, each above a
 // tree and aimed down at it, and P shadow-casting point lights at lantern height beside
-// trees, both spread over the forest by tree index (docs/bench.md). Lights follow the sun in
-// Scene::lights: spots first, then points, so light 1 is the first spot.
+// trees, both spread over the forest by tree index (docs/bench.md); "&spot_angle=A" sets the
+// spots' outer angle (degrees, default 35; inner = outer - 10), so that spots wider than 60
+// degrees, shadowed by cubes, can be measured. Lights follow the sun in Scene::lights: spots
+// first, then points, so light 1 is the first spot.
 #include <cstdint>
 #include <string>
 
@@ -24,19 +26,21 @@ constexpr uint32_t kForestTrianglesPerTree = 1000;  // crown 900 + trunk 88 + ro
 constexpr uint32_t kForestGroundTriangles = 64 * 64 * 2;
 constexpr uint32_t kForestDefaultCount = 1000;
 constexpr uint32_t kForestMaxCount = 100000;
-constexpr float kForestSize = 400.0f;  // side of the square the trees cover, metres
+constexpr float kForestSize = 400.0f;             // side of the square the trees cover, metres
+constexpr uint32_t kForestDefaultSpotAngle = 35;  // degrees: the cone holds its tree and rock
 struct ForestParameters {
     uint32_t count = kForestDefaultCount;  // trees
     // Spots plus points at most kMaxLocalLights: the lighting shader lights no more.
-    uint32_t spots = 0;   // shadow-casting spot lights aimed down at trees
-    uint32_t points = 0;  // shadow-casting point lights between the trees
+    uint32_t spots = 0;                             // shadow-casting spot lights aimed down at trees
+    uint32_t points = 0;                            // shadow-casting point lights between the trees
+    uint32_t spot_angle = kForestDefaultSpotAngle;  // the spots' outer angle, degrees (1..179)
 };
 
 Scene make_forest_scene(uint32_t count);
 Scene make_forest_scene(const ForestParameters& parameters);
 
 // Parses the query after "forest?": "" or "KEY=N" pairs joined by '&', KEY one of count,
-// spots, points, each at most once. Throws InputError naming `origin`, the key and the value.
+// spots, points, spot_angle, each at most once. Throws InputError naming `origin`, the key and the value.
 ForestParameters parse_forest_parameters(const std::string& query, const std::string& origin);
 
 }  // namespace penumbra

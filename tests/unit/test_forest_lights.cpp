@@ -35,6 +35,19 @@ TEST(ForestLights, ParsesCountSpotsAndPointsInAnyOrder) {
     EXPECT_EQ(parse_forest_parameters("spots=" + std::to_string(kMaxLocalLights), "o").spots, kMaxLocalLights);
 }
 
+// spot_angle widens the spots' cones; past 60 degrees each spot is shadowed by a cube.
+TEST(ForestLights, SpotAngleSetsTheConesAndWideSpotsTakeCubes) {
+    EXPECT_EQ(parse_forest_parameters("", "o").spot_angle, kForestDefaultSpotAngle);
+    const Scene scene = load_scene("builtin:forest?count=20&spots=2&spot_angle=100");
+    for (const Light* spot : lights_of_type(scene, LightType::Spot)) {
+        EXPECT_FLOAT_EQ(spot->outer_angle_degrees, 100.0f);
+        EXPECT_FLOAT_EQ(spot->inner_angle_degrees, 90.0f);
+    }
+    EXPECT_EQ(plan_local_shadows(scene, LocalShadowSettings{}).layer_count, 2u * 6u);
+    EXPECT_EQ(input_error_message([] { load_scene("builtin:forest?spot_angle=180"); }),
+              "builtin:forest?spot_angle=180: spot_angle: expected an integer from 1 to 179, got \"180\"");
+}
+
 TEST(ForestLights, BadParametersAreOneLineErrorsNamingKeyAndValue) {
     const auto message = [](const std::string& query) {
         return input_error_message([&] { load_scene("builtin:forest?" + query); });
@@ -51,13 +64,16 @@ TEST(ForestLights, BadParametersAreOneLineErrorsNamingKeyAndValue) {
     EXPECT_EQ(message("spots="), "builtin:forest?spots=: spots: expected an integer from 0 to " + limit + ", got \"\"");
     EXPECT_EQ(message("count=0"), "builtin:forest?count=0: count: expected an integer from 1 to 100000, got \"0\"");
     EXPECT_EQ(message("spots=2&spots=3"), "builtin:forest?spots=2&spots=3: spots: given twice");
-    EXPECT_EQ(message("lamps=2"),
-              "builtin:forest?lamps=2: expected count=N, spots=N or points=N joined by '&', got \"lamps=2\"");
+    EXPECT_EQ(
+        message("lamps=2"),
+        "builtin:forest?lamps=2: expected count=N, spots=N, points=N or spot_angle=N joined by '&', got \"lamps=2\"");
     EXPECT_EQ(message("spots"),
-              "builtin:forest?spots: expected count=N, spots=N or points=N joined by '&', got \"spots\"");
-    EXPECT_EQ(message("count=4&&spots=1"),
-              "builtin:forest?count=4&&spots=1: expected count=N, spots=N or points=N joined by '&', got \"\"");
-    EXPECT_EQ(message("count=4&"), "builtin:forest?count=4&: expected count=N, spots=N or points=N after the last '&'");
+              "builtin:forest?spots: expected count=N, spots=N, points=N or spot_angle=N joined by '&', got \"spots\"");
+    EXPECT_EQ(
+        message("count=4&&spots=1"),
+        "builtin:forest?count=4&&spots=1: expected count=N, spots=N, points=N or spot_angle=N joined by '&', got \"\"");
+    EXPECT_EQ(message("count=4&"),
+              "builtin:forest?count=4&: expected count=N, spots=N, points=N or spot_angle=N after the last '&'");
     const std::string half = std::to_string(kMaxLocalLights / 2);
     const std::string over_half = std::to_string(kMaxLocalLights / 2 + 1);
     const std::string sum = "spots=" + half + "&points=" + over_half;
