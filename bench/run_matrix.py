@@ -67,14 +67,17 @@ def matrix(scenes_dir):
 def local_light_runs():
     """Spot and point lights over the baseline forest (docs/local-lights.md): count, kind,
     filter, sizing. The sun keeps its baseline settings except where the filter changes both."""
-    def forest(spots=0, points=0):
-        return f"{BASELINE_SCENE}&spots={spots}&points={points}"
+    def forest(spots=0, points=0, spot_angle=None):
+        angle = f"&spot_angle={spot_angle}" if spot_angle else ""
+        return f"{BASELINE_SCENE}&spots={spots}&points={points}{angle}"
     runs = [("local lights", "none", forest(), [])]
     runs += [("local lights", f"{n} spot{'s' if n > 1 else ''}", forest(spots=n), []) for n in (1, 8)]
     runs += [("local lights", "32 spots (budget 32)", forest(spots=32), ["--local-shadow-budget", "32"]),
              ("local lights", "64 spots, 32 shadowed", forest(spots=64), ["--local-shadow-budget", "32"]),
              ("local lights", "1 point", forest(points=1), []),
-             ("local lights", "8 points (48 faces)", forest(points=8), [])]
+             ("local lights", "8 points (48 faces)", forest(points=8), []),
+             ("local lights", "1 wide spot (100 deg, cube)", forest(spots=1, spot_angle=100), []),
+             ("local lights", "8 wide spots (100 deg, 48 faces)", forest(spots=8, spot_angle=100), [])]
     runs += [("local filter", f"8 spots, {name}", forest(spots=8), args)
              for name, args in FILTERS if name in ("hard", "pcf r=1", "poisson", "pcss medium", "vsm", "msm")]
     runs += [("local sizing", "8 spots, coverage (default)", forest(spots=8), []),
