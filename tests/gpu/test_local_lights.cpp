@@ -257,55 +257,86 @@ bool room_point_shadowed(const glm::vec3& light, const glm::vec3& point, float m
     return false;
 }
 
-class PointLightRoom : public ::testing::TestWithParam<ShadowFilter> {};
+// Per-wall agreement of the rendered visibility with the ray cast, over the room seen from
+// two corners (which see all six walls between them).
+struct RoomShadows {
+    size_t checked[6] = {}, agree[6] = {}, shadowed[6] = {};  // per wall, outside shadow edges
+    size_t seam_pixels = 0, seam_wrong = 0;                   // pixels on cube-face seams
+    size_t outside_cone = 0, lit_outside_cone = 0;            // a spot's: beyond its outer angle
+    std::vector<uint32_t> layers;                             // each frame's shadow layers
+};
 
-TEST_P(PointLightRoom, EveryCubeFaceShadowsItsWallWithoutSeams) {
-    Scene scene = scene_from_toml(kRoomScene);
+// The light is scene.lights[0]. For a spot, pixels within 1 degree of its cone's falloff
+// (inner to outer angle) are not checked, and those beyond it count as outside the cone.
+RoomShadows measure_room_shadows(Scene scene, ShadowFilter filter) {
     RenderSettings settings = small_settings(240, 180);
-    settings.shadow.filter.mode = GetParam();
+    settings.shadow.filter.mode = filter;
     settings.local_shadows.resolution = 512;
-    const glm::vec3 light = scene.lights[0].position;
-    // Two corners of the room see all six walls between them.
+    const Light& light = scene.lights[0];
+    const bool spot = light.type == LightType::Spot;
     const Camera views[2] = {{{3.6f, 5.6f, 3.6f}, {-4.0f, 0.0f, -4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f},
                              {{-3.6f, 0.4f, -3.6f}, {4.0f, 6.0f, 4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f}};
-    size_t shadowed_per_wall[6] = {}, agree_per_wall[6] = {}, checked_per_wall[6] = {};
-    size_t seam_pixels = 0, seam_wrong = 0;
+    RoomShadows room;
     for (const Camera& view : views) {
         scene.camera = view;
         const RenderedFrame frame = render_light(scene, settings, 0);
+        if (!frame.info.local_shadow_stats.empty()) room.layers.push_back(frame.info.local_shadow_stats[0].layers);
         for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
             const glm::vec4 p = frame.images.world_position[i];
             if (p.w == 0.0f) continue;
             const int wall = room_wall(glm::vec3(p));
             if (wall < 0) continue;
             const glm::vec3 point(p);
-            const bool inner = room_point_shadowed(light, point, -0.03f);
-            const bool outer = room_point_shadowed(light, point, 0.03f);
-            if (inner != outer) continue;  // within 3 cm of a shadow edge
+            const glm::vec3 to_point = point - light.position;
             const bool shadowed = frame.images.visibility[i] < 32768;
-            ++checked_per_wall[wall];
-            agree_per_wall[wall] += shadowed == inner;
-            shadowed_per_wall[wall] += shadowed && inner;
+            if (spot) {
+                const float cosine = glm::dot(glm::normalize(to_point), light.direction);
+                const float degrees_from_axis = glm::degrees(std::acos(std::clamp(cosine, -1.0f, 1.0f)));
+                if (degrees_from_axis > light.outer_angle_degrees + 1.0f) {
+                    ++room.outside_cone;
+                    room.lit_outside_cone += frame.images.visibility[i] > 0;
+                    continue;
+                }
+                if (degrees_from_axis > light.inner_angle_degrees - 1.0f) continue;
+            }
+            const bool inner = room_point_shadowed(light.position, point, -0.03f);
+            const bool outer = room_point_shadowed(light.position, point, 0.03f);
+            if (inner != outer) continue;  // within 3 cm of a shadow edge
+            ++room.checked[wall];
+            room.agree[wall] += shadowed == inner;
+            room.shadowed[wall] += shadowed && inner;
             // Cube-face seams: where two components of (point - light) are nearly equal.
-            glm::vec3 a = glm::abs(point - light);
+            glm::vec3 a = glm::abs(to_point);
             std::sort(&a[0], &a[0] + 3);
             if (a[2] - a[1] < 0.02f * a[2]) {
-                ++seam_pixels;
-                seam_wrong += shadowed != inner;
+                ++room.seam_pixels;
+                room.seam_wrong += shadowed != inner;
             }
         }
     }
-    for (int wall = 0; wall < 6; ++wall) {
-        const double agreement = checked_per_wall[wall] ? double(agree_per_wall[wall]) / checked_per_wall[wall] : 0.0;
-        std::printf("wall %d: %zu px checked, agreement %.4f, %zu px in the cube's shadow\n", wall,
-                    checked_per_wall[wall], agreement, shadowed_per_wall[wall]);
-        EXPECT_GT(checked_per_wall[wall], 200u) << "wall " << wall;
+    return room;
+}
+
+// Each of `walls` shows its cube's shadow where the ray cast says, seams included.
+void expect_walls_agree_with_the_ray_cast(const RoomShadows& room, std::initializer_list<int> walls) {
+    for (int wall : walls) {
+        const double agreement = room.checked[wall] ? double(room.agree[wall]) / room.checked[wall] : 0.0;
+        std::printf("wall %d: %zu px checked, agreement %.4f, %zu px in the cube's shadow\n", wall, room.checked[wall],
+                    agreement, room.shadowed[wall]);
+        EXPECT_GT(room.checked[wall], 200u) << "wall " << wall;
         EXPECT_GE(agreement, 0.99) << "wall " << wall;
-        EXPECT_GT(shadowed_per_wall[wall], 20u) << "wall " << wall << ": no cube shadow (missing face?)";
+        EXPECT_GT(room.shadowed[wall], 20u) << "wall " << wall << ": no cube shadow (missing face?)";
     }
-    std::printf("seam pixels %zu, wrong %zu\n", seam_pixels, seam_wrong);
-    EXPECT_GT(seam_pixels, 50u);
-    EXPECT_LE(seam_wrong, seam_pixels / 100);
+    std::printf("seam pixels %zu, wrong %zu\n", room.seam_pixels, room.seam_wrong);
+    EXPECT_GT(room.seam_pixels, 50u);
+    EXPECT_LE(room.seam_wrong, room.seam_pixels / 100);
+}
+
+class PointLightRoom : public ::testing::TestWithParam<ShadowFilter> {};
+
+TEST_P(PointLightRoom, EveryCubeFaceShadowsItsWallWithoutSeams) {
+    const RoomShadows room = measure_room_shadows(scene_from_toml(kRoomScene), GetParam());
+    expect_walls_agree_with_the_ray_cast(room, {0, 1, 2, 3, 4, 5});
 }
 
 INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom,
@@ -324,62 +355,12 @@ TEST_P(WideSpotRoom, CubeShadowInsideTheConeNothingLitOutside) {
     const std::string point = "type = \"point\"";
     text.replace(text.find(point), point.size(),
                  "type = \"spot\"\ndirection = [0.0, -1.0, 0.0]\ninner_angle = 100.0\nouter_angle = 120.0");
-    Scene scene = scene_from_toml(text);
-    RenderSettings settings = small_settings(240, 180);
-    settings.shadow.filter.mode = GetParam();
-    settings.local_shadows.resolution = 512;
-    const glm::vec3 light = scene.lights[0].position;
-    const Camera views[2] = {{{3.6f, 5.6f, 3.6f}, {-4.0f, 0.0f, -4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f},
-                             {{-3.6f, 0.4f, -3.6f}, {4.0f, 6.0f, 4.0f}, {0, 1, 0}, 100.0f, 0.05f, 30.0f}};
-    size_t shadowed_per_wall[6] = {}, agree_per_wall[6] = {}, checked_per_wall[6] = {};
-    size_t outside_cone = 0, lit_outside_cone = 0, seam_pixels = 0, seam_wrong = 0;
-    for (const Camera& view : views) {
-        scene.camera = view;
-        const RenderedFrame frame = render_light(scene, settings, 0);
-        ASSERT_EQ(frame.info.local_shadow_stats.size(), 1u);
-        EXPECT_EQ(frame.info.local_shadow_stats[0].layers, 6u) << "a 120-degree spot is shadowed by a cube";
-        for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
-            const glm::vec4 p = frame.images.world_position[i];
-            if (p.w == 0.0f) continue;
-            const int wall = room_wall(glm::vec3(p));
-            if (wall < 0) continue;
-            const glm::vec3 to_point = glm::vec3(p) - light;
-            const float degrees_from_axis = glm::degrees(std::acos(-to_point.y / glm::length(to_point)));
-            const uint16_t visibility = frame.images.visibility[i];
-            if (degrees_from_axis > 121.0f) {
-                ++outside_cone;
-                lit_outside_cone += visibility > 0;
-                continue;
-            }
-            if (degrees_from_axis > 99.0f) continue;  // the cone's falloff
-            const bool inner = room_point_shadowed(light, glm::vec3(p), -0.03f);
-            if (inner != room_point_shadowed(light, glm::vec3(p), 0.03f)) continue;  // a shadow edge
-            const bool shadowed = visibility < 32768;
-            ++checked_per_wall[wall];
-            agree_per_wall[wall] += shadowed == inner;
-            shadowed_per_wall[wall] += shadowed && inner;
-            glm::vec3 a = glm::abs(to_point);
-            std::sort(&a[0], &a[0] + 3);
-            if (a[2] - a[1] < 0.02f * a[2]) {
-                ++seam_pixels;
-                seam_wrong += shadowed != inner;
-            }
-        }
-    }
-    for (int wall : {0, 1, 3, 4, 5}) {
-        const double agreement = checked_per_wall[wall] ? double(agree_per_wall[wall]) / checked_per_wall[wall] : 0.0;
-        std::printf("wall %d: %zu px checked, agreement %.4f, %zu px in the cube's shadow\n", wall,
-                    checked_per_wall[wall], agreement, shadowed_per_wall[wall]);
-        EXPECT_GT(checked_per_wall[wall], 200u) << "wall " << wall;
-        EXPECT_GE(agreement, 0.99) << "wall " << wall;
-        EXPECT_GT(shadowed_per_wall[wall], 20u) << "wall " << wall << ": no cube shadow (missing face?)";
-    }
-    std::printf("outside the cone %zu px, lit %zu; seam pixels %zu, wrong %zu\n", outside_cone, lit_outside_cone,
-                seam_pixels, seam_wrong);
-    EXPECT_GT(outside_cone, 2000u);
-    EXPECT_EQ(lit_outside_cone, 0u);
-    EXPECT_GT(seam_pixels, 50u);
-    EXPECT_LE(seam_wrong, seam_pixels / 100);
+    const RoomShadows room = measure_room_shadows(scene_from_toml(text), GetParam());
+    EXPECT_EQ(room.layers, (std::vector<uint32_t>{6, 6})) << "a 120-degree spot is shadowed by a cube";
+    expect_walls_agree_with_the_ray_cast(room, {0, 1, 3, 4, 5});
+    std::printf("outside the cone %zu px, lit %zu\n", room.outside_cone, room.lit_outside_cone);
+    EXPECT_GT(room.outside_cone, 2000u);
+    EXPECT_EQ(room.lit_outside_cone, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(LocalLights, WideSpotRoom,
