@@ -70,8 +70,8 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(const Scene& scene, con
         const bool cube = local_shadow_is_cube(light);
         for (size_t face = 0; face < slot.view_projection.size(); ++face) {
             passes::LocalShadowLayer layer{slot.first_layer + static_cast<uint32_t>(face), slot.resolution, {}};
-            // A cube face of a wide spot that its cone cannot reach stays cleared.
-            if (cube && !cube_face_reaches_cone(light, face)) {
+            // With culling, a cube face of a wide spot that its cone cannot reach stays cleared.
+            if (cull && cube && !cube_face_reaches_cone(light, face)) {
                 layers.push_back(std::move(layer));
                 continue;
             }

@@ -22,8 +22,9 @@ std::vector<Aabb> draw_bounds(const passes::DrawData& data);
 shader::LocalLightUniforms build_local_light_uniforms(const Scene& scene, const LocalShadowPlan& plan,
                                                       const RenderSettings& settings);
 
-// The draws that may cast into each layer (all draws when culling is off): a spot's
-// frustum, a point light's sphere of range.
+// The draws that may cast into each layer (all draws when culling is off): inside the
+// layer's frustum and, for a cube face, the sphere of range; none on a wide spot's cube
+// faces that its cone cannot reach.
 std::vector<passes::LocalShadowLayer> cull_local_casters(const Scene& scene, const LocalShadowPlan& plan,
                                                          const passes::DrawData& data, bool cull);
 

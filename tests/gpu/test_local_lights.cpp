@@ -11,6 +11,7 @@
 #include "analytic_shadow.hpp"
 #include "core/shadow_filters.hpp"
 #include "render_fixture.hpp"
+#include "renderer/local_light_setup.hpp"
 
 namespace penumbra::testing {
 namespace {
@@ -367,6 +368,41 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, WideSpotRoom,
                          ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Pcss,
                                            ShadowFilter::Msm),
                          filter_test_name);
+
+// Caster culling of a wide spot's cube (CPU only): the +Y face of the room's spot, pointing
+// down with 120 degrees, lies wholly outside its cone (corner rays 125.3 degrees from the
+// axis) and gets no draws; every other face has casters. Without culling every face gets
+// every draw.
+TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
+    std::string text = kRoomScene;
+    const std::string point = "type = \"point\"";
+    text.replace(text.find(point), point.size(),
+                 "type = \"spot\"\ndirection = [0.0, -1.0, 0.0]\ninner_angle = 100.0\nouter_angle = 120.0");
+    const Scene scene = scene_from_toml(text);
+    passes::DrawData data;
+    std::vector<Aabb> boxes;
+    for (const Instance& instance : scene.instances) {
+        passes::Draw draw;
+        draw.world_bounds = transform_aabb(scene.meshes[instance.mesh].bounds, instance.world);
+        boxes.push_back(draw.world_bounds);
+        data.draws.push_back(draw);
+    }
+    LocalShadowPlan plan = plan_local_shadows(scene, {});
+    fit_local_shadows(plan, scene, boxes);
+    const auto culled = renderer::cull_local_casters(scene, plan, data, true);
+    ASSERT_EQ(culled.size(), 6u);
+    for (uint32_t face = 0; face < 6; ++face) {
+        EXPECT_EQ(culled[face].layer, face);
+        if (face == 2) {
+            EXPECT_TRUE(culled[face].draws.empty()) << "the +Y face is outside the cone";
+        } else {
+            EXPECT_FALSE(culled[face].draws.empty()) << "face " << face;
+        }
+    }
+    for (const auto& layer : renderer::cull_local_casters(scene, plan, data, false)) {
+        EXPECT_EQ(layer.draws.size(), data.draws.size()) << "no culling: face " << layer.layer;
+    }
+}
 
 // PCSS for a spot: the penumbra of the box grows with the light's radius
 // (w = (d_receiver - d_blocker) * radius / d_blocker: 0.5 m here for radius 0.5).
