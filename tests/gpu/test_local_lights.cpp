@@ -349,14 +349,19 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom,
 // down from the point light's place in the room): its shadow is a cube like a point light's.
 // Inside the inner cone (100 degrees) every wall but the ceiling shows its cube's shadow where
 // a ray cast says, seams included; outside the outer cone nothing is lit (most of the ceiling).
-class WideSpotRoom : public ::testing::TestWithParam<ShadowFilter> {};
-
-TEST_P(WideSpotRoom, CubeShadowInsideTheConeNothingLitOutside) {
+// The room with the point light replaced by that spot.
+Scene wide_spot_room() {
     std::string text = kRoomScene;
     const std::string point = "type = \"point\"";
     text.replace(text.find(point), point.size(),
                  "type = \"spot\"\ndirection = [0.0, -1.0, 0.0]\ninner_angle = 100.0\nouter_angle = 120.0");
-    const RoomShadows room = measure_room_shadows(scene_from_toml(text), GetParam());
+    return scene_from_toml(text);
+}
+
+class WideSpotRoom : public ::testing::TestWithParam<ShadowFilter> {};
+
+TEST_P(WideSpotRoom, CubeShadowInsideTheConeNothingLitOutside) {
+    const RoomShadows room = measure_room_shadows(wide_spot_room(), GetParam());
     EXPECT_EQ(room.layers, (std::vector<uint32_t>{6, 6})) << "a 120-degree spot is shadowed by a cube";
     expect_walls_agree_with_the_ray_cast(room, {0, 1, 3, 4, 5});
     std::printf("outside the cone %zu px, lit %zu\n", room.outside_cone, room.lit_outside_cone);
@@ -374,11 +379,7 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, WideSpotRoom,
 // axis) and gets no draws; every other face has casters. Without culling every face gets
 // every draw.
 TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
-    std::string text = kRoomScene;
-    const std::string point = "type = \"point\"";
-    text.replace(text.find(point), point.size(),
-                 "type = \"spot\"\ndirection = [0.0, -1.0, 0.0]\ninner_angle = 100.0\nouter_angle = 120.0");
-    const Scene scene = scene_from_toml(text);
+    const Scene scene = wide_spot_room();
     passes::DrawData data;
     std::vector<Aabb> boxes;
     for (const Instance& instance : scene.instances) {
