@@ -345,11 +345,8 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, PointLightRoom,
                                            ShadowFilter::Pcss, ShadowFilter::Vsm, ShadowFilter::Msm),
                          filter_test_name);
 
-// A spot wider than one perspective layer can hold (outer half-angle 120 degrees, pointing
-// down from the point light's place in the room): its shadow is a cube like a point light's.
-// Inside the inner cone (100 degrees) every wall but the ceiling shows its cube's shadow where
-// a ray cast says, seams included; outside the outer cone nothing is lit (most of the ceiling).
-// The room with the point light replaced by that spot.
+// The room with the point light replaced by a spot wider than one perspective layer can
+// hold: outer half-angle 120 degrees (inner 100), pointing down.
 Scene wide_spot_room() {
     std::string text = kRoomScene;
     const std::string point = "type = \"point\"";
@@ -358,6 +355,9 @@ Scene wide_spot_room() {
     return scene_from_toml(text);
 }
 
+// The wide spot's shadow is a cube like a point light's. Inside the inner cone every wall
+// but the ceiling shows its cube's shadow where a ray cast says, seams included; outside the
+// outer cone nothing is lit (most of the ceiling).
 class WideSpotRoom : public ::testing::TestWithParam<ShadowFilter> {};
 
 TEST_P(WideSpotRoom, CubeShadowInsideTheConeNothingLitOutside) {
@@ -381,15 +381,13 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, WideSpotRoom,
 TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
     const Scene scene = wide_spot_room();
     passes::DrawData data;
-    std::vector<Aabb> boxes;
     for (const Instance& instance : scene.instances) {
         passes::Draw draw;
         draw.world_bounds = transform_aabb(scene.meshes[instance.mesh].bounds, instance.world);
-        boxes.push_back(draw.world_bounds);
         data.draws.push_back(draw);
     }
     LocalShadowPlan plan = plan_local_shadows(scene, {});
-    fit_local_shadows(plan, scene, boxes);
+    fit_local_shadows(plan, scene, renderer::draw_bounds(data));
     const auto culled = renderer::cull_local_casters(scene, plan, data, true);
     ASSERT_EQ(culled.size(), 6u);
     for (uint32_t face = 0; face < 6; ++face) {
