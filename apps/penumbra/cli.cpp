@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "compare_options.hpp"
-#include "core/errors.hpp"
 #include "filter_options.hpp"
+#include "penumbra/errors.hpp"
 #include "view_options.hpp"
 
 namespace penumbra::cli {

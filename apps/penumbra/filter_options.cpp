@@ -1,7 +1,7 @@
 #include "filter_options.hpp"
 
-#include "core/errors.hpp"
 #include "core/shadow_filters.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::cli {
 namespace {

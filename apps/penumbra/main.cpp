@@ -8,9 +8,9 @@
 #include "bench/bench_report.hpp"
 #include "cli.hpp"
 #include "compare/compare_report.hpp"
-#include "core/errors.hpp"
 #include "gpu/check.hpp"
 #include "gpu/context.hpp"
+#include "penumbra/errors.hpp"
 #include "progress_bar.hpp"
 #include "view/view_job.hpp"
 
@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
         return fail(3, error.what());
     } catch (const penumbra::ValidationFailure& error) {
         return fail(4, error.what());
-    } catch (const penumbra::gpu::GpuError& error) {
+    } catch (const penumbra::VulkanError& error) {
         return fail(1, error.what());
     } catch (const std::exception& error) {
         return fail(1, error.what());

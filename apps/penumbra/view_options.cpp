@@ -1,7 +1,7 @@
 #include "view_options.hpp"
 
 #include "cli.hpp"
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::cli {
 

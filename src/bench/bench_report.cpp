@@ -4,7 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::bench {
 namespace {

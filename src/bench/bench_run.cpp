@@ -5,10 +5,10 @@
 #include <map>
 
 #include "bench/bench_job.hpp"
-#include "core/errors.hpp"
 #include "gpu/frame_commands.hpp"
 #include "gpu/timestamps.hpp"
 #include "passes/tap_ceiling_pass.hpp"
+#include "penumbra/errors.hpp"
 #include "renderer/renderer.hpp"
 #include "scene/scene_loader.hpp"
 

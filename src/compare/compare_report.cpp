@@ -4,9 +4,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/errors.hpp"
 #include "core/shadow_filters.hpp"
 #include "image/png_io.hpp"
+#include "penumbra/errors.hpp"
 #include "quality/error_images.hpp"
 
 namespace penumbra::compare {

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "core/cascades.hpp"
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

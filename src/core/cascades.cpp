@@ -17,7 +17,7 @@
 #include <sstream>
 
 #include "core/cascade_fitting.hpp"
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

@@ -7,11 +7,9 @@
 
 #include "core/bounds.hpp"
 #include "core/camera_math.hpp"
-#include "core/shadow_settings.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
-
-constexpr int kMaxCascades = 8;
 
 // Split distances along the view direction: count + 1 values, first == near_plane,
 // last == far_plane, strictly increasing.

@@ -3,7 +3,7 @@
 // file, command line); part of SettingsOverrides.
 #include <optional>
 
-#include "core/shadow_settings.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
 

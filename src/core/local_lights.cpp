@@ -21,12 +21,6 @@ glm::mat4 look_along(const glm::vec3& eye, const glm::vec3& forward, const glm::
 
 }  // namespace
 
-const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
-    static const std::map<std::string, LocalShadowSizing> names{{"coverage", LocalShadowSizing::Coverage},
-                                                                {"fixed", LocalShadowSizing::Fixed}};
-    return names;
-}
-
 bool local_shadow_is_cube(const Light& light) {
     return light.type == LightType::Point ||
            (light.type == LightType::Spot && light.outer_angle_degrees > kMaxPerspectiveSpotAngle);

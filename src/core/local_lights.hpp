@@ -19,37 +19,17 @@
 #include "core/camera_math.hpp"
 #include "core/glm_config.hpp"
 #include "core/scene.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
 
-// Bounds of the local-light settings (`--local-shadow-budget`, `--local-shadow-resolution`).
-inline constexpr uint32_t kMaxLocalLights = 64;         // lit by the lighting shader; more are ignored
-inline constexpr uint32_t kMaxLocalShadowBudget = 32;   // shadowed local lights per frame
-inline constexpr uint32_t kMaxLocalShadowLayers = 192;  // 32 point lights x 6 faces (Vulkan guarantees 256 layers)
-inline constexpr float kMinLocalShadowNear = 0.05f;     // metres
+inline constexpr uint32_t kMaxLocalLights = 64;      // lit by the lighting shader; more are ignored
+inline constexpr float kMinLocalShadowNear = 0.05f;  // metres
 // The widest spot (outer half-angle, degrees) shadowed by one perspective layer. Past it a
 // perspective texel at the cone's edge covers more than 1 / cos^2(60) = 4 times the
 // footprint of one on the axis (and 90 degrees cannot be projected at all), while a cube
 // face's corner texel covers at most 3 times its centre's: wider spots use a cube.
 inline constexpr float kMaxPerspectiveSpotAngle = 60.0f;
-
-inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest map coverage sizing picks
-
-// How a light without its own `shadow_resolution` gets its map's size
-// (`--local-shadow-sizing`, `[shadow] local_shadow_sizing`).
-enum class LocalShadowSizing {
-    Coverage,  // each frame, from the light's screen coverage, up to `resolution`
-    Fixed,     // always `resolution`
-};
-
-// The names a user writes: "coverage", "fixed".
-const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names();
-
-struct LocalShadowSettings {
-    uint32_t budget = 8;         // shadowed local lights; the rest render unshadowed
-    uint32_t resolution = 1024;  // texels per side of a light's map (the largest with coverage sizing)
-    LocalShadowSizing sizing = LocalShadowSizing::Coverage;
-};
 
 // Where one local light's shadow lives and how it was fitted.
 struct LocalShadowSlot {

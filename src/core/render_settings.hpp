@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/local_lights.hpp"
-#include "core/shadow_settings.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
 

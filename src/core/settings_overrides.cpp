@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

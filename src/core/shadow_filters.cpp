@@ -8,24 +8,6 @@
 
 namespace penumbra {
 
-const std::map<std::string, ShadowFilter>& shadow_filter_names() {
-    static const std::map<std::string, ShadowFilter> names{
-        {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"poisson", ShadowFilter::Poisson},
-        {"pcss", ShadowFilter::Pcss}, {"vsm", ShadowFilter::Vsm}, {"evsm", ShadowFilter::Evsm},
-        {"msm", ShadowFilter::Msm}};
-    return names;
-}
-
-const std::map<std::string, PcssQuality>& pcss_quality_names() {
-    static const std::map<std::string, PcssQuality> names{
-        {"low", PcssQuality::Low}, {"medium", PcssQuality::Medium}, {"high", PcssQuality::High}};
-    return names;
-}
-
-bool is_moment_filter(ShadowFilter filter) {
-    return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
-}
-
 glm::vec2 clamped_evsm_exponents(const FilterSettings& filter) {
     return glm::min(glm::vec2(filter.evsm_positive_exponent, filter.evsm_negative_exponent),
                     glm::vec2(kEvsmMaxExponentFloat32));

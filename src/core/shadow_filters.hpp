@@ -6,16 +6,9 @@
 #include <string>
 
 #include "core/cascades.hpp"
-#include "core/shadow_settings.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
-
-// The names a user writes for each filter and PCSS quality (--filter, [shadow] filter).
-const std::map<std::string, ShadowFilter>& shadow_filter_names();
-const std::map<std::string, PcssQuality>& pcss_quality_names();
-
-// vsm, evsm and msm sample a moments map instead of comparing against the depth map.
-bool is_moment_filter(ShadowFilter filter);
 
 // PCSS variable-width filter taps per quality: 16, 25, 49.
 int pcss_filter_taps(PcssQuality quality);

@@ -46,7 +46,7 @@ const char* result_name(VkResult result) {
 
 void throw_vk_failure(const char* expression, VkResult result, const char* file, int line) {
     const std::string where = std::filesystem::path(file).filename().string() + ":" + std::to_string(line);
-    throw GpuError(
+    throw VulkanError(
         std::string("Vulkan call failed: ") + expression + " returned " + result_name(result) + " (" + where + ")",
         result);
 }

@@ -1,22 +1,12 @@
 #pragma once
-// Checked Vulkan calls. PENUMBRA_VK_CHECK(expr) throws GpuError naming the failing
+// Checked Vulkan calls. PENUMBRA_VK_CHECK(expr) throws VulkanError naming the failing
 // expression, the file and line, and the VkResult's name. Calls whose non-success
 // results are expected (timeouts, VK_INCOMPLETE) are handled at the call site instead.
 #include <vulkan/vulkan.h>
 
-#include <stdexcept>
-#include <string>
+#include "penumbra/errors.hpp"
 
 namespace penumbra::gpu {
-
-class GpuError : public std::runtime_error {
-public:
-    GpuError(const std::string& message, VkResult result) : std::runtime_error(message), result_(result) {}
-    VkResult result() const { return result_; }
-
-private:
-    VkResult result_;
-};
 
 const char* result_name(VkResult result);
 

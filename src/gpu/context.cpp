@@ -6,8 +6,8 @@
 #include <cstring>
 #include <optional>
 
-#include "core/errors.hpp"
 #include "gpu/check.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::gpu {
 namespace {
@@ -343,7 +343,7 @@ uint32_t Context::find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wan
     for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
         if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
     }
-    throw GpuError("no memory type with the requested properties", VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    throw VulkanError("no memory type with the requested properties", VK_ERROR_OUT_OF_DEVICE_MEMORY);
 }
 
 void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {

@@ -10,7 +10,7 @@
 #include <string>
 #include <system_error>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

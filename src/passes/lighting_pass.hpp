@@ -6,11 +6,11 @@
 
 #include <cstdint>
 
-#include "core/shadow_settings.hpp"
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
-#include "core/shadow_settings.hpp"
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/moments_blur.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 

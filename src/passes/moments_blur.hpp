@@ -13,10 +13,10 @@
 #include <span>
 #include <vector>
 
-#include "core/shadow_settings.hpp"
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 

@@ -13,12 +13,12 @@
 #include <optional>
 #include <vector>
 
-#include "core/shadow_settings.hpp"
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
 #include "passes/moments_blur.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 

@@ -4,8 +4,8 @@
 // the same variant.
 #include <vector>
 
-#include "core/shadow_settings.hpp"
 #include "gpu/pipeline.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <string>
 
-#include "core/errors.hpp"
 #include "embedded_shaders.hpp"
 #include "gpu/barriers.hpp"
 #include "passes/draw_recording.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::passes {
 namespace {

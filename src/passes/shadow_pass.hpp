@@ -10,12 +10,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/shadow_settings.hpp"
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "gpu/timestamps.hpp"
 #include "passes/draw_data.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 

@@ -12,7 +12,7 @@ VkSurfaceFormatKHR choose_format(VkPhysicalDevice device, VkSurfaceKHR surface) 
     PENUMBRA_VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(device, surface, &count, nullptr));
     std::vector<VkSurfaceFormatKHR> formats(count);
     PENUMBRA_VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(device, surface, &count, formats.data()));
-    if (formats.empty()) throw gpu::GpuError("the window surface offers no formats", VK_ERROR_FORMAT_NOT_SUPPORTED);
+    if (formats.empty()) throw VulkanError("the window surface offers no formats", VK_ERROR_FORMAT_NOT_SUPPORTED);
     // The renderer's colour target is sRGB-encoded; an sRGB swapchain keeps a blit exact.
     for (VkFormat wanted : {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB}) {
         for (const VkSurfaceFormatKHR& format : formats) {
@@ -73,8 +73,8 @@ Swapchain::Swapchain(const gpu::Context& context, VkSurfaceKHR surface, VkExtent
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     const VkImageUsageFlags usage = wanted_usage & capabilities.supportedUsageFlags;
     if (!(usage & VK_IMAGE_USAGE_TRANSFER_DST_BIT) || !(usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT)) {
-        throw gpu::GpuError("the window surface does not support transfer-destination colour images",
-                            VK_ERROR_FEATURE_NOT_PRESENT);
+        throw VulkanError("the window surface does not support transfer-destination colour images",
+                          VK_ERROR_FEATURE_NOT_PRESENT);
     }
     readback_ = (usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
     format_ = format.format;

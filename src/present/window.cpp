@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "core/errors.hpp"
 #include "gpu/check.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::present {
 namespace {

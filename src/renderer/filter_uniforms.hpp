@@ -5,8 +5,8 @@
 
 #include "core/cascades.hpp"
 #include "core/scene.hpp"
-#include "core/shadow_settings.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::renderer {
 

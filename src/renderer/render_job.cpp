@@ -1,7 +1,7 @@
 #include "renderer/render_job.hpp"
 
-#include "core/errors.hpp"
 #include "image/png_io.hpp"
+#include "penumbra/errors.hpp"
 #include "renderer/debug_images.hpp"
 #include "renderer/renderer.hpp"
 #include "scene/scene_loader.hpp"

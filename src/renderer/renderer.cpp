@@ -160,25 +160,9 @@ const gpu::Image& Renderer::color_target() const { return resources_->lighting_p
 
 bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next) {
     const auto is_shadow_map = [](DebugView view) { return view == DebugView::ShadowMap; };
-    const FilterSettings& a = current.shadow.filter;
-    const FilterSettings& b = next.shadow.filter;
-    const bool same_filter =
-        a.mode == b.mode && a.receiver_plane_bias == b.receiver_plane_bias && a.pcf_radius == b.pcf_radius &&
-        a.poisson_taps == b.poisson_taps && a.poisson_radius == b.poisson_radius &&
-        a.pcss_blocker_taps == b.pcss_blocker_taps && a.pcss_quality == b.pcss_quality &&
-        a.pcss_early_out == b.pcss_early_out && a.pcss_max_penumbra == b.pcss_max_penumbra &&
-        a.light_bleeding_reduction == b.light_bleeding_reduction && a.blur_radius == b.blur_radius &&
-        a.moments_poisson == b.moments_poisson && a.evsm_positive_exponent == b.evsm_positive_exponent &&
-        a.evsm_negative_exponent == b.evsm_negative_exponent && a.evsm_components == b.evsm_components &&
-        a.msm_moment_bias == b.msm_moment_bias && a.msm_optimized_quantization == b.msm_optimized_quantization;
     return current.width != next.width || current.height != next.height ||
-           current.shadow.cascades.count != next.shadow.cascades.count ||
-           current.shadow.cascades.resolution != next.shadow.cascades.resolution ||
-           current.shadow.strategy != next.shadow.strategy || !same_filter ||
-           is_shadow_map(current.debug) != is_shadow_map(next.debug) ||
-           current.local_shadows.budget != next.local_shadows.budget ||
-           current.local_shadows.resolution != next.local_shadows.resolution ||
-           current.local_shadows.sizing != next.local_shadows.sizing;
+           requires_recreation({current.shadow, current.local_shadows}, {next.shadow, next.local_shadows}) ||
+           is_shadow_map(current.debug) != is_shadow_map(next.debug);
 }
 
 void Renderer::update_settings(const RenderSettings& settings) {

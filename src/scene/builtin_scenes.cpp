@@ -3,7 +3,7 @@
 #include <array>
 #include <string_view>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/forest_scene.hpp"
 #include "scene/scene_loader.hpp"
 

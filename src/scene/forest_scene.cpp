@@ -6,8 +6,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/errors.hpp"
 #include "core/local_lights.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/primitives.hpp"
 
 namespace penumbra {

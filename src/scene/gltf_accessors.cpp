@@ -1,7 +1,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/gltf_internal.hpp"
 
 namespace penumbra {

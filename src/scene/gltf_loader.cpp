@@ -8,7 +8,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/gltf_internal.hpp"
 #include "scene/mesh_tools.hpp"
 

@@ -4,7 +4,7 @@
 #include <map>
 #include <optional>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/gltf_loader.hpp"
 #include "scene/primitives.hpp"
 #include "scene/procedural_textures.hpp"

@@ -1,7 +1,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_objects.hpp"
 #include "scene/toml_fields.hpp"

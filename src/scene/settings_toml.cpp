@@ -3,8 +3,8 @@
 #include <functional>
 #include <map>
 
-#include "core/errors.hpp"
 #include "core/shadow_filters.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/toml_fields.hpp"
 
 namespace penumbra {

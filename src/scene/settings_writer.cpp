@@ -6,8 +6,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "core/errors.hpp"
 #include "core/shadow_filters.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

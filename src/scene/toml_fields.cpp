@@ -5,7 +5,7 @@
 #include <sstream>
 #include <utility>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

@@ -11,7 +11,7 @@
 #include "bench/paths.hpp"
 #include "bench/statistics.hpp"
 #include "cli_runner.hpp"
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/forest_scene.hpp"
 #include "scene/scene_loader.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <set>
 
-#include "core/errors.hpp"
 #include "gpu/context.hpp"
+#include "penumbra/errors.hpp"
 #include "render_fixture.hpp"
 #include "scene/scene_loader.hpp"
 

@@ -1,7 +1,7 @@
 // The viewer's pure parts: camera controls, sun angles and the script parser.
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "script.hpp"
 #include "view_controls.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace penumbra::testing {

@@ -7,7 +7,7 @@
 
 #include "core/cascade_fitting.hpp"
 #include "core/cascades.hpp"
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {

@@ -2,7 +2,7 @@
 // reads back bit-exact, so `penumbra render --config` reproduces what `view` saved.
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/settings_toml.hpp"
 #include "scene/settings_writer.hpp"
 

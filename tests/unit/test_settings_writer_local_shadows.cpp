@@ -2,7 +2,7 @@
 // what `penumbra view` saves, `penumbra render --config` renders with.
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/settings_toml.hpp"
 #include "scene/settings_writer.hpp"
 

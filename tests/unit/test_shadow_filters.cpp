@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/errors.hpp"
 #include "core/settings_overrides.hpp"
 #include "core/shadow_filters.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/settings_toml.hpp"
 
 namespace penumbra {

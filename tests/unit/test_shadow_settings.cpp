@@ -6,8 +6,8 @@
 #include <limits>
 #include <string>
 
-#include "core/errors.hpp"
-#include "core/shadow_settings.hpp"
+#include "penumbra/errors.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
 namespace {

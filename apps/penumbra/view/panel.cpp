@@ -3,7 +3,7 @@
 
 #include <imgui.h>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::view {
 namespace {

@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/settings_toml.hpp"
 
 namespace penumbra::view {

@@ -118,7 +118,7 @@ void UiOverlay::end_frame() { ImGui::Render(); }
 void UiOverlay::rebuild_framebuffers() {
     const present::Swapchain& swapchain = presenter_.swapchain();
     if (swapchain.format() != format_) {
-        throw gpu::GpuError("the recreated swapchain changed its format", VK_ERROR_FORMAT_NOT_SUPPORTED);
+        throw VulkanError("the recreated swapchain changed its format", VK_ERROR_FORMAT_NOT_SUPPORTED);
     }
     framebuffers_.clear();
     for (const gpu::UniqueImageView& view : swapchain.views()) {

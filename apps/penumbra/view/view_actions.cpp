@@ -4,8 +4,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "core/errors.hpp"
 #include "core/settings_overrides.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::view {
 namespace {

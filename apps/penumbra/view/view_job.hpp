@@ -29,7 +29,7 @@ struct ViewSummary {
 };
 
 // Opens the window and runs until it is closed (or `frames` frames). Throws InputError,
-// DeviceError (no window system, no device), ValidationFailure, gpu::GpuError.
+// DeviceError (no window system, no device), ValidationFailure, VulkanError.
 ViewSummary run_view(const ViewJob& job);
 
 }  // namespace penumbra::view

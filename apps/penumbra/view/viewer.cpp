@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 #include "scene/settings_writer.hpp"
 #include "view_actions.hpp"
 

@@ -1,12 +1,23 @@
 #pragma once
-// User-facing shadow configuration ([shadow] in a config file, --flags on the CLI).
-// Pure data with documented defaults and ranges; validate_shadow_settings() rejects
-// out-of-range values with an InputError naming the setting.
+// The settings of a ShadowSystem: one struct, Settings, with named fields and documented
+// defaults and ranges (docs/library.md, docs/techniques.md, docs/filters.md). The CLI's
+// scene files, config files and flags fill the same structs. validate_settings() rejects
+// out-of-range values with an InputError naming the setting; requires_recreation() tells
+// which changes need a new ShadowSystem (they size or specialise GPU resources).
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace penumbra {
+
+inline constexpr int kMaxCascades = 8;  // cascades of the sun's shadow map
+
+// Spot and point lights (docs/local-lights.md).
+inline constexpr uint32_t kMaxLights = 256;             // lights one ShadowSystem takes (set_lights)
+inline constexpr uint32_t kMaxLocalShadowBudget = 32;   // shadowed spot/point lights per frame
+inline constexpr uint32_t kMaxLocalShadowLayers = 192;  // 32 point lights x 6 faces (Vulkan guarantees 256 layers)
+inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest map coverage sizing picks
 
 enum class SplitScheme { Uniform, Logarithmic, Practical, Manual };
 enum class FitMode { Stable, Tight };
@@ -17,7 +28,7 @@ enum class ShadowFilter { Hard, Pcf, Poisson, Pcss, Vsm, Evsm, Msm };
 enum class PcssQuality { Low, Medium, High };  // 16, 25 or 49 filter taps
 
 struct CascadeSettings {
-    int count = 4;                                // 1..8
+    int count = 4;                                // 1..kMaxCascades
     SplitScheme scheme = SplitScheme::Practical;  // PSSM (Zhang et al. 2006)
     // 0 = uniform, 1 = logarithmic. Why 0.75: with the defaults (near 0.1 m, 150 m, 4
     // cascades) the logarithmic splits are 0.6 / 3.9 / 24 m, spending a whole cascade on
@@ -106,9 +117,45 @@ inline constexpr const char* kMsmMomentBias = "msm_moment_bias";                
 inline constexpr const char* kMsmQuantization = "msm_optimized_quantization";   // bool
 }  // namespace shadow_keys
 
+// How a light without its own `shadow_resolution` gets its map's size
+// (`--local-shadow-sizing`, `[shadow] local_shadow_sizing`).
+enum class LocalShadowSizing {
+    Coverage,  // each frame, from the light's screen coverage, up to `resolution`
+    Fixed,     // always `resolution`
+};
+
+struct LocalShadowSettings {
+    uint32_t budget = 8;         // shadowed local lights (0..kMaxLocalShadowBudget); the rest render unshadowed
+    uint32_t resolution = 1024;  // texels per side of a light's map (16..8192; the largest with coverage sizing)
+    LocalShadowSizing sizing = LocalShadowSizing::Coverage;
+};
+
+// Everything a ShadowSystem is configured with.
+struct Settings {
+    ShadowSettings shadow;              // the sun's cascades, biases and the filter (every light's)
+    LocalShadowSettings local_shadows;  // spot and point light shadow maps
+};
+
+// The names a user writes for each choice (--filter, [shadow] filter, ...).
+const std::map<std::string, ShadowFilter>& shadow_filter_names();
+const std::map<std::string, PcssQuality>& pcss_quality_names();
+const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names();
+
+// vsm, evsm and msm sample a moments map instead of comparing against the depth map.
+bool is_moment_filter(ShadowFilter filter);
+
 // Throws InputError("<origin>: <setting>: <problem>") for any out-of-range or NaN value.
 // Manual splits (checked only for SplitScheme::Manual) must be count - 1 finite values,
 // strictly increasing, inside (0, max_distance).
 void validate_shadow_settings(const ShadowSettings& settings, const std::string& origin);
+void validate_local_shadow_settings(const LocalShadowSettings& settings, const std::string& origin);
+void validate_settings(const Settings& settings, const std::string& origin);
+
+// True when going from `current` to `next` changes what a ShadowSystem creates once: the
+// cascade count or resolution, the filter and its tap counts (pipelines, moments maps and
+// the specialization of the caller's shaders), the shadow strategy, or the local shadow
+// budget, resolution and sizing. Every other setting may change between frames
+// (ShadowSystem::update_settings).
+bool requires_recreation(const Settings& current, const Settings& next);
 
 }  // namespace penumbra

@@ -1,12 +1,12 @@
-// Range checks of the user-facing shadow settings. Every message names the origin, the
-// setting as the user writes it, the offending value and the allowed range, on one line.
-#include "core/shadow_settings.hpp"
+// The public settings' range checks, choice names and recreation rule. Every message names
+// the origin, the setting as the user writes it, the offending value and the allowed
+// range, on one line.
+#include "penumbra/settings.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "core/cascades.hpp"
-#include "core/errors.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra {
 namespace {
@@ -100,6 +100,72 @@ void validate_shadow_settings(const ShadowSettings& settings, const std::string&
     validate_bias_settings(settings.bias, origin);
     require_in_range(origin, shadow_keys::kBlendWidth, settings.blend_width, 0.0f, 0.5f);
     validate_filter_settings(settings.filter, origin);
+}
+
+void validate_local_shadow_settings(const LocalShadowSettings& settings, const std::string& origin) {
+    if (settings.budget > kMaxLocalShadowBudget) {
+        reject(origin, "local_shadow_budget",
+               std::to_string(settings.budget) + " is out of range (0.." + std::to_string(kMaxLocalShadowBudget) + ")");
+    }
+    if (settings.resolution < 16 || settings.resolution > 8192) {
+        reject(origin, "local_shadow_resolution", std::to_string(settings.resolution) + " is out of range (16..8192)");
+    }
+}
+
+void validate_settings(const Settings& settings, const std::string& origin) {
+    validate_shadow_settings(settings.shadow, origin);
+    validate_local_shadow_settings(settings.local_shadows, origin);
+}
+
+const std::map<std::string, ShadowFilter>& shadow_filter_names() {
+    static const std::map<std::string, ShadowFilter> names{
+        {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"poisson", ShadowFilter::Poisson},
+        {"pcss", ShadowFilter::Pcss}, {"vsm", ShadowFilter::Vsm}, {"evsm", ShadowFilter::Evsm},
+        {"msm", ShadowFilter::Msm}};
+    return names;
+}
+
+const std::map<std::string, PcssQuality>& pcss_quality_names() {
+    static const std::map<std::string, PcssQuality> names{
+        {"low", PcssQuality::Low}, {"medium", PcssQuality::Medium}, {"high", PcssQuality::High}};
+    return names;
+}
+
+const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
+    static const std::map<std::string, LocalShadowSizing> names{{"coverage", LocalShadowSizing::Coverage},
+                                                                {"fixed", LocalShadowSizing::Fixed}};
+    return names;
+}
+
+bool is_moment_filter(ShadowFilter filter) {
+    return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
+}
+
+namespace {
+
+// Every filter field sizes or specialises something: the pipelines' specialization
+// constants, the moments maps' formats, the blur pipelines.
+bool same_filter(const FilterSettings& a, const FilterSettings& b) {
+    return a.mode == b.mode && a.receiver_plane_bias == b.receiver_plane_bias && a.pcf_radius == b.pcf_radius &&
+           a.poisson_taps == b.poisson_taps && a.poisson_radius == b.poisson_radius &&
+           a.pcss_blocker_taps == b.pcss_blocker_taps && a.pcss_quality == b.pcss_quality &&
+           a.pcss_early_out == b.pcss_early_out && a.pcss_max_penumbra == b.pcss_max_penumbra &&
+           a.light_bleeding_reduction == b.light_bleeding_reduction && a.blur_radius == b.blur_radius &&
+           a.moments_poisson == b.moments_poisson && a.evsm_positive_exponent == b.evsm_positive_exponent &&
+           a.evsm_negative_exponent == b.evsm_negative_exponent && a.evsm_components == b.evsm_components &&
+           a.msm_moment_bias == b.msm_moment_bias && a.msm_optimized_quantization == b.msm_optimized_quantization;
+}
+
+}  // namespace
+
+bool requires_recreation(const Settings& current, const Settings& next) {
+    const CascadeSettings& a = current.shadow.cascades;
+    const CascadeSettings& b = next.shadow.cascades;
+    const LocalShadowSettings& local_a = current.local_shadows;
+    const LocalShadowSettings& local_b = next.local_shadows;
+    return a.count != b.count || a.resolution != b.resolution || current.shadow.strategy != next.shadow.strategy ||
+           !same_filter(current.shadow.filter, next.shadow.filter) || local_a.budget != local_b.budget ||
+           local_a.resolution != local_b.resolution || local_a.sizing != local_b.sizing;
 }
 
 }  // namespace penumbra
