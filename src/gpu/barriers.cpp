@@ -46,12 +46,12 @@ StateUsage usage_of(ImageState state) {
 
 }  // namespace
 
-void transition(VkCommandBuffer cmd, const Image& image, ImageState from, ImageState to) {
-    transition(cmd, image.get(), image.desc.aspect, image.desc.layers, from, to);
+void transition(const Device& device, VkCommandBuffer cmd, const Image& image, ImageState from, ImageState to) {
+    transition(device, cmd, image.get(), image.desc.aspect, image.desc.layers, from, to);
 }
 
-void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers, ImageState from,
-                ImageState to) {
+void transition(const Device& device, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers,
+                ImageState from, ImageState to) {
     const StateUsage source = usage_of(from);
     const StateUsage destination = usage_of(to);
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
@@ -68,10 +68,10 @@ void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, u
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.imageMemoryBarrierCount = 1;
     dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    device->vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-void transfer_to_host_barrier(VkCommandBuffer cmd) {
+void transfer_to_host_barrier(const Device& device, VkCommandBuffer cmd) {
     VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     barrier.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
     barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -80,7 +80,7 @@ void transfer_to_host_barrier(VkCommandBuffer cmd) {
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.memoryBarrierCount = 1;
     dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    device->vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
 }  // namespace penumbra::gpu

@@ -24,13 +24,13 @@ enum class ImageState {
 };
 
 // Records one image memory barrier covering every layer of `image`.
-void transition(VkCommandBuffer cmd, const Image& image, ImageState from, ImageState to);
+void transition(const Device& device, VkCommandBuffer cmd, const Image& image, ImageState from, ImageState to);
 // The same for an image the caller does not own as an Image (swapchain images): one
 // mip level, layers [0, layers).
-void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers, ImageState from,
-                ImageState to);
+void transition(const Device& device, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers,
+                ImageState from, ImageState to);
 
 // Makes transfer writes to host-visible buffers visible to the host after the fence.
-void transfer_to_host_barrier(VkCommandBuffer cmd);
+void transfer_to_host_barrier(const Device& device, VkCommandBuffer cmd);
 
 }  // namespace penumbra::gpu

@@ -22,6 +22,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverity
     const bool is_error = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) != 0;
     std::string message = std::string(is_error ? "validation error: " : "validation warning: ") +
                           (data->pMessage ? data->pMessage : "(no message)");
+    // The messages are the point of --validate: they are shown as they come, and kept.
     std::fprintf(stderr, "penumbra: %s\n", message.c_str());
     log->messages.push_back(std::move(message));
     return VK_FALSE;
@@ -38,16 +39,16 @@ VkDebugUtilsMessengerCreateInfoEXT messenger_info(ValidationLog* log) {
     return info;
 }
 
-bool layer_available(const char* name) {
+bool layer_available(const VulkanFunctions& vk, const char* name) {
     uint32_t count = 0;
-    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    vk.vkEnumerateInstanceLayerProperties(&count, nullptr);
     std::vector<VkLayerProperties> layers(count);
-    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    vk.vkEnumerateInstanceLayerProperties(&count, layers.data());
     return std::any_of(layers.begin(), layers.end(),
                        [name](const VkLayerProperties& layer) { return std::strcmp(layer.layerName, name) == 0; });
 }
 
-VkInstance create_bare_instance(const void* next, const std::vector<const char*>& layers,
+VkInstance create_bare_instance(const VulkanFunctions& vk, const void* next, const std::vector<const char*>& layers,
                                 const std::vector<const char*>& extensions) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "penumbra";
@@ -61,7 +62,7 @@ VkInstance create_bare_instance(const void* next, const std::vector<const char*>
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
     VkInstance instance = VK_NULL_HANDLE;
-    const VkResult result = vkCreateInstance(&info, nullptr, &instance);
+    const VkResult result = vk.vkCreateInstance(&info, nullptr, &instance);
     if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED) {
         throw DeviceError("no Vulkan driver found (vkCreateInstance returned " + std::string(result_name(result)) +
                           "); install a Vulkan driver, e.g. mesa-vulkan-drivers for the lavapipe CPU device");
@@ -75,42 +76,12 @@ VkInstance create_bare_instance(const void* next, const std::vector<const char*>
     return instance;
 }
 
-std::vector<VkPhysicalDevice> enumerate_physical_devices(VkInstance instance) {
+std::vector<VkPhysicalDevice> enumerate_physical_devices(const VulkanFunctions& vk, VkInstance instance) {
     uint32_t count = 0;
-    PENUMBRA_VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+    PENUMBRA_VK_CHECK(vk.vkEnumeratePhysicalDevices(instance, &count, nullptr));
     std::vector<VkPhysicalDevice> devices(count);
-    PENUMBRA_VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+    PENUMBRA_VK_CHECK(vk.vkEnumeratePhysicalDevices(instance, &count, devices.data()));
     return devices;
-}
-
-std::optional<uint32_t> graphics_queue_family(VkPhysicalDevice device) {
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-    for (uint32_t i = 0; i < count; ++i) {
-        if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) return i;
-    }
-    return std::nullopt;
-}
-
-DeviceInfo describe_device(VkPhysicalDevice device, uint32_t index) {
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
-    vkGetPhysicalDeviceProperties2(device, &properties);
-    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
-    if (properties.properties.apiVersion >= VK_API_VERSION_1_3) vkGetPhysicalDeviceFeatures2(device, &features);
-
-    DeviceInfo info;
-    info.index = index;
-    info.name = properties.properties.deviceName;
-    info.type = properties.properties.deviceType;
-    info.driver = std::string(driver.driverName) + " (" + driver.driverInfo + ")";
-    info.api_version = properties.properties.apiVersion;
-    info.usable = properties.properties.apiVersion >= VK_API_VERSION_1_3 && features13.dynamicRendering &&
-                  features13.synchronization2 && graphics_queue_family(device).has_value();
-    return info;
 }
 
 int device_type_rank(VkPhysicalDeviceType type) {
@@ -133,6 +104,9 @@ std::string lowercase(std::string text) {
     return text;
 }
 
+constexpr const char* kUsableDevice =
+    "Vulkan 1.3 with dynamic rendering, synchronization2 and a graphics + compute queue";
+
 // Index of the device the selector names ("" = the best usable device by type).
 uint32_t select_device(const std::vector<DeviceInfo>& devices, const std::string& selector) {
     if (selector.empty()) {
@@ -141,7 +115,7 @@ uint32_t select_device(const std::vector<DeviceInfo>& devices, const std::string
             if (!device.usable) continue;
             if (!best || device_type_rank(device.type) < device_type_rank(devices[*best].type)) best = device.index;
         }
-        if (!best) throw DeviceError("no Vulkan 1.3 device with dynamic rendering and synchronization2 was found");
+        if (!best) throw DeviceError(std::string("no device with ") + kUsableDevice + " was found");
         return *best;
     }
     const bool numeric = std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); });
@@ -150,47 +124,38 @@ uint32_t select_device(const std::vector<DeviceInfo>& devices, const std::string
                                    : lowercase(device.name).find(lowercase(selector)) != std::string::npos;
         if (!match) continue;
         if (!device.usable) {
-            throw DeviceError("--device " + selector + ": device " + device.name +
-                              " does not support Vulkan 1.3 with dynamic rendering and synchronization2");
+            throw DeviceError("device selector \"" + selector + "\": device " + device.name + " does not support " +
+                              kUsableDevice);
         }
         return device.index;
     }
-    throw DeviceError("--device " + selector + ": no Vulkan device matches (run `penumbra devices` to list them)");
+    throw DeviceError("device selector \"" + selector +
+                      "\": no Vulkan device matches (run `penumbra devices` to list them)");
+}
+
+// The layer's absence is the caller's to report: the helper only says what is missing.
+void require_validation_layer(const VulkanFunctions& vk) {
+    if (!layer_available(vk, kValidationLayer)) {
+        throw DeviceError(std::string("validation: the layer ") + kValidationLayer +
+                          " is not installed (Debian package vulkan-validationlayers)");
+    }
 }
 
 }  // namespace
 
-const char* device_type_name(VkPhysicalDeviceType type) {
-    switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-            return "discrete";
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-            return "integrated";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-            return "virtual";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU:
-            return "cpu";
-        default:
-            return "other";
-    }
-}
-
-std::string api_version_string(uint32_t version) {
-    return std::to_string(VK_API_VERSION_MAJOR(version)) + "." + std::to_string(VK_API_VERSION_MINOR(version)) + "." +
-           std::to_string(VK_API_VERSION_PATCH(version));
-}
-
 std::vector<DeviceInfo> list_devices() {
-    VkInstance instance = create_bare_instance(nullptr, {}, {});
+    VulkanFunctions vk = load_global_functions(loader_instance_proc_addr());
+    VkInstance instance = create_bare_instance(vk, nullptr, {}, {});
     std::vector<DeviceInfo> result;
     try {
-        const auto devices = enumerate_physical_devices(instance);
-        for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe_device(devices[i], i));
+        load_instance_functions(vk, instance);
+        const auto devices = enumerate_physical_devices(vk, instance);
+        for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe_physical_device(vk, devices[i], i));
     } catch (...) {
-        vkDestroyInstance(instance, nullptr);
+        vk.vkDestroyInstance(instance, nullptr);
         throw;
     }
-    vkDestroyInstance(instance, nullptr);
+    vk.vkDestroyInstance(instance, nullptr);
     if (result.empty()) throw DeviceError("no Vulkan device found");
     return result;
 }
@@ -199,10 +164,18 @@ Context::Context(const ContextOptions& options)
     : validation_log_(options.log ? options.log : std::make_shared<ValidationLog>()),
       presentation_(options.presentation) {
     try {
+        vk_ = load_global_functions(loader_instance_proc_addr());
         create_instance(options.validation);
-        pick_physical_device(options.device_selector);
+        const uint32_t index = pick_physical_device(options.device_selector);
         if (presentation_) pick_present_queue_family();
-        create_device();
+        const EnabledFeatures features = create_device();
+        VkQueue queue = VK_NULL_HANDLE;
+        vk_.vkGetDeviceQueue(device_, queue_family_, 0, &queue);
+        initialize({instance_, physical_device_, device_, queue, queue_family_}, features, index);
+        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pool_info.queueFamilyIndex = queue_family_;
+        PENUMBRA_VK_CHECK(vk_.vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
     } catch (...) {
         release();
         throw;
@@ -213,18 +186,16 @@ Context::~Context() { release(); }
 
 void Context::release() {
     if (device_) {
-        vkDeviceWaitIdle(device_);
-        if (command_pool_) vkDestroyCommandPool(device_, command_pool_, nullptr);
-        vkDestroyDevice(device_, nullptr);
+        vk_.vkDeviceWaitIdle(device_);
+        if (command_pool_) vk_.vkDestroyCommandPool(device_, command_pool_, nullptr);
+        vk_.vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
     }
-    if (messenger_) {
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-        if (destroy) destroy(instance_, messenger_, nullptr);
+    if (messenger_ && vk_.vkDestroyDebugUtilsMessengerEXT) {
+        vk_.vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
         messenger_ = VK_NULL_HANDLE;
     }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
+    if (instance_) vk_.vkDestroyInstance(instance_, nullptr);
     instance_ = VK_NULL_HANDLE;
 }
 
@@ -234,13 +205,11 @@ void Context::create_instance(bool validation) {
         for (const std::string& name : presentation_->instance_extensions) extensions.push_back(name.c_str());
     }
     if (!validation) {
-        instance_ = create_bare_instance(nullptr, {}, extensions);
+        instance_ = create_bare_instance(vk_, nullptr, {}, extensions);
+        load_instance_functions(vk_, instance_);
         return;
     }
-    if (!layer_available(kValidationLayer)) {
-        throw DeviceError(std::string("--validate: the layer ") + kValidationLayer +
-                          " is not installed (Debian package vulkan-validationlayers)");
-    }
+    require_validation_layer(vk_);
     // Synchronization validation finds missing or wrong barriers (hazards), which the
     // default validation does not check.
     const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -249,71 +218,67 @@ void Context::create_instance(bool validation) {
     features.enabledValidationFeatureCount = 1;
     features.pEnabledValidationFeatures = enables;
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    instance_ = create_bare_instance(&features, {kValidationLayer}, extensions);
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    PENUMBRA_VK_CHECK(create(instance_, &messenger, nullptr, &messenger_));
+    instance_ = create_bare_instance(vk_, &features, {kValidationLayer}, extensions);
+    load_instance_functions(vk_, instance_);
+    PENUMBRA_VK_CHECK(vk_.vkCreateDebugUtilsMessengerEXT(instance_, &messenger, nullptr, &messenger_));
     validation_enabled_ = true;
 }
 
-void Context::pick_physical_device(const std::string& selector) {
-    const auto devices = enumerate_physical_devices(instance_);
+uint32_t Context::pick_physical_device(const std::string& selector) {
+    const auto devices = enumerate_physical_devices(vk_, instance_);
     if (devices.empty()) throw DeviceError("no Vulkan device found");
     std::vector<DeviceInfo> infos;
-    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe_device(devices[i], i));
+    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe_physical_device(vk_, devices[i], i));
     const uint32_t chosen = select_device(infos, selector);
     physical_device_ = devices[chosen];
-    info_ = infos[chosen];
-    vkGetPhysicalDeviceProperties(physical_device_, &properties_);
-    queue_family_ = *graphics_queue_family(physical_device_);
+    find_graphics_compute_family(vk_, physical_device_, queue_family_);
+    return chosen;
 }
 
 // A window needs a graphics queue that can also present, and VK_KHR_swapchain.
 void Context::pick_present_queue_family() {
+    const std::string name = describe_physical_device(vk_, physical_device_, 0).name;
     uint32_t count = 0;
-    vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &count, nullptr);
+    vk_.vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &count, nullptr);
     std::vector<VkExtensionProperties> extensions(count);
-    vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &count, extensions.data());
+    vk_.vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &count, extensions.data());
     const bool has_swapchain = std::any_of(extensions.begin(), extensions.end(), [](const VkExtensionProperties& e) {
         return std::strcmp(e.extensionName, VK_KHR_SWAPCHAIN_EXTENSION_NAME) == 0;
     });
-    if (!has_swapchain)
-        throw DeviceError("device " + info_.name + " does not support " VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);
+    if (!has_swapchain) throw DeviceError("device " + name + " does not support " VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, families.data());
+    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, families.data());
+    constexpr VkQueueFlags kWanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
     for (uint32_t family = 0; family < count; ++family) {
-        if ((families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+        if ((families[family].queueFlags & kWanted) == kWanted &&
             (!presentation_->can_present || presentation_->can_present(instance_, physical_device_, family))) {
             queue_family_ = family;
             return;
         }
     }
-    throw DeviceError("device " + info_.name + " has no graphics queue that can present to the window");
+    throw DeviceError("device " + name + " has no graphics queue that can present to the window");
 }
 
-void Context::create_device() {
-    VkPhysicalDeviceFeatures supported{};
-    vkGetPhysicalDeviceFeatures(physical_device_, &supported);
+// Exactly the features Penumbra uses (docs/library.md): the required Vulkan 1.3 ones, and
+// every optional one the device supports.
+EnabledFeatures Context::create_device() {
     VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
-    VkPhysicalDeviceFeatures2 supported2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported11};
-    vkGetPhysicalDeviceFeatures2(physical_device_, &supported2);
-    if (!supported11.multiview) throw DeviceError("device " + info_.name + " does not support multiview");
-    depth_clamp_ = supported.depthClamp == VK_TRUE;
-    depth_bias_clamp_ = supported.depthBiasClamp == VK_TRUE;
-    VkPhysicalDeviceMultiviewProperties multiview{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MULTIVIEW_PROPERTIES};
-    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &multiview};
-    vkGetPhysicalDeviceProperties2(physical_device_, &properties);
-    max_multiview_views_ = multiview.maxMultiviewViewCount;
+    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported11};
+    vk_.vkGetPhysicalDeviceFeatures2(physical_device_, &supported);
+    EnabledFeatures enabled;
+    enabled.multiview = supported11.multiview == VK_TRUE;
+    enabled.depth_clamp = supported.features.depthClamp == VK_TRUE;
+    enabled.depth_bias_clamp = supported.features.depthBiasClamp == VK_TRUE;
 
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;
     features13.synchronization2 = VK_TRUE;
     VkPhysicalDeviceVulkan11Features features11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &features13};
-    features11.multiview = VK_TRUE;
+    features11.multiview = enabled.multiview ? VK_TRUE : VK_FALSE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features11};
-    features.features.depthClamp = depth_clamp_ ? VK_TRUE : VK_FALSE;
-    features.features.depthBiasClamp = depth_bias_clamp_ ? VK_TRUE : VK_FALSE;
+    features.features.depthClamp = enabled.depth_clamp ? VK_TRUE : VK_FALSE;
+    features.features.depthBiasClamp = enabled.depth_bias_clamp ? VK_TRUE : VK_FALSE;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -328,22 +293,9 @@ void Context::create_device() {
         info.enabledExtensionCount = 1;
         info.ppEnabledExtensionNames = &swapchain_extension;
     }
-    PENUMBRA_VK_CHECK(vkCreateDevice(physical_device_, &info, nullptr, &device_));
-    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
-
-    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = queue_family_;
-    PENUMBRA_VK_CHECK(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
-}
-
-uint32_t Context::find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags wanted) const {
-    VkPhysicalDeviceMemoryProperties memory{};
-    vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory);
-    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-        if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
-    }
-    throw VulkanError("no memory type with the requested properties", VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    PENUMBRA_VK_CHECK(vk_.vkCreateDevice(physical_device_, &info, nullptr, &device_));
+    load_device_functions(vk_, device_);
+    return enabled;
 }
 
 void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
@@ -352,35 +304,34 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     allocate.commandBufferCount = 1;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkAllocateCommandBuffers(device_, &allocate, &cmd));
+    PENUMBRA_VK_CHECK(vk_.vkAllocateCommandBuffers(device_, &allocate, &cmd));
     struct FreeOnExit {
+        const VulkanFunctions& vk;
         VkDevice device;
         VkCommandPool pool;
         VkCommandBuffer cmd;
-        ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-    } free_on_exit{device_, command_pool_, cmd};
+        ~FreeOnExit() { vk.vkFreeCommandBuffers(device, pool, 1, &cmd); }
+    } free_on_exit{vk_, device_, command_pool_, cmd};
 
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    PENUMBRA_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    PENUMBRA_VK_CHECK(vk_.vkBeginCommandBuffer(cmd, &begin));
     record(cmd);
-    PENUMBRA_VK_CHECK(vkEndCommandBuffer(cmd));
+    PENUMBRA_VK_CHECK(vk_.vkEndCommandBuffer(cmd));
 
     VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence_handle = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &fence_handle));
-    UniqueFence fence(device_, fence_handle);
+    VkFence fence = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(vk_.vkCreateFence(device_, &fence_info, nullptr, &fence));
+    const UniqueFence owned_fence(*this, fence);
     VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     cmd_info.commandBuffer = cmd;
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     submit.commandBufferInfoCount = 1;
     submit.pCommandBufferInfos = &cmd_info;
-    PENUMBRA_VK_CHECK(vkQueueSubmit2(queue_, 1, &submit, fence));
+    PENUMBRA_VK_CHECK(vk_.vkQueueSubmit2(queue(), 1, &submit, fence));
     // A fence wait can legitimately time out on a slow CPU device; keep waiting.
     VkResult wait = VK_TIMEOUT;
-    while (wait == VK_TIMEOUT) {
-        wait = vkWaitForFences(device_, 1, &fence_handle, VK_TRUE, 10'000'000'000ull);
-    }
+    while (wait == VK_TIMEOUT) wait = vk_.vkWaitForFences(device_, 1, &fence, VK_TRUE, 10'000'000'000ull);
     PENUMBRA_VK_CHECK(wait);
 }
 

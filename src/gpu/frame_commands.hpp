@@ -6,21 +6,21 @@
 
 #include <functional>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/handle.hpp"
 
 namespace penumbra::gpu {
 
 class FrameCommands {
 public:
-    explicit FrameCommands(const Context& context);
+    explicit FrameCommands(const Device& device);
 
     // Resets the command buffer, records into it, submits it and waits for the fence.
     // The previous frame has always completed before the next one starts recording.
     void submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
 
 private:
-    const Context& context_;
+    const Device& device_;
     UniqueCommandPool pool_;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;  // freed with the pool
     UniqueFence fence_;

@@ -4,13 +4,13 @@
 
 namespace penumbra::gpu {
 
-UniqueShaderModule create_shader_module(const Context& context, std::span<const uint32_t> spirv) {
+UniqueShaderModule create_shader_module(const Device& device, std::span<const uint32_t> spirv) {
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     info.codeSize = spirv.size_bytes();
     info.pCode = spirv.data();
     VkShaderModule module = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
-    return UniqueShaderModule(context.device(), module);
+    PENUMBRA_VK_CHECK(device->vkCreateShaderModule(device, &info, nullptr, &module));
+    return UniqueShaderModule(device, module);
 }
 
 namespace {
@@ -36,12 +36,12 @@ void fill_specialization(const ShaderStage& stage, StageSpecialization& out) {
 
 }  // namespace
 
-UniquePipeline create_graphics_pipeline(const Context& context, const GraphicsPipelineDesc& desc) {
+UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDesc& desc) {
     std::vector<UniqueShaderModule> modules;
     std::vector<StageSpecialization> specializations(desc.stages.size());
     std::vector<VkPipelineShaderStageCreateInfo> stages;
     for (size_t i = 0; i < desc.stages.size(); ++i) {
-        modules.push_back(create_shader_module(context, desc.stages[i].spirv));
+        modules.push_back(create_shader_module(device, desc.stages[i].spirv));
         fill_specialization(desc.stages[i], specializations[i]);
         VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
         stage.stage = desc.stages[i].stage;
@@ -115,11 +115,11 @@ UniquePipeline create_graphics_pipeline(const Context& context, const GraphicsPi
     info.pDynamicState = &dynamic;
     info.layout = desc.layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-    return UniquePipeline(context.device(), pipeline);
+    PENUMBRA_VK_CHECK(device->vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    return UniquePipeline(device, pipeline);
 }
 
-UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<const VkDescriptorSetLayout> set_layouts,
+UniquePipelineLayout create_pipeline_layout(const Device& device, std::span<const VkDescriptorSetLayout> set_layouts,
                                             std::span<const VkPushConstantRange> push_constants) {
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     info.setLayoutCount = static_cast<uint32_t>(set_layouts.size());
@@ -127,44 +127,44 @@ UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<co
     info.pushConstantRangeCount = static_cast<uint32_t>(push_constants.size());
     info.pPushConstantRanges = push_constants.data();
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreatePipelineLayout(context.device(), &info, nullptr, &layout));
-    return UniquePipelineLayout(context.device(), layout);
+    PENUMBRA_VK_CHECK(device->vkCreatePipelineLayout(device, &info, nullptr, &layout));
+    return UniquePipelineLayout(device, layout);
 }
 
-UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
+UniqueDescriptorSetLayout create_descriptor_set_layout(const Device& device,
                                                        std::span<const VkDescriptorSetLayoutBinding> bindings) {
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.bindingCount = static_cast<uint32_t>(bindings.size());
     info.pBindings = bindings.data();
     VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateDescriptorSetLayout(context.device(), &info, nullptr, &layout));
-    return UniqueDescriptorSetLayout(context.device(), layout);
+    PENUMBRA_VK_CHECK(device->vkCreateDescriptorSetLayout(device, &info, nullptr, &layout));
+    return UniqueDescriptorSetLayout(device, layout);
 }
 
-UniqueDescriptorPool create_descriptor_pool(const Context& context, uint32_t max_sets,
+UniqueDescriptorPool create_descriptor_pool(const Device& device, uint32_t max_sets,
                                             std::span<const VkDescriptorPoolSize> sizes) {
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.maxSets = max_sets;
     info.poolSizeCount = static_cast<uint32_t>(sizes.size());
     info.pPoolSizes = sizes.data();
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateDescriptorPool(context.device(), &info, nullptr, &pool));
-    return UniqueDescriptorPool(context.device(), pool);
+    PENUMBRA_VK_CHECK(device->vkCreateDescriptorPool(device, &info, nullptr, &pool));
+    return UniqueDescriptorPool(device, pool);
 }
 
-VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+VkDescriptorSet allocate_descriptor_set(const Device& device, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
     VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     info.descriptorPool = pool;
     info.descriptorSetCount = 1;
     info.pSetLayouts = &layout;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkAllocateDescriptorSets(context.device(), &info, &set));
+    PENUMBRA_VK_CHECK(device->vkAllocateDescriptorSets(device, &info, &set));
     return set;
 }
 
 namespace {
 
-void write_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer, VkDeviceSize size,
+void write_buffer(const Device& device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer, VkDeviceSize size,
                   VkDescriptorType type) {
     const VkDescriptorBufferInfo buffer_info{buffer, 0, size};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -173,22 +173,22 @@ void write_buffer(const Context& context, VkDescriptorSet set, uint32_t binding,
     write.descriptorCount = 1;
     write.descriptorType = type;
     write.pBufferInfo = &buffer_info;
-    vkUpdateDescriptorSets(context.device(), 1, &write, 0, nullptr);
+    device->vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
 }
 
 }  // namespace
 
-void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+void write_uniform_buffer(const Device& device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
                           VkDeviceSize size) {
-    write_buffer(context, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    write_buffer(device, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
 }
 
-void write_storage_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+void write_storage_buffer(const Device& device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
                           VkDeviceSize size) {
-    write_buffer(context, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    write_buffer(device, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
-void write_combined_image_sampler(const Context& context, VkDescriptorSet set, uint32_t binding, VkImageView view,
+void write_combined_image_sampler(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view,
                                   VkSampler sampler) {
     const VkDescriptorImageInfo image_info{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -197,10 +197,10 @@ void write_combined_image_sampler(const Context& context, VkDescriptorSet set, u
     write.descriptorCount = 1;
     write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     write.pImageInfo = &image_info;
-    vkUpdateDescriptorSets(context.device(), 1, &write, 0, nullptr);
+    device->vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
 }
 
-UniqueSampler create_sampler(const Context& context, const SamplerDesc& desc) {
+UniqueSampler create_sampler(const Device& device, const SamplerDesc& desc) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = desc.filter;
     info.minFilter = desc.filter;
@@ -213,8 +213,8 @@ UniqueSampler create_sampler(const Context& context, const SamplerDesc& desc) {
     info.borderColor = desc.border;
     info.maxLod = 0.0f;
     VkSampler sampler = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler));
-    return UniqueSampler(context.device(), sampler);
+    PENUMBRA_VK_CHECK(device->vkCreateSampler(device, &info, nullptr, &sampler));
+    return UniqueSampler(device, sampler);
 }
 
 }  // namespace penumbra::gpu

@@ -7,12 +7,12 @@
 #include <span>
 #include <vector>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/handle.hpp"
 
 namespace penumbra::gpu {
 
-UniqueShaderModule create_shader_module(const Context& context, std::span<const uint32_t> spirv);
+UniqueShaderModule create_shader_module(const Device& device, std::span<const uint32_t> spirv);
 
 struct SpecializationValue {
     uint32_t constant_id;
@@ -44,24 +44,24 @@ struct GraphicsPipelineDesc {
     uint32_t view_mask = 0;    // multiview: one bit per rendered layer
 };
 
-UniquePipeline create_graphics_pipeline(const Context& context, const GraphicsPipelineDesc& desc);
+UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDesc& desc);
 
-UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<const VkDescriptorSetLayout> set_layouts,
+UniquePipelineLayout create_pipeline_layout(const Device& device, std::span<const VkDescriptorSetLayout> set_layouts,
                                             std::span<const VkPushConstantRange> push_constants);
 
-UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
+UniqueDescriptorSetLayout create_descriptor_set_layout(const Device& device,
                                                        std::span<const VkDescriptorSetLayoutBinding> bindings);
 
-UniqueDescriptorPool create_descriptor_pool(const Context& context, uint32_t max_sets,
+UniqueDescriptorPool create_descriptor_pool(const Device& device, uint32_t max_sets,
                                             std::span<const VkDescriptorPoolSize> sizes);
 
-VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+VkDescriptorSet allocate_descriptor_set(const Device& device, VkDescriptorPool pool, VkDescriptorSetLayout layout);
 
-void write_uniform_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+void write_uniform_buffer(const Device& device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
                           VkDeviceSize size);
-void write_storage_buffer(const Context& context, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
+void write_storage_buffer(const Device& device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
                           VkDeviceSize size);
-void write_combined_image_sampler(const Context& context, VkDescriptorSet set, uint32_t binding, VkImageView view,
+void write_combined_image_sampler(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view,
                                   VkSampler sampler);
 
 struct SamplerDesc {
@@ -72,6 +72,6 @@ struct SamplerDesc {
     VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
 };
 
-UniqueSampler create_sampler(const Context& context, const SamplerDesc& desc);
+UniqueSampler create_sampler(const Device& device, const SamplerDesc& desc);
 
 }  // namespace penumbra::gpu

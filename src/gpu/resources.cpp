@@ -19,17 +19,17 @@ VkMemoryPropertyFlags memory_properties(MemoryKind kind) {
     return 0;
 }
 
-UniqueMemory allocate(const Context& context, const VkMemoryRequirements& requirements,
+UniqueMemory allocate(const Device& device, const VkMemoryRequirements& requirements,
                       VkMemoryPropertyFlags properties) {
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = requirements.size;
-    info.memoryTypeIndex = context.find_memory_type(requirements.memoryTypeBits, properties);
+    info.memoryTypeIndex = device.find_memory_type(requirements.memoryTypeBits, properties);
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkAllocateMemory(context.device(), &info, nullptr, &memory));
-    return UniqueMemory(context.device(), memory);
+    PENUMBRA_VK_CHECK(device->vkAllocateMemory(device, &info, nullptr, &memory));
+    return UniqueMemory(device, memory);
 }
 
-UniqueImageView create_view(const Context& context, VkImage image, const ImageDesc& desc, VkImageViewType type,
+UniqueImageView create_view(const Device& device, VkImage image, const ImageDesc& desc, VkImageViewType type,
                             uint32_t base_layer, uint32_t layer_count) {
     VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     info.image = image;
@@ -37,13 +37,13 @@ UniqueImageView create_view(const Context& context, VkImage image, const ImageDe
     info.format = desc.format;
     info.subresourceRange = {desc.aspect, 0, 1, base_layer, layer_count};
     VkImageView view = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateImageView(context.device(), &info, nullptr, &view));
-    return UniqueImageView(context.device(), view);
+    PENUMBRA_VK_CHECK(device->vkCreateImageView(device, &info, nullptr, &view));
+    return UniqueImageView(device, view);
 }
 
 }  // namespace
 
-Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind) {
+Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind) {
     Buffer result;
     result.size = size;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -51,15 +51,15 @@ Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFla
     info.usage = usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     VkBuffer buffer = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateBuffer(context.device(), &info, nullptr, &buffer));
-    result.buffer = UniqueBuffer(context.device(), buffer);
+    PENUMBRA_VK_CHECK(device->vkCreateBuffer(device, &info, nullptr, &buffer));
+    result.buffer = UniqueBuffer(device, buffer);
 
     VkMemoryRequirements requirements{};
-    vkGetBufferMemoryRequirements(context.device(), buffer, &requirements);
-    result.memory = allocate(context, requirements, memory_properties(kind));
-    PENUMBRA_VK_CHECK(vkBindBufferMemory(context.device(), buffer, result.memory, 0));
+    device->vkGetBufferMemoryRequirements(device, buffer, &requirements);
+    result.memory = allocate(device, requirements, memory_properties(kind));
+    PENUMBRA_VK_CHECK(device->vkBindBufferMemory(device, buffer, result.memory, 0));
     if (kind != MemoryKind::DeviceLocal) {
-        PENUMBRA_VK_CHECK(vkMapMemory(context.device(), result.memory, 0, VK_WHOLE_SIZE, 0, &result.mapped));
+        PENUMBRA_VK_CHECK(device->vkMapMemory(device, result.memory, 0, VK_WHOLE_SIZE, 0, &result.mapped));
     }
     return result;
 }
@@ -71,12 +71,12 @@ Buffer create_buffer_with_data(const Context& context, std::span<const std::byte
     Buffer result = create_buffer(context, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::DeviceLocal);
     context.submit_and_wait([&](VkCommandBuffer cmd) {
         const VkBufferCopy region{0, 0, size};
-        vkCmdCopyBuffer(cmd, staging.get(), result.get(), 1, &region);
+        context->vkCmdCopyBuffer(cmd, staging.get(), result.get(), 1, &region);
     });
     return result;
 }
 
-Image create_image(const Context& context, const ImageDesc& desc) {
+Image create_image(const Device& device, const ImageDesc& desc) {
     Image result;
     result.desc = desc;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -91,21 +91,21 @@ Image create_image(const Context& context, const ImageDesc& desc) {
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateImage(context.device(), &info, nullptr, &image));
-    result.image = UniqueImage(context.device(), image);
+    PENUMBRA_VK_CHECK(device->vkCreateImage(device, &info, nullptr, &image));
+    result.image = UniqueImage(device, image);
 
     VkMemoryRequirements requirements{};
-    vkGetImageMemoryRequirements(context.device(), image, &requirements);
-    result.memory = allocate(context, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    device->vkGetImageMemoryRequirements(device, image, &requirements);
+    result.memory = allocate(device, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     result.memory_size = requirements.size;
-    PENUMBRA_VK_CHECK(vkBindImageMemory(context.device(), image, result.memory, 0));
+    PENUMBRA_VK_CHECK(device->vkBindImageMemory(device, image, result.memory, 0));
 
     const bool layered = desc.layers > 1 || desc.array_view;
-    result.view = create_view(context, image, desc, layered ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D, 0,
-                              desc.layers);
+    result.view =
+        create_view(device, image, desc, layered ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D, 0, desc.layers);
     if (layered) {
         for (uint32_t layer = 0; layer < desc.layers; ++layer) {
-            result.layer_views.push_back(create_view(context, image, desc, VK_IMAGE_VIEW_TYPE_2D, layer, 1));
+            result.layer_views.push_back(create_view(device, image, desc, VK_IMAGE_VIEW_TYPE_2D, layer, 1));
         }
     }
     return result;
@@ -122,12 +122,13 @@ Image create_texture_rgba8(const Context& context, uint32_t width, uint32_t heig
     Buffer staging = create_buffer(context, rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload);
     std::memcpy(staging.mapped, rgba.data(), rgba.size());
     context.submit_and_wait([&](VkCommandBuffer cmd) {
-        transition(cmd, image, ImageState::Undefined, ImageState::TransferDst);
+        transition(context, cmd, image, ImageState::Undefined, ImageState::TransferDst);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {width, height, 1};
-        vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        transition(cmd, image, ImageState::TransferDst, ImageState::FragmentSampled);
+        context->vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                        &region);
+        transition(context, cmd, image, ImageState::TransferDst, ImageState::FragmentSampled);
     });
     return image;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/handle.hpp"
 
 namespace penumbra::gpu {
@@ -29,9 +30,10 @@ struct Buffer {
     VkBuffer get() const { return buffer.get(); }
 };
 
-Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind);
+Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind);
 
-// Creates a device-local buffer holding `bytes` (copied through a staging buffer).
+// Creates a device-local buffer holding `bytes` (copied through a staging buffer, submitted
+// and waited for on the context's queue).
 Buffer create_buffer_with_data(const Context& context, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
 
 struct ImageDesc {
@@ -56,7 +58,7 @@ struct Image {
     VkExtent2D extent() const { return {desc.width, desc.height}; }
 };
 
-Image create_image(const Context& context, const ImageDesc& desc);
+Image create_image(const Device& device, const ImageDesc& desc);
 
 // An RGBA8 sRGB texture with the given pixels, ready for sampling (SHADER_READ_ONLY).
 Image create_texture_rgba8(const Context& context, uint32_t width, uint32_t height, std::span<const uint8_t> rgba);

@@ -7,12 +7,12 @@
 namespace penumbra::gpu {
 namespace {
 
-uint32_t queue_timestamp_bits(const Context& context) {
+uint32_t queue_timestamp_bits(const Device& device) {
     uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(context.physical_device(), &count, nullptr);
+    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(context.physical_device(), &count, families.data());
-    return families.at(context.queue_family()).timestampValidBits;
+    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, families.data());
+    return families.at(device.queue_family()).timestampValidBits;
 }
 
 // Ticks between two timestamps. Only the low valid_bits of a timestamp are meaningful,
@@ -24,24 +24,24 @@ uint64_t elapsed_ticks(uint64_t begin, uint64_t end, uint32_t valid_bits) {
 
 }  // namespace
 
-GpuTimer::GpuTimer(const Context& context, uint32_t max_scopes)
-    : device_(context.device()),
+GpuTimer::GpuTimer(const Device& device, uint32_t max_scopes)
+    : device_(device),
       max_scopes_(max_scopes),
-      valid_bits_(queue_timestamp_bits(context)),
-      period_ns_(context.properties().limits.timestampPeriod) {
+      valid_bits_(queue_timestamp_bits(device)),
+      period_ns_(device.properties().limits.timestampPeriod) {
     if (!supported()) return;
     VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     info.queryType = VK_QUERY_TYPE_TIMESTAMP;
     info.queryCount = 2 * max_scopes;
     VkQueryPool pool = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vkCreateQueryPool(device_, &info, nullptr, &pool));
+    PENUMBRA_VK_CHECK(device_->vkCreateQueryPool(device_, &info, nullptr, &pool));
     pool_ = UniqueQueryPool(device_, pool);
 }
 
 void GpuTimer::begin_frame(VkCommandBuffer cmd) {
     names_.clear();
     ended_.clear();
-    if (supported()) vkCmdResetQueryPool(cmd, pool_, 0, 2 * max_scopes_);
+    if (supported()) device_->vkCmdResetQueryPool(cmd, pool_, 0, 2 * max_scopes_);
 }
 
 uint32_t GpuTimer::begin(VkCommandBuffer cmd, std::string name) {
@@ -54,13 +54,13 @@ uint32_t GpuTimer::begin(VkCommandBuffer cmd, std::string name) {
     // ALL_COMMANDS at both ends: a timestamp is written once every earlier command has
     // finished, so consecutive scopes measure disjoint intervals that add up to at most
     // the frame (TOP_OF_PIPE begins would let a scope start before the previous one ends).
-    if (supported()) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope);
+    if (supported()) device_->vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope);
     return scope;
 }
 
 void GpuTimer::end(VkCommandBuffer cmd, uint32_t scope) {
     ended_.at(scope) = true;
-    if (supported()) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope + 1);
+    if (supported()) device_->vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope + 1);
 }
 
 std::optional<std::vector<ScopeTime>> GpuTimer::read() const {
@@ -70,9 +70,9 @@ std::optional<std::vector<ScopeTime>> GpuTimer::read() const {
     }
     std::vector<uint64_t> ticks(2 * names_.size());
     // No WAIT flag: a result that is not there yet must not block forever.
-    const VkResult result =
-        vkGetQueryPoolResults(device_, pool_, 0, static_cast<uint32_t>(ticks.size()), ticks.size() * sizeof(uint64_t),
-                              ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+    const VkResult result = device_->vkGetQueryPoolResults(device_, pool_, 0, static_cast<uint32_t>(ticks.size()),
+                                                           ticks.size() * sizeof(uint64_t), ticks.data(),
+                                                           sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
     if (result == VK_NOT_READY) return std::nullopt;
     PENUMBRA_VK_CHECK(result);
     std::vector<ScopeTime> times;

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/handle.hpp"
 
 namespace penumbra::gpu {
@@ -30,7 +30,7 @@ struct ScopeTime {
 class GpuTimer {
 public:
     // max_scopes: the most scopes one frame may hold (two queries each).
-    GpuTimer(const Context& context, uint32_t max_scopes);
+    GpuTimer(const Device& device, uint32_t max_scopes);
 
     // False when the graphics queue has no timestamp support (timestampValidBits == 0);
     // every recording call is then a no-op and read() returns nullopt.
@@ -50,7 +50,7 @@ public:
     std::optional<std::vector<ScopeTime>> read() const;
 
 private:
-    VkDevice device_;
+    const Device& device_;
     uint32_t max_scopes_;
     uint32_t valid_bits_ = 0;
     float period_ns_ = 1.0f;

@@ -28,22 +28,22 @@ shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBi
     return constants;
 }
 
-void set_viewport_and_scissor(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height) {
     const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
     const VkRect2D scissor{{0, 0}, {width, height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    device->vkCmdSetViewport(cmd, 0, 1, &viewport);
+    device->vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void record_draw(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, const Draw& draw,
-                 uint32_t cascade) {
+void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                 const Draw& draw, uint32_t cascade) {
     const MaterialBinding& material = data.materials[draw.material];
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, PENUMBRA_SET_MATERIAL, 1,
-                            &material.descriptor_set, 0, nullptr);
+    device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, PENUMBRA_SET_MATERIAL, 1,
+                                    &material.descriptor_set, 0, nullptr);
     const shader::DrawPushConstants constants = draw_push_constants(draw, material, cascade);
-    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants),
-                       &constants);
-    vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+    device->vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(constants), &constants);
+    device->vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
 }
 
 VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear) {
@@ -56,8 +56,9 @@ VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColo
     return attachment;
 }
 
-void begin_camera_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
-                            VkImageView depth_view, uint32_t width, uint32_t height) {
+void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
+                            std::span<const VkRenderingAttachmentInfo> colors, VkImageView depth_view, uint32_t width,
+                            uint32_t height) {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depth_view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -71,20 +72,21 @@ void begin_camera_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAtta
     info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
     info.pColorAttachments = colors.data();
     info.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    set_viewport_and_scissor(cmd, width, height);
+    device->vkCmdBeginRendering(cmd, &info);
+    set_viewport_and_scissor(device, cmd, width, height);
 }
 
-void record_camera_draws(VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data, VkPipeline single_sided,
-                         VkPipeline double_sided) {
+void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                         VkPipeline single_sided, VkPipeline double_sided) {
     VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
-    vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
+    device->vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
+    device->vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
     for (const bool double_sided_pass : {false, true}) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, double_sided_pass ? double_sided : single_sided);
+        device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                  double_sided_pass ? double_sided : single_sided);
         for (const Draw& draw : data.draws) {
             if (data.materials[draw.material].double_sided != double_sided_pass) continue;
-            record_draw(cmd, layout, data, draw, 0);
+            record_draw(device, cmd, layout, data, draw, 0);
         }
     }
 }

@@ -14,7 +14,7 @@ constexpr VkFormat kPositionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kNormalFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-gpu::Image create_target(const gpu::Context& context, VkFormat format, uint32_t width, uint32_t height,
+gpu::Image create_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
                          VkImageUsageFlags usage, VkImageAspectFlags aspect) {
     gpu::ImageDesc desc;
     desc.format = format;
@@ -22,10 +22,10 @@ gpu::Image create_target(const gpu::Context& context, VkFormat format, uint32_t 
     desc.height = height;
     desc.usage = usage;
     desc.aspect = aspect;
-    return gpu::create_image(context, desc);
+    return gpu::create_image(device, desc);
 }
 
-gpu::UniquePipeline create_pipeline(const gpu::Context& context, VkPipelineLayout layout, VkCullModeFlags cull_mode) {
+gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout layout, VkCullModeFlags cull_mode) {
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
     desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::geometry_aovs_frag(), {}});
@@ -35,36 +35,34 @@ gpu::UniquePipeline create_pipeline(const gpu::Context& context, VkPipelineLayou
     desc.depth_format = kDepthFormat;
     desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z, as the lighting pass
     desc.cull_mode = cull_mode;
-    return gpu::create_graphics_pipeline(context, desc);
+    return gpu::create_graphics_pipeline(device, desc);
 }
 
 }  // namespace
 
-GeometryAovPass::GeometryAovPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
+GeometryAovPass::GeometryAovPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t width,
                                  uint32_t height, VkBuffer frame_uniforms, VkDeviceSize frame_uniforms_size)
-    : width_(width), height_(height) {
+    : device_(device), width_(width), height_(height) {
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     targets_.world_position =
-        create_target(context, kPositionFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.world_normal =
-        create_target(context, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.depth = create_target(context, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+        create_target(device, kPositionFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.world_normal = create_target(device, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.depth = create_target(device, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT);
 
     const VkDescriptorSetLayoutBinding binding{PENUMBRA_BINDING_FRAME_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
                                                VK_SHADER_STAGE_VERTEX_BIT, nullptr};
-    frame_set_layout_ = gpu::create_descriptor_set_layout(context, {&binding, 1});
+    frame_set_layout_ = gpu::create_descriptor_set_layout(device, {&binding, 1});
     const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-    descriptor_pool_ = gpu::create_descriptor_pool(context, 1, {&pool_size, 1});
-    frame_set_ = gpu::allocate_descriptor_set(context, descriptor_pool_, frame_set_layout_);
-    gpu::write_uniform_buffer(context, frame_set_, PENUMBRA_BINDING_FRAME_UNIFORMS, frame_uniforms,
-                              frame_uniforms_size);
+    descriptor_pool_ = gpu::create_descriptor_pool(device, 1, {&pool_size, 1});
+    frame_set_ = gpu::allocate_descriptor_set(device, descriptor_pool_, frame_set_layout_);
+    gpu::write_uniform_buffer(device, frame_set_, PENUMBRA_BINDING_FRAME_UNIFORMS, frame_uniforms, frame_uniforms_size);
 
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout_, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
-    pipeline_layout_ = gpu::create_pipeline_layout(context, set_layouts, {&push_range, 1});
-    single_sided_ = create_pipeline(context, pipeline_layout_, VK_CULL_MODE_BACK_BIT);
-    double_sided_ = create_pipeline(context, pipeline_layout_, VK_CULL_MODE_NONE);
+    pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+    single_sided_ = create_pipeline(device, pipeline_layout_, VK_CULL_MODE_BACK_BIT);
+    double_sided_ = create_pipeline(device, pipeline_layout_, VK_CULL_MODE_NONE);
 }
 
 void GeometryAovPass::begin_rendering(VkCommandBuffer cmd) const {
@@ -72,24 +70,24 @@ void GeometryAovPass::begin_rendering(VkCommandBuffer cmd) const {
     const std::array<VkRenderingAttachmentInfo, 2> colors{
         cleared_color_attachment(targets_.world_position.view, no_geometry),
         cleared_color_attachment(targets_.world_normal.view, no_geometry)};
-    begin_camera_rendering(cmd, colors, targets_.depth.view, width_, height_);
+    begin_camera_rendering(device_, cmd, colors, targets_.depth.view, width_, height_);
 }
 
 void GeometryAovPass::record(VkCommandBuffer cmd, const DrawData& data) const {
     for (const gpu::Image* target : {&targets_.world_position, &targets_.world_normal}) {
-        gpu::transition(cmd, *target, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
+        gpu::transition(device_, cmd, *target, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
     }
-    gpu::transition(cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+    gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
 
     begin_rendering(cmd);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1, &frame_set_,
-                            0, nullptr);
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1,
+                                     &frame_set_, 0, nullptr);
     // The lighting pass's draw order, so that equal-depth ties resolve to the same surface.
-    record_camera_draws(cmd, pipeline_layout_, data, single_sided_, double_sided_);
-    vkCmdEndRendering(cmd);
+    record_camera_draws(device_, cmd, pipeline_layout_, data, single_sided_, double_sided_);
+    device_->vkCmdEndRendering(cmd);
 
     for (const gpu::Image* target : {&targets_.world_position, &targets_.world_normal}) {
-        gpu::transition(cmd, *target, gpu::ImageState::ColorAttachment, gpu::ImageState::TransferSrc);
+        gpu::transition(device_, cmd, *target, gpu::ImageState::ColorAttachment, gpu::ImageState::TransferSrc);
     }
 }
 

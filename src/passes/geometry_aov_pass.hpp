@@ -9,7 +9,7 @@
 
 #include <cstdint>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
@@ -25,7 +25,7 @@ struct GeometryAovTargets {
 class GeometryAovPass {
 public:
     // `frame_uniforms`: the frame's FrameUniforms buffer (the vertex shader reads the camera).
-    GeometryAovPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
+    GeometryAovPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t width,
                     uint32_t height, VkBuffer frame_uniforms, VkDeviceSize frame_uniforms_size);
 
     const GeometryAovTargets& targets() const { return targets_; }
@@ -34,6 +34,7 @@ public:
     void record(VkCommandBuffer cmd, const DrawData& data) const;
 
 private:
+    const gpu::Device& device_;
     void begin_rendering(VkCommandBuffer cmd) const;
 
     uint32_t width_;

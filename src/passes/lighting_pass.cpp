@@ -16,7 +16,7 @@ constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_UNORM;
 constexpr VkFormat kCascadeFormat = VK_FORMAT_R8_UINT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-gpu::Image create_target(const gpu::Context& context, VkFormat format, uint32_t width, uint32_t height,
+gpu::Image create_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
                          VkImageUsageFlags usage, VkImageAspectFlags aspect) {
     gpu::ImageDesc desc;
     desc.format = format;
@@ -24,10 +24,10 @@ gpu::Image create_target(const gpu::Context& context, VkFormat format, uint32_t 
     desc.height = height;
     desc.usage = usage;
     desc.aspect = aspect;
-    return gpu::create_image(context, desc);
+    return gpu::create_image(device, desc);
 }
 
-gpu::UniquePipeline create_lighting_pipeline(const gpu::Context& context, VkPipelineLayout layout,
+gpu::UniquePipeline create_lighting_pipeline(const gpu::Device& device, VkPipelineLayout layout,
                                              VkCullModeFlags cull_mode, const FilterSettings& filter) {
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
@@ -39,20 +39,20 @@ gpu::UniquePipeline create_lighting_pipeline(const gpu::Context& context, VkPipe
     desc.depth_format = kDepthFormat;
     desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z
     desc.cull_mode = cull_mode;
-    return gpu::create_graphics_pipeline(context, desc);
+    return gpu::create_graphics_pipeline(device, desc);
 }
 
 }  // namespace
 
-LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
+LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t width,
                            uint32_t height, const FilterSettings& filter)
-    : width_(width), height_(height) {
+    : device_(device), width_(width), height_(height) {
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    targets_.color = create_target(context, kColorFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.color = create_target(device, kColorFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     targets_.visibility =
-        create_target(context, kVisibilityFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.cascade = create_target(context, kCascadeFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.depth = create_target(context, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+        create_target(device, kVisibilityFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.cascade = create_target(device, kCascadeFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.depth = create_target(device, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT);
 
     const std::array<VkDescriptorSetLayoutBinding, 8> bindings{{
@@ -72,12 +72,12 @@ LightingPass::LightingPass(const gpu::Context& context, VkDescriptorSetLayout ma
         {PENUMBRA_BINDING_LOCAL_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
          nullptr},
     }};
-    frame_set_layout_ = gpu::create_descriptor_set_layout(context, bindings);
+    frame_set_layout_ = gpu::create_descriptor_set_layout(device, bindings);
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout_, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
-    pipeline_layout_ = gpu::create_pipeline_layout(context, set_layouts, {&push_range, 1});
-    single_sided_ = create_lighting_pipeline(context, pipeline_layout_, VK_CULL_MODE_BACK_BIT, filter);
-    double_sided_ = create_lighting_pipeline(context, pipeline_layout_, VK_CULL_MODE_NONE, filter);
+    pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+    single_sided_ = create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_BACK_BIT, filter);
+    double_sided_ = create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_NONE, filter);
 }
 
 void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
@@ -86,23 +86,23 @@ void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
         cleared_color_attachment(targets_.visibility.view, {{1.0f, 0.0f, 0.0f, 0.0f}}),  // no geometry = fully lit
         cleared_color_attachment(targets_.cascade.view, VkClearColorValue{.uint32 = {PENUMBRA_NO_CASCADE, 0, 0, 0}}),
     };
-    begin_camera_rendering(cmd, colors, targets_.depth.view, width_, height_);
+    begin_camera_rendering(device_, cmd, colors, targets_.depth.view, width_, height_);
 }
 
 void LightingPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const {
     for (const gpu::Image* target : {&targets_.color, &targets_.visibility, &targets_.cascade}) {
-        gpu::transition(cmd, *target, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
+        gpu::transition(device_, cmd, *target, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
     }
-    gpu::transition(cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+    gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
 
     begin_rendering(cmd);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1, &frame_set,
-                            0, nullptr);
-    record_camera_draws(cmd, pipeline_layout_, data, single_sided_, double_sided_);
-    vkCmdEndRendering(cmd);
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_FRAME, 1,
+                                     &frame_set, 0, nullptr);
+    record_camera_draws(device_, cmd, pipeline_layout_, data, single_sided_, double_sided_);
+    device_->vkCmdEndRendering(cmd);
 
     for (const gpu::Image* target : {&targets_.color, &targets_.visibility, &targets_.cascade}) {
-        gpu::transition(cmd, *target, gpu::ImageState::ColorAttachment, gpu::ImageState::TransferSrc);
+        gpu::transition(device_, cmd, *target, gpu::ImageState::ColorAttachment, gpu::ImageState::TransferSrc);
     }
 }
 

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
@@ -24,8 +24,8 @@ struct LightingTargets {
 class LightingPass {
 public:
     // The pipelines are specialized for `filter` (shaders/include/shadow_filter_constants.glsl).
-    LightingPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t width,
-                 uint32_t height, const FilterSettings& filter = {});
+    LightingPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t width, uint32_t height,
+                 const FilterSettings& filter = {});
 
     // Set 0: binding 0 = frame uniforms, 1 = the shadow map (sampler2DArrayShadow), 2 = the
     // same map's raw depth (sampler2DArray), 3 = the moments map (sampler2DArray; any
@@ -38,6 +38,7 @@ public:
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const;
 
 private:
+    const gpu::Device& device_;
     void begin_rendering(VkCommandBuffer cmd) const;
 
     uint32_t width_;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/moments_blur.hpp"
@@ -32,7 +32,7 @@ class LocalMomentsPass {
 public:
     // Moments for every layer of `depth_map` (the local shadow map), read with `depth_sampler`
     // (nearest); requires a moment filter (is_moment_filter(filter.mode)).
-    LocalMomentsPass(const gpu::Context& context, const gpu::Image& depth_map, VkSampler depth_sampler,
+    LocalMomentsPass(const gpu::Device& device, const gpu::Image& depth_map, VkSampler depth_sampler,
                      const FilterSettings& filter);
 
     const gpu::Image& moments() const { return moments_; }
@@ -44,6 +44,7 @@ public:
     void record(VkCommandBuffer cmd, const std::vector<LocalMomentsLayer>& layers, glm::vec2 evsm_exponents) const;
 
 private:
+    const gpu::Device& device_;
     gpu::Image moments_;
     gpu::UniqueSampler sampler_;
     gpu::UniqueDescriptorSetLayout set_layout_;

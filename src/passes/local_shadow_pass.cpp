@@ -12,7 +12,7 @@ namespace {
 
 constexpr VkFormat kShadowFormat = VK_FORMAT_D32_SFLOAT;
 
-gpu::UniquePipeline create_local_shadow_pipeline(const gpu::Context& context, VkPipelineLayout layout, bool masked) {
+gpu::UniquePipeline create_local_shadow_pipeline(const gpu::Device& device, VkPipelineLayout layout, bool masked) {
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::local_shadow_depth_vert(), {}});
     if (masked) desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::shadow_masked_frag(), {}});
@@ -25,14 +25,14 @@ gpu::UniquePipeline create_local_shadow_pipeline(const gpu::Context& context, Vk
     // No depth clamp: the near plane is the nearest caster's distance, and a perspective
     // frustum must clip what lies behind the light.
     desc.depth_clamp = false;
-    return gpu::create_graphics_pipeline(context, desc);
+    return gpu::create_graphics_pipeline(device, desc);
 }
 
 }  // namespace
 
-LocalShadowPass::LocalShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout,
+LocalShadowPass::LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout,
                                  uint32_t resolution, uint32_t layer_count)
-    : context_(context), resolution_(resolution) {
+    : device_(device), resolution_(resolution) {
     gpu::ImageDesc desc;
     desc.format = kShadowFormat;
     desc.width = resolution;
@@ -41,25 +41,25 @@ LocalShadowPass::LocalShadowPass(const gpu::Context& context, VkDescriptorSetLay
     desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     desc.array_view = true;
-    shadow_map_ = gpu::create_image(context, desc);
+    shadow_map_ = gpu::create_image(device, desc);
 
     const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
                                                nullptr};
-    set_layout_ = gpu::create_descriptor_set_layout(context, {&binding, 1});
+    set_layout_ = gpu::create_descriptor_set_layout(device, {&binding, 1});
     const VkDescriptorSetLayout set_layouts[] = {set_layout_, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
-    pipeline_layout_ = gpu::create_pipeline_layout(context, set_layouts, {&push_range, 1});
-    opaque_ = create_local_shadow_pipeline(context, pipeline_layout_, false);
-    masked_ = create_local_shadow_pipeline(context, pipeline_layout_, true);
+    pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+    opaque_ = create_local_shadow_pipeline(device, pipeline_layout_, false);
+    masked_ = create_local_shadow_pipeline(device, pipeline_layout_, true);
 }
 
 void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet set, const DrawData& data,
                              const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias) const {
-    gpu::transition(cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set, 0, nullptr);
+    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set, 0, nullptr);
     VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
-    vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
+    device_->vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
+    device_->vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
     std::vector<bool> rendered(shadow_map_.desc.layers, false);
     std::vector<LocalShadowLayer> all_layers = layers;
     for (const LocalShadowLayer& layer : layers) rendered[layer.layer] = true;
@@ -78,25 +78,25 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet set, const Dra
         info.renderArea = {{0, 0}, {resolution_, resolution_}};
         info.layerCount = 1;
         info.pDepthAttachment = &depth;
-        vkCmdBeginRendering(cmd, &info);
-        set_viewport_and_scissor(cmd, layer.resolution, layer.resolution);
-        const float clamp = context_.depth_bias_clamp_supported() ? -bias.clamp : 0.0f;
-        vkCmdSetDepthBias(cmd, -bias.constant, clamp, -bias.slope);
+        device_->vkCmdBeginRendering(cmd, &info);
+        set_viewport_and_scissor(device_, cmd, layer.resolution, layer.resolution);
+        const float clamp = device_.depth_bias_clamp_supported() ? -bias.clamp : 0.0f;
+        device_->vkCmdSetDepthBias(cmd, -bias.constant, clamp, -bias.slope);
         for (const bool masked_pass : {false, true}) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, masked_pass ? masked_ : opaque_);
+            device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, masked_pass ? masked_ : opaque_);
             for (uint32_t index : layer.draws) {
                 const Draw& draw = data.draws[index];
                 if (data.materials[draw.material].alpha_masked != masked_pass) continue;
-                record_draw(cmd, pipeline_layout_, data, draw, layer.layer);
+                record_draw(device_, cmd, pipeline_layout_, data, draw, layer.layer);
             }
         }
-        vkCmdEndRendering(cmd);
+        device_->vkCmdEndRendering(cmd);
     }
-    gpu::transition(cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::FragmentSampled);
+    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::FragmentSampled);
 }
 
 void LocalShadowPass::record_placeholder(VkCommandBuffer cmd) const {
-    gpu::transition(cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::FragmentSampled);
+    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::Undefined, gpu::ImageState::FragmentSampled);
 }
 
 }  // namespace penumbra::passes

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
@@ -27,7 +27,7 @@ struct LocalShadowLayer {
 class LocalShadowPass {
 public:
     // A map of `layer_count` layers (at least 1) of `resolution` texels per side.
-    LocalShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
+    LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
                     uint32_t layer_count);
 
     // Set 0 of the pipelines: binding 0 = LocalLightUniforms (a storage buffer).
@@ -43,7 +43,7 @@ public:
     void record_placeholder(VkCommandBuffer cmd) const;
 
 private:
-    const gpu::Context& context_;
+    const gpu::Device& device_;
     uint32_t resolution_;
     gpu::Image shadow_map_;
     gpu::UniqueDescriptorSetLayout set_layout_;

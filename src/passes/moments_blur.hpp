@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "penumbra/settings.hpp"
@@ -25,19 +25,19 @@ namespace penumbra::passes {
 VkFormat moments_format(const FilterSettings& filter);
 
 // A layered colour image of `format`, rendered to and sampled, with per-layer views.
-gpu::Image create_moments_image(const gpu::Context& context, VkFormat format, uint32_t resolution, uint32_t layers);
+gpu::Image create_moments_image(const gpu::Device& device, VkFormat format, uint32_t resolution, uint32_t layers);
 
 // Bilinear where the device filters `format` linearly, else nearest; clamped to the edge.
-gpu::UniqueSampler create_moments_sampler(const gpu::Context& context, VkFormat format);
+gpu::UniqueSampler create_moments_sampler(const gpu::Device& device, VkFormat format);
 
 // A full-screen triangle (shaders/fullscreen.vert) with `fragment`, one colour target.
-gpu::UniquePipeline create_fullscreen_pipeline(const gpu::Context& context, VkPipelineLayout layout,
+gpu::UniquePipeline create_fullscreen_pipeline(const gpu::Device& device, VkPipelineLayout layout,
                                                std::span<const uint32_t> fragment, VkFormat color_format,
                                                VkFormat depth_format, const FilterSettings& filter);
 
 // Begins dynamic rendering of `resolution` x `resolution` texels into `color` (and `depth`).
-void begin_layer_rendering(VkCommandBuffer cmd, uint32_t resolution, const VkRenderingAttachmentInfo& color,
-                           const VkRenderingAttachmentInfo* depth);
+void begin_layer_rendering(const gpu::Device& device, VkCommandBuffer cmd, uint32_t resolution,
+                           const VkRenderingAttachmentInfo& color, const VkRenderingAttachmentInfo* depth);
 
 // An attachment that stores its result; clear values are zero (reverse-Z far plane for depth).
 VkRenderingAttachmentInfo stored_attachment(VkImageView view, VkImageLayout layout, VkAttachmentLoadOp load);
@@ -51,7 +51,7 @@ struct BlurLayer {
 class MomentsBlur {
 public:
     // Blurs `moments` (which must outlive this object) with a kernel of `radius` texels (> 0).
-    MomentsBlur(const gpu::Context& context, const gpu::Image& moments, VkSampler sampler, uint32_t radius,
+    MomentsBlur(const gpu::Device& device, const gpu::Image& moments, VkSampler sampler, uint32_t radius,
                 const FilterSettings& filter);
 
     // Expects `moments` (the image given to the constructor) in ColorAttachment, after its
@@ -61,6 +61,7 @@ public:
     uint64_t memory_bytes() const { return scratch_.memory_size; }
 
 private:
+    const gpu::Device& device_;
     void blur_direction(VkCommandBuffer cmd, VkDescriptorSet source, const gpu::Image& target,
                         const std::vector<BlurLayer>& layers, bool horizontal) const;
 

@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "passes/draw_data.hpp"
@@ -25,7 +25,7 @@ namespace penumbra::passes {
 class MomentsPass {
 public:
     // Requires a moment filter (is_moment_filter(filter.mode)).
-    MomentsPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
+    MomentsPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
                 uint32_t cascade_count, const FilterSettings& filter);
 
     // Set 0 of the moments pipelines: binding 0 = the frame uniform buffer (vertex and
@@ -44,6 +44,7 @@ public:
                 const std::vector<std::vector<uint32_t>>& draw_lists) const;
 
 private:
+    const gpu::Device& device_;
     void render_cascade(VkCommandBuffer cmd, const DrawData& data, const std::vector<uint32_t>& draws,
                         uint32_t cascade) const;
 

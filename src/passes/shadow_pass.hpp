@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "gpu/timestamps.hpp"
@@ -26,7 +26,7 @@ class ShadowPass {
 public:
     // Builds the pipelines of `strategy` only. Throws InputError when multiview is asked for
     // more cascades than the device renders views in one pass (maxMultiviewViewCount).
-    ShadowPass(const gpu::Context& context, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
+    ShadowPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
                uint32_t cascade_count, ShadowStrategy strategy);
 
     // Set 0 of the shadow pipelines: binding 0 = the frame uniform buffer.
@@ -51,7 +51,7 @@ private:
                       VkPipeline opaque, VkPipeline masked) const;
     void begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias) const;
 
-    const gpu::Context& context_;
+    const gpu::Device& device_;
     uint32_t resolution_;
     uint32_t cascade_count_;
     ShadowStrategy strategy_;

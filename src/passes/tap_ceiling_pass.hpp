@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "gpu/context.hpp"
+#include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 
@@ -24,7 +24,7 @@ struct TapCeilingDesc {
 
 class TapCeilingPass {
 public:
-    TapCeilingPass(const gpu::Context& context, const TapCeilingDesc& desc);
+    TapCeilingPass(const gpu::Device& device, const TapCeilingDesc& desc);
 
     // Clears the shadow map and leaves it ready for sampling; record once before any frame.
     void record_setup(VkCommandBuffer cmd) const;
@@ -35,6 +35,7 @@ public:
     uint64_t shadow_map_bytes() const { return shadow_map_.memory_size; }
 
 private:
+    const gpu::Device& device_;
     TapCeilingDesc desc_;
     gpu::Image shadow_map_;
     gpu::Image target_;

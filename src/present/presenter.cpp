@@ -5,7 +5,7 @@
 namespace penumbra::present {
 namespace {
 
-UniqueSemaphore create_semaphore(VkDevice device) {
+UniqueSemaphore create_semaphore(const gpu::Device& device) {
     VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore semaphore = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(vkCreateSemaphore(device, &info, nullptr, &semaphore));
@@ -19,7 +19,7 @@ bool same_extent(VkExtent2D a, VkExtent2D b) { return a.width == b.width && a.he
 Presenter::Presenter(const gpu::Context& context, const Window& window, const Surface& surface,
                      const SwapchainOptions& options)
     : context_(context), window_(window), surface_(surface.get()), options_(options) {
-    const VkDevice device = context.device();
+    const gpu::Device& device = context;
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pool_info.queueFamilyIndex = context.queue_family();
@@ -51,8 +51,7 @@ void Presenter::recreate(VkExtent2D extent) {
     swapchain_ = std::make_unique<Swapchain>(context_, surface_, extent, options_, old ? old->get() : VK_NULL_HANDLE);
     old.reset();
     present_ready_.clear();
-    for (size_t i = 0; i < swapchain_->images().size(); ++i)
-        present_ready_.push_back(create_semaphore(context_.device()));
+    for (size_t i = 0; i < swapchain_->images().size(); ++i) present_ready_.push_back(create_semaphore(context_));
     requested_extent_ = extent;
     ++generation_;
 }

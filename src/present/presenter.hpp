@@ -33,7 +33,7 @@ struct Frame {
     VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
-using UniqueSemaphore = gpu::DeviceHandle<VkSemaphore, vkDestroySemaphore>;
+using gpu::UniqueSemaphore;
 
 class Presenter {
 public:

@@ -47,7 +47,7 @@ VkExtent2D clamp_extent(const VkSurfaceCapabilitiesKHR& capabilities, VkExtent2D
             std::clamp(wanted.height, capabilities.minImageExtent.height, capabilities.maxImageExtent.height)};
 }
 
-gpu::UniqueImageView create_view(VkDevice device, VkImage image, VkFormat format) {
+gpu::UniqueImageView create_view(const gpu::Device& device, VkImage image, VkFormat format) {
     VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     info.image = image;
     info.viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -66,7 +66,7 @@ VkExtent2D surface_extent(const gpu::Context& context, VkSurfaceKHR surface, VkE
 
 Swapchain::Swapchain(const gpu::Context& context, VkSurfaceKHR surface, VkExtent2D extent,
                      const SwapchainOptions& options, VkSwapchainKHR old_swapchain)
-    : device_(context.device()) {
+    : device_(context) {
     const VkSurfaceCapabilitiesKHR capabilities = capabilities_of(context, surface);
     const VkSurfaceFormatKHR format = choose_format(context.physical_device(), surface);
     const VkImageUsageFlags wanted_usage =
@@ -100,7 +100,7 @@ Swapchain::Swapchain(const gpu::Context& context, VkSurfaceKHR surface, VkExtent
     info.oldSwapchain = old_swapchain;
     VkSwapchainKHR swapchain = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(vkCreateSwapchainKHR(device_, &info, nullptr, &swapchain));
-    swapchain_ = gpu::DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR>(device_, swapchain);
+    swapchain_ = gpu::UniqueSwapchain(device_, swapchain);
 
     uint32_t count = 0;
     PENUMBRA_VK_CHECK(vkGetSwapchainImagesKHR(device_, swapchain_, &count, nullptr));

@@ -34,8 +34,8 @@ public:
     bool supports_readback() const { return readback_; }  // TRANSFER_SRC usage available
 
 private:
-    VkDevice device_;
-    gpu::DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR> swapchain_;  // destroyed after the views
+    const gpu::Device& device_;
+    gpu::UniqueSwapchain swapchain_;  // destroyed after the views
     VkFormat format_ = VK_FORMAT_UNDEFINED;
     VkExtent2D extent_{};
     bool readback_ = false;

@@ -53,11 +53,12 @@ Readback create_readback(const gpu::Context& context, const RenderSettings& sett
 }
 
 // Copies every layer of `image` (tightly packed, layer after layer) into `buffer`.
-void copy_image_to_buffer(VkCommandBuffer cmd, const gpu::Image& image, const gpu::Buffer& buffer) {
+void copy_image_to_buffer(const gpu::Device& device, VkCommandBuffer cmd, const gpu::Image& image,
+                          const gpu::Buffer& buffer) {
     VkBufferImageCopy region{};
     region.imageSubresource = {image.desc.aspect, 0, 0, image.desc.layers};
     region.imageExtent = {image.desc.width, image.desc.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
+    device->vkCmdCopyImageToBuffer(cmd, image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.get(), 1, &region);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -151,7 +152,7 @@ Renderer::Renderer(const gpu::Context& context, const Scene& scene, const Render
 
 Renderer::~Renderer() {
     // Nothing may be destroyed while the GPU still uses it.
-    if (context_.device()) vkDeviceWaitIdle(context_.device());
+    if (context_.device()) context_->vkDeviceWaitIdle(context_);
 }
 
 const gpu::GpuTimer& Renderer::gpu_timer() const { return resources_->timer; }
@@ -234,20 +235,20 @@ void Renderer::record_frame(VkCommandBuffer cmd, const CulledCasters& casters, R
     if (readback == ReadbackMode::None) return;
 
     const passes::LightingTargets& targets = resources_->lighting_pass.targets();
-    copy_image_to_buffer(cmd, targets.color, resources_->readback.color);
-    copy_image_to_buffer(cmd, targets.visibility, resources_->readback.visibility);
-    copy_image_to_buffer(cmd, targets.cascade, resources_->readback.cascade);
+    copy_image_to_buffer(context_, cmd, targets.color, resources_->readback.color);
+    copy_image_to_buffer(context_, cmd, targets.visibility, resources_->readback.visibility);
+    copy_image_to_buffer(context_, cmd, targets.cascade, resources_->readback.cascade);
     if (settings_.debug == DebugView::ShadowMap) {
         const gpu::Image& shadow_map = resources_->filters.depth_map(resources_->shadow_pass.shadow_map());
-        gpu::transition(cmd, shadow_map, gpu::ImageState::FragmentSampled, gpu::ImageState::TransferSrc);
-        copy_image_to_buffer(cmd, shadow_map, resources_->readback.shadow_map);
+        gpu::transition(context_, cmd, shadow_map, gpu::ImageState::FragmentSampled, gpu::ImageState::TransferSrc);
+        copy_image_to_buffer(context_, cmd, shadow_map, resources_->readback.shadow_map);
     }
     if (resources_->geometry_aovs) {
         const passes::GeometryAovTargets& geometry = resources_->geometry_aovs->targets();
-        copy_image_to_buffer(cmd, geometry.world_position, resources_->readback.world_position);
-        copy_image_to_buffer(cmd, geometry.world_normal, resources_->readback.world_normal);
+        copy_image_to_buffer(context_, cmd, geometry.world_position, resources_->readback.world_position);
+        copy_image_to_buffer(context_, cmd, geometry.world_normal, resources_->readback.world_normal);
     }
-    gpu::transfer_to_host_barrier(cmd);
+    gpu::transfer_to_host_barrier(context_, cmd);
 }
 
 FrameImages Renderer::read_images() const {

@@ -24,11 +24,13 @@ void blit(VkCommandBuffer cmd, const gpu::Image& color, const present::Frame& fr
 
 void FrameOutput::record_scene(VkCommandBuffer cmd, const gpu::Image& color, const present::Frame& frame,
                                bool capture) {
-    gpu::transition(cmd, color, gpu::ImageState::TransferSrc, gpu::ImageState::BlitSrc);
-    gpu::transition(cmd, frame.image, kColor, 1, gpu::ImageState::SwapchainAcquired, gpu::ImageState::BlitDst);
+    gpu::transition(context_, cmd, color, gpu::ImageState::TransferSrc, gpu::ImageState::BlitSrc);
+    gpu::transition(context_, cmd, frame.image, kColor, 1, gpu::ImageState::SwapchainAcquired,
+                    gpu::ImageState::BlitDst);
     blit(cmd, color, frame);
     if (!capture) {
-        gpu::transition(cmd, frame.image, kColor, 1, gpu::ImageState::BlitDst, gpu::ImageState::ColorAttachment);
+        gpu::transition(context_, cmd, frame.image, kColor, 1, gpu::ImageState::BlitDst,
+                        gpu::ImageState::ColorAttachment);
         return;
     }
     const VkDeviceSize bytes = VkDeviceSize{frame.extent.width} * frame.extent.height * 4;
@@ -36,19 +38,21 @@ void FrameOutput::record_scene(VkCommandBuffer cmd, const gpu::Image& color, con
         capture_buffer_ =
             gpu::create_buffer(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryKind::HostReadback);
     }
-    gpu::transition(cmd, frame.image, kColor, 1, gpu::ImageState::BlitDst, gpu::ImageState::TransferSrc);
+    gpu::transition(context_, cmd, frame.image, kColor, 1, gpu::ImageState::BlitDst, gpu::ImageState::TransferSrc);
     VkBufferImageCopy region{};
     region.imageSubresource = {kColor, 0, 0, 1};
     region.imageExtent = {frame.extent.width, frame.extent.height, 1};
     vkCmdCopyImageToBuffer(cmd, frame.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, capture_buffer_.get(), 1, &region);
-    gpu::transfer_to_host_barrier(cmd);
-    gpu::transition(cmd, frame.image, kColor, 1, gpu::ImageState::TransferSrc, gpu::ImageState::ColorAttachment);
+    gpu::transfer_to_host_barrier(context_, cmd);
+    gpu::transition(context_, cmd, frame.image, kColor, 1, gpu::ImageState::TransferSrc,
+                    gpu::ImageState::ColorAttachment);
     captured_extent_ = frame.extent;
     captured_format_ = frame.format;
 }
 
 void FrameOutput::record_present_transition(VkCommandBuffer cmd, const present::Frame& frame) const {
-    gpu::transition(cmd, frame.image, kColor, 1, gpu::ImageState::ColorAttachment, gpu::ImageState::PresentSrc);
+    gpu::transition(context_, cmd, frame.image, kColor, 1, gpu::ImageState::ColorAttachment,
+                    gpu::ImageState::PresentSrc);
 }
 
 std::vector<uint8_t> FrameOutput::captured_rgba() const {

@@ -15,7 +15,7 @@ void check_imgui_result(VkResult result) {
     if (result < 0) ::penumbra::gpu::throw_vk_failure("an ImGui Vulkan backend call", result, __FILE__, __LINE__);
 }
 
-gpu::DeviceHandle<VkRenderPass, vkDestroyRenderPass> create_render_pass(VkDevice device, VkFormat format) {
+gpu::UniqueRenderPass create_render_pass(const gpu::Device& device, VkFormat format) {
     VkAttachmentDescription attachment{};
     attachment.format = format;
     attachment.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -59,7 +59,7 @@ gpu::DeviceHandle<VkRenderPass, vkDestroyRenderPass> create_render_pass(VkDevice
     return {device, render_pass};
 }
 
-gpu::UniqueDescriptorPool create_font_pool(VkDevice device) {
+gpu::UniqueDescriptorPool create_font_pool(const gpu::Device& device) {
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
@@ -75,8 +75,8 @@ gpu::UniqueDescriptorPool create_font_pool(VkDevice device) {
 
 UiOverlay::UiOverlay(const gpu::Context& context, const present::Window& window, const present::Presenter& presenter)
     : context_(context), presenter_(presenter), format_(presenter.swapchain().format()) {
-    pool_ = create_font_pool(context.device());
-    render_pass_ = create_render_pass(context.device(), format_);
+    pool_ = create_font_pool(context);
+    render_pass_ = create_render_pass(context, format_);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
@@ -132,7 +132,7 @@ void UiOverlay::rebuild_framebuffers() {
         info.layers = 1;
         VkFramebuffer framebuffer = VK_NULL_HANDLE;
         PENUMBRA_VK_CHECK(vkCreateFramebuffer(context_.device(), &info, nullptr, &framebuffer));
-        framebuffers_.emplace_back(context_.device(), framebuffer);
+        framebuffers_.emplace_back(context_, framebuffer);
     }
     framebuffer_generation_ = presenter_.generation();
 }

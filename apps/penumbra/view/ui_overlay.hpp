@@ -34,8 +34,8 @@ private:
     const gpu::Context& context_;
     const present::Presenter& presenter_;
     gpu::UniqueDescriptorPool pool_;
-    gpu::DeviceHandle<VkRenderPass, vkDestroyRenderPass> render_pass_;
-    std::vector<gpu::DeviceHandle<VkFramebuffer, vkDestroyFramebuffer>> framebuffers_;
+    gpu::UniqueRenderPass render_pass_;
+    std::vector<gpu::UniqueFramebuffer> framebuffers_;
     uint64_t framebuffer_generation_ = 0;
     VkFormat format_;
 };

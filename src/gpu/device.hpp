@@ -1,0 +1,96 @@
+#pragma once
+// The device layer's view of a Vulkan device: handles, the function table they are used
+// through, and what the device can do. A Device owns nothing: the caller (or gpu::Context,
+// which creates one) keeps the instance and device alive and destroys them.
+//
+// Calls go through the table: `device->vkCmdDraw(cmd, ...)` (operator-> reaches the
+// VulkanFunctions of this device; see gpu/dispatch.hpp).
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+
+#include "gpu/dispatch.hpp"
+
+namespace penumbra::gpu {
+
+struct DeviceInfo {
+    uint32_t index = 0;  // position in vkEnumeratePhysicalDevices order
+    std::string name;
+    VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+    std::string driver;  // driver name and info, e.g. "llvmpipe (Mesa 22.3.6)"
+    uint32_t api_version = 0;
+    bool usable = false;  // Vulkan 1.3 with dynamic rendering, sync2 and a graphics + compute queue
+};
+
+// The optional features Penumbra uses when the device was created with them.
+struct EnabledFeatures {
+    bool multiview = false;         // VkPhysicalDeviceVulkan11Features::multiview (multiview strategy)
+    bool depth_clamp = false;       // VkPhysicalDeviceFeatures::depthClamp
+    bool depth_bias_clamp = false;  // VkPhysicalDeviceFeatures::depthBiasClamp
+};
+
+// The handles a Device is made from.
+struct DeviceHandles {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queue_family = 0;
+};
+
+class Device {
+public:
+    // Loads the function table through `get_instance_proc_addr` and reads the device's
+    // properties. Checks nothing about features: see check_device_requirements().
+    Device(const DeviceHandles& handles, const EnabledFeatures& features,
+           PFN_vkGetInstanceProcAddr get_instance_proc_addr);
+    virtual ~Device() = default;
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    VkInstance instance() const { return handles_.instance; }
+    VkPhysicalDevice physical_device() const { return handles_.physical_device; }
+    VkDevice device() const { return handles_.device; }
+    VkQueue queue() const { return handles_.queue; }
+    uint32_t queue_family() const { return handles_.queue_family; }
+    const DeviceInfo& info() const { return info_; }
+    const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    bool depth_clamp_supported() const { return features_.depth_clamp; }
+    bool depth_bias_clamp_supported() const { return features_.depth_bias_clamp; }
+    // 0 when multiview is not enabled.
+    uint32_t max_multiview_views() const { return max_multiview_views_; }
+    const EnabledFeatures& features() const { return features_; }
+
+    const VulkanFunctions& vk() const { return vk_; }
+    const VulkanFunctions* operator->() const { return &vk_; }
+    operator VkDevice() const { return handles_.device; }  // NOLINT: `device->vkFoo(device, ...)`
+
+    // A memory type among `type_bits` with all of `properties`; throws VulkanError if none.
+    uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
+
+protected:
+    // For gpu::Context, which creates the handles first and then calls initialize().
+    Device() = default;
+    void initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index = 0);
+    VulkanFunctions vk_;
+
+private:
+    DeviceHandles handles_;
+    EnabledFeatures features_;
+    DeviceInfo info_;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memory_{};
+    uint32_t max_multiview_views_ = 0;
+};
+
+// Describes a physical device (name, type, driver, API version, usability).
+DeviceInfo describe_physical_device(const VulkanFunctions& vk, VkPhysicalDevice device, uint32_t index);
+
+// The first queue family with graphics and compute, if any.
+bool find_graphics_compute_family(const VulkanFunctions& vk, VkPhysicalDevice device, uint32_t& family);
+
+const char* device_type_name(VkPhysicalDeviceType type);
+std::string api_version_string(uint32_t version);
+
+}  // namespace penumbra::gpu
