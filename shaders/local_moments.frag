@@ -11,13 +11,13 @@
 // Converting the depth map (instead of rendering the casters again) gives the same
 // moments per texel at the cost of one full-screen triangle per layer.
 #extension GL_GOOGLE_include_directive : require
-#include "penumbra_shared.h"
+#include "penumbra_internal.h"
 
 layout(set = 0, binding = PENUMBRA_BINDING_BLUR_SOURCE) uniform sampler2DArray local_depth;
 layout(push_constant) uniform PushBlock { LocalMomentsPushConstants pass; };
 
-#include "shadow_filter_constants.glsl"
-#include "moments.glsl"
+#include "penumbra/glsl/filter_constants.glsl"
+#include "penumbra/glsl/moments.glsl"
 
 layout(location = 0) out vec4 out_moments;
 
@@ -38,5 +38,6 @@ void main() {
     const float distance = clamp(view_depth / f, 0.0, 1.0);
     const float distance_dx = slope_or_zero(dFdx(distance));
     const float distance_dy = slope_or_zero(dFdy(distance));
-    out_moments = encode_moments(kFilterMode, distance, distance_dx, distance_dy, pass.depth_range.zw, kMsmQuantized);
+    out_moments = penumbra_encode_moments(kPenumbraFilterMode, distance, distance_dx, distance_dy, pass.depth_range.zw,
+                                          kPenumbraMsmQuantized);
 }

@@ -4,7 +4,7 @@
 // are linear in the distribution, so blurring them is filtering the shadow (Donnelly &
 // Lauritzen 2006); taps beyond the edge of the layer's used corner clamp to it.
 #extension GL_GOOGLE_include_directive : require
-#include "penumbra_shared.h"
+#include "penumbra_internal.h"
 
 layout(set = 0, binding = PENUMBRA_BINDING_BLUR_SOURCE) uniform sampler2DArray source;
 layout(push_constant) uniform PushBlock { BlurPushConstants blur; };

@@ -1,7 +1,7 @@
 #include "filter_options.hpp"
 
-#include "core/shadow_filters.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::cli {
 namespace {

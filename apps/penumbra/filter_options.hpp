@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/settings_overrides.hpp"
+#include "penumbra/scene/settings_overrides.hpp"
 
 namespace penumbra::cli {
 

@@ -8,8 +8,7 @@
 #include "bench/bench_report.hpp"
 #include "cli.hpp"
 #include "compare/compare_report.hpp"
-#include "gpu/check.hpp"
-#include "gpu/context.hpp"
+#include "penumbra/device.hpp"
 #include "penumbra/errors.hpp"
 #include "progress_bar.hpp"
 #include "view/view_job.hpp"
@@ -17,12 +16,11 @@
 namespace {
 
 int list_devices() {
-    const auto devices = penumbra::gpu::list_devices();
+    const auto devices = penumbra::list_physical_devices();
     std::printf("%-5s %-40s %-10s %-40s %s\n", "index", "name", "type", "driver", "api");
     for (const auto& device : devices) {
-        std::printf("%-5u %-40s %-10s %-40s %s%s\n", device.index, device.name.c_str(),
-                    penumbra::gpu::device_type_name(device.type), device.driver.c_str(),
-                    penumbra::gpu::api_version_string(device.api_version).c_str(),
+        std::printf("%-5u %-40s %-10s %-40s %s%s\n", device.index, device.name.c_str(), device.type.c_str(),
+                    device.driver.c_str(), penumbra::vulkan_version_string(device.api_version).c_str(),
                     device.usable ? "" : " (unusable: needs Vulkan 1.3)");
     }
     return 0;

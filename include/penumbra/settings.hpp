@@ -26,6 +26,13 @@ enum class ShadowStrategy { PerCascade, Multiview };
 // filters over a prefilterable moments map rendered by the moments pass.
 enum class ShadowFilter { Hard, Pcf, Poisson, Pcss, Vsm, Evsm, Msm };
 enum class PcssQuality { Low, Medium, High };  // 16, 25 or 49 filter taps
+// Which faces of casters the shadow passes skip, seen from the light. None draws every
+// face (thin and open geometry casts from both sides). FrontFaces draws the faces turned
+// away from the light: a closed mesh's shadow is then its back faces' depth, far from the
+// lit surface, which hides acne there ("render back faces into the shadow map"); open
+// meshes then cast only from their back. BackFaces draws only the faces toward the light.
+// Instances flagged double-sided are never culled.
+enum class CasterCulling { None, BackFaces, FrontFaces };
 
 struct CascadeSettings {
     int count = 4;                                // 1..kMaxCascades
@@ -82,6 +89,7 @@ struct ShadowSettings {
     float blend_width = 0.1f;  // fraction of a cascade's depth range blended into the next
     ShadowStrategy strategy = ShadowStrategy::PerCascade;
     bool cull_casters = true;
+    CasterCulling caster_culling = CasterCulling::None;
 };
 
 // The names validate_shadow_settings() uses for each setting in its messages; config and
@@ -140,6 +148,7 @@ struct Settings {
 const std::map<std::string, ShadowFilter>& shadow_filter_names();
 const std::map<std::string, PcssQuality>& pcss_quality_names();
 const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names();
+const std::map<std::string, CasterCulling>& caster_culling_names();
 
 // vsm, evsm and msm sample a moments map instead of comparing against the depth map.
 bool is_moment_filter(ShadowFilter filter);

@@ -47,6 +47,22 @@ CameraView make_camera_view(const Camera& camera, float aspect) {
     return result;
 }
 
+CameraView make_camera_view(const glm::mat4& view, float fov_y_radians, float aspect, float near_plane,
+                            float far_plane) {
+    const glm::mat4 view_to_world = glm::inverse(view);
+    CameraView result;
+    result.view = view;
+    result.eye = glm::vec3(view_to_world[3]);
+    result.forward = glm::normalize(-glm::vec3(view_to_world[2]));
+    result.fov_y_radians = fov_y_radians;
+    result.aspect = aspect;
+    result.near_plane = near_plane;
+    result.far_plane = far_plane;
+    result.projection = perspective_reverse_z(fov_y_radians, aspect, near_plane, far_plane);
+    result.view_projection = result.projection * view;
+    return result;
+}
+
 std::array<glm::vec3, 8> frustum_slice_corners(const CameraView& camera, float slice_near, float slice_far) {
     const glm::mat4 view_to_world = glm::inverse(camera.view);
     const float tan_half_y = std::tan(camera.fov_y_radians * 0.5f);

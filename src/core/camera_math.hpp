@@ -6,7 +6,7 @@
 #include <array>
 
 #include "core/glm_config.hpp"
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 
@@ -33,6 +33,11 @@ glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float to
 // Builds the camera's matrices. Requires eye != target and a non-degenerate up vector
 // (the scene loader validates both; an up parallel to the view direction is replaced).
 CameraView make_camera_view(const Camera& camera, float aspect);
+
+// The same for a caller's view matrix (world -> view, looking down -Z); the eye and the
+// forward direction are taken from its inverse. Requires an invertible `view`.
+CameraView make_camera_view(const glm::mat4& view, float fov_y_radians, float aspect, float near_plane,
+                            float far_plane);
 
 // World-space corners of the view frustum between view distances slice_near and slice_far
 // (distances along the view direction). Order: near plane (4), then far plane (4).

@@ -5,8 +5,8 @@
 #include <array>
 #include <cstdint>
 
-#include "core/bounds.hpp"
 #include "core/camera_math.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 

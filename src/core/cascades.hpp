@@ -5,8 +5,8 @@
 #include <array>
 #include <vector>
 
-#include "core/bounds.hpp"
 #include "core/camera_math.hpp"
+#include "penumbra/scene/scene.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra {

@@ -35,20 +35,14 @@ float local_shadow_half_fov(const Light& light) {
     return glm::radians(local_shadow_is_cube(light) ? 45.0f : light.outer_angle_degrees);
 }
 
-LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings& settings) {
+LocalShadowPlan plan_local_shadows(std::span<const Light> lights, const LocalShadowSettings& settings) {
     LocalShadowPlan plan;
-    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& light = scene.lights[i];
-        if (light.type == LightType::Directional) continue;
-        if (plan.local_lights.size() >= kMaxLocalLights) {
-            plan.beyond_light_limit += 1;
-            continue;
-        }
-        plan.local_lights.push_back(i);
-        if (!light.cast_shadows) continue;
+    for (uint32_t i = 0; i < lights.size(); ++i) {
+        const Light& light = lights[i];
+        if (light.type == LightType::Directional || !light.cast_shadows) continue;
         const uint32_t layers = local_shadow_layers(light);
         if (plan.slots.size() >= settings.budget || plan.layer_count + layers > kMaxLocalShadowLayers) {
-            plan.over_budget += 1;
+            plan.unshadowed.push_back(i);
             continue;
         }
         LocalShadowSlot slot;
@@ -105,9 +99,9 @@ bool cube_face_reaches_cone(const Light& light, size_t face) {
     return degrees_from_spot_axis - face_corner_degrees < light.outer_angle_degrees;
 }
 
-void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes) {
+void fit_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, const std::vector<Aabb>& caster_boxes) {
     for (LocalShadowSlot& slot : plan.slots) {
-        const Light& light = scene.lights[slot.light];
+        const Light& light = lights[slot.light];
         slot.near_plane =
             local_shadow_near_plane(light, nearest_caster_distance(light.position, caster_boxes, light.range));
         slot.far_plane = light.range;
@@ -165,11 +159,11 @@ uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera
     return std::clamp(next_power_of_two(pixels_across), min_resolution, max_resolution);
 }
 
-void size_local_shadows(LocalShadowPlan& plan, const Scene& scene, const CameraView& camera, uint32_t viewport_height,
-                        uint32_t max_resolution) {
+void size_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, const CameraView& camera,
+                        uint32_t viewport_height, uint32_t max_resolution) {
     for (LocalShadowSlot& slot : plan.slots) {
         if (slot.fixed_resolution) continue;
-        slot.resolution = coverage_shadow_resolution(scene.lights[slot.light], camera, viewport_height, max_resolution);
+        slot.resolution = coverage_shadow_resolution(lights[slot.light], camera, viewport_height, max_resolution);
     }
 }
 

@@ -12,18 +12,17 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
-#include "core/bounds.hpp"
 #include "core/camera_math.hpp"
 #include "core/glm_config.hpp"
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra {
 
-inline constexpr uint32_t kMaxLocalLights = 64;      // lit by the lighting shader; more are ignored
 inline constexpr float kMinLocalShadowNear = 0.05f;  // metres
 // The widest spot (outer half-angle, degrees) shadowed by one perspective layer. Past it a
 // perspective texel at the cone's edge covers more than 1 / cos^2(60) = 4 times the
@@ -33,7 +32,7 @@ inline constexpr float kMaxPerspectiveSpotAngle = 60.0f;
 
 // Where one local light's shadow lives and how it was fitted.
 struct LocalShadowSlot {
-    uint32_t light = 0;             // index into Scene::lights
+    uint32_t light = 0;             // index into the light list
     uint32_t first_layer = 0;       // 1 layer, or 6 for a cube (faces +X, -X, +Y, -Y, +Z, -Z)
     uint32_t resolution = 0;        // texels per side actually used in each of its layers (this frame)
     bool fixed_resolution = false;  // set by the light's shadow_resolution or fixed sizing
@@ -43,12 +42,11 @@ struct LocalShadowSlot {
 };
 
 struct LocalShadowPlan {
-    std::vector<uint32_t> local_lights;  // indices into Scene::lights of the lit spot/point lights (<= 16)
-    std::vector<LocalShadowSlot> slots;  // shadowed ones, in light order, within the budget
+    std::vector<LocalShadowSlot> slots;  // shadowed lights, in light order, within the budget
     uint32_t layer_count = 0;            // layers of the shared map
     uint32_t atlas_resolution = 0;       // the shared map's texels per side (the largest a slot may use)
-    uint32_t over_budget = 0;            // shadow-casting local lights left unshadowed by the budget
-    uint32_t beyond_light_limit = 0;     // local lights past kMaxLocalLights (not lit at all)
+    // Shadow-casting spot/point lights left unshadowed by the budget or the layer limit.
+    std::vector<uint32_t> unshadowed;
 };
 
 // Whether a local light's shadow is a cube of six faces: a point light, or a spot wider
@@ -63,9 +61,10 @@ uint32_t local_shadow_layers(const Light& light);
 // outer angle, 45 degrees for a cube face (radians).
 float local_shadow_half_fov(const Light& light);
 
-// The camera-independent part: which lights are lit and shadowed, their layers and resolutions.
-// Matrices are filled by fit_local_shadows().
-LocalShadowPlan plan_local_shadows(const Scene& scene, const LocalShadowSettings& settings);
+// The camera-independent part: which spot and point lights are shadowed (the first
+// `budget` shadow-casting ones, in list order, within kMaxLocalShadowLayers), their layers
+// and resolutions. Matrices are filled by fit_local_shadows().
+LocalShadowPlan plan_local_shadows(std::span<const Light> lights, const LocalShadowSettings& settings);
 
 // Distance from `point` to the nearest of `boxes` (0 inside one), clamped to [min_near, max_far).
 float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& boxes, float max_far);
@@ -94,7 +93,7 @@ bool cube_face_reaches_cone(const Light& light, size_t face);
 
 // Fills each slot's near plane (nearest caster within range) and matrices for the scene's
 // current light positions; `caster_boxes` are the world bounds of every draw.
-void fit_local_shadows(LocalShadowPlan& plan, const Scene& scene, const std::vector<Aabb>& caster_boxes);
+void fit_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, const std::vector<Aabb>& caster_boxes);
 
 // The smallest sphere around what a local light can reach: its range around a point light;
 // for a spot, the sphere through the apex and the cone's rim at the range (centre on the
@@ -115,8 +114,8 @@ uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera
 
 // Sets this frame's resolution of every slot without a fixed one (coverage sizing, up to
 // `max_resolution`, the settings' resolution).
-void size_local_shadows(LocalShadowPlan& plan, const Scene& scene, const CameraView& camera, uint32_t viewport_height,
-                        uint32_t max_resolution);
+void size_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, const CameraView& camera,
+                        uint32_t viewport_height, uint32_t max_resolution);
 
 // Conservative culling: false only when the box cannot cast into the layer: outside a plane
 // of its frustum (Gribb-Hartmann planes of the view projection), or, for a cube face,

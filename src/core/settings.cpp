@@ -137,6 +137,12 @@ const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
     return names;
 }
 
+const std::map<std::string, CasterCulling>& caster_culling_names() {
+    static const std::map<std::string, CasterCulling> names{
+        {"none", CasterCulling::None}, {"back", CasterCulling::BackFaces}, {"front", CasterCulling::FrontFaces}};
+    return names;
+}
+
 bool is_moment_filter(ShadowFilter filter) {
     return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
 }

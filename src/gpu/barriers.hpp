@@ -15,8 +15,15 @@ enum class ImageState {
     ColorAttachment,
     DepthAttachment,
     FragmentSampled,  // read by fragment shaders (textures, shadow maps)
-    BlitSrc,          // read by vkCmdBlitImage
-    BlitDst,          // written by vkCmdBlitImage
+    // Read by fragment and compute shaders: a ShadowSystem's maps between frames (the
+    // caller's forward shading or the compute resolve reads them).
+    ShaderSampled,
+    // About to be overwritten completely after ShaderSampled reads (a map re-rendered every
+    // frame): the contents are discarded, the reads of earlier frames still come first.
+    DiscardAfterShaderReads,
+    ComputeStorageWrite,  // written by a compute shader as a storage image
+    BlitSrc,              // read by vkCmdBlitImage
+    BlitDst,              // written by vkCmdBlitImage
     // A swapchain image just acquired: undefined contents, and the submission waits for
     // the acquire semaphore at ALL_COMMANDS, which this state's stage chains with.
     SwapchainAcquired,
@@ -29,6 +36,10 @@ void transition(const Device& device, VkCommandBuffer cmd, const Image& image, I
 // mip level, layers [0, layers).
 void transition(const Device& device, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, uint32_t layers,
                 ImageState from, ImageState to);
+
+// A global memory dependency (buffers: uploads before their use as vertices, indices).
+void memory_barrier(const Device& device, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage,
+                    VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
 // Makes transfer writes to host-visible buffers visible to the host after the fence.
 void transfer_to_host_barrier(const Device& device, VkCommandBuffer cmd);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <cstring>
 #include <optional>
 
@@ -14,28 +13,28 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
+// Where a Context's messenger delivers: its log and its callback.
 VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                      VkDebugUtilsMessageTypeFlagsEXT /*types*/,
                                                      const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                      void* user_data) {
-    auto* log = static_cast<ValidationLog*>(user_data);
+    const auto* context = static_cast<const Context*>(user_data);
     const bool is_error = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) != 0;
     std::string message = std::string(is_error ? "validation error: " : "validation warning: ") +
                           (data->pMessage ? data->pMessage : "(no message)");
-    // The messages are the point of --validate: they are shown as they come, and kept.
-    std::fprintf(stderr, "penumbra: %s\n", message.c_str());
-    log->messages.push_back(std::move(message));
+    context->report_validation_message(std::move(message));
     return VK_FALSE;
 }
 
-VkDebugUtilsMessengerCreateInfoEXT messenger_info(ValidationLog* log) {
+VkDebugUtilsMessengerCreateInfoEXT messenger_info(const Context* context) {
     VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     info.messageSeverity =
         VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                        VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     info.pfnUserCallback = on_validation_message;
-    info.pUserData = log;
+    // The callback only reads the context, but the field is not const.
+    info.pUserData = const_cast<Context*>(context);
     return info;
 }
 
@@ -162,6 +161,7 @@ std::vector<DeviceInfo> list_devices() {
 
 Context::Context(const ContextOptions& options)
     : validation_log_(options.log ? options.log : std::make_shared<ValidationLog>()),
+      on_message_(options.on_message),
       presentation_(options.presentation) {
     try {
         vk_ = load_global_functions(loader_instance_proc_addr());
@@ -172,10 +172,6 @@ Context::Context(const ContextOptions& options)
         VkQueue queue = VK_NULL_HANDLE;
         vk_.vkGetDeviceQueue(device_, queue_family_, 0, &queue);
         initialize({instance_, physical_device_, device_, queue, queue_family_}, features, index);
-        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        pool_info.queueFamilyIndex = queue_family_;
-        PENUMBRA_VK_CHECK(vk_.vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_));
     } catch (...) {
         release();
         throw;
@@ -187,7 +183,6 @@ Context::~Context() { release(); }
 void Context::release() {
     if (device_) {
         vk_.vkDeviceWaitIdle(device_);
-        if (command_pool_) vk_.vkDestroyCommandPool(device_, command_pool_, nullptr);
         vk_.vkDestroyDevice(device_, nullptr);
         device_ = VK_NULL_HANDLE;
     }
@@ -213,7 +208,7 @@ void Context::create_instance(bool validation) {
     // Synchronization validation finds missing or wrong barriers (hazards), which the
     // default validation does not check.
     const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
-    VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info(validation_log_.get());
+    VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info(this);
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, &messenger};
     features.enabledValidationFeatureCount = 1;
     features.pEnabledValidationFeatures = enables;
@@ -298,41 +293,9 @@ EnabledFeatures Context::create_device() {
     return enabled;
 }
 
-void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
-    VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocate.commandPool = command_pool_;
-    allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocate.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vk_.vkAllocateCommandBuffers(device_, &allocate, &cmd));
-    struct FreeOnExit {
-        const VulkanFunctions& vk;
-        VkDevice device;
-        VkCommandPool pool;
-        VkCommandBuffer cmd;
-        ~FreeOnExit() { vk.vkFreeCommandBuffers(device, pool, 1, &cmd); }
-    } free_on_exit{vk_, device_, command_pool_, cmd};
-
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    PENUMBRA_VK_CHECK(vk_.vkBeginCommandBuffer(cmd, &begin));
-    record(cmd);
-    PENUMBRA_VK_CHECK(vk_.vkEndCommandBuffer(cmd));
-
-    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(vk_.vkCreateFence(device_, &fence_info, nullptr, &fence));
-    const UniqueFence owned_fence(*this, fence);
-    VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    cmd_info.commandBuffer = cmd;
-    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    submit.commandBufferInfoCount = 1;
-    submit.pCommandBufferInfos = &cmd_info;
-    PENUMBRA_VK_CHECK(vk_.vkQueueSubmit2(queue(), 1, &submit, fence));
-    // A fence wait can legitimately time out on a slow CPU device; keep waiting.
-    VkResult wait = VK_TIMEOUT;
-    while (wait == VK_TIMEOUT) wait = vk_.vkWaitForFences(device_, 1, &fence, VK_TRUE, 10'000'000'000ull);
-    PENUMBRA_VK_CHECK(wait);
+void Context::report_validation_message(std::string message) const {
+    if (on_message_) on_message_(message);
+    validation_log_->messages.push_back(std::move(message));
 }
 
 }  // namespace penumbra::gpu

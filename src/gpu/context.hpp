@@ -1,9 +1,9 @@
 #pragma once
-// A Vulkan instance and device created by Penumbra for callers that have none (the
-// `penumbra` CLI, tests, the examples' readback helpers): instance (optionally with the
-// Khronos validation layer and synchronization validation), physical-device choice, a
-// device with exactly the features Penumbra uses, one graphics + compute queue and a
-// command pool for one-off uploads. Headless by default: no surface, no swapchain;
+// A Vulkan instance and device created by Penumbra for callers that have none (behind the
+// public penumbra::VulkanContext): instance (optionally with the Khronos validation layer
+// and synchronization validation), physical-device choice, a device with exactly the
+// features Penumbra uses and one graphics + compute queue. Headless by default: no
+// surface, no swapchain;
 // ContextOptions::presentation turns on what a window needs (the viewer's src/present).
 // A Context is a gpu::Device, so everything that takes a Device takes a Context.
 #include <vulkan/vulkan.h>
@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "gpu/device.hpp"
-#include "gpu/handle.hpp"
 
 namespace penumbra::gpu {
 
@@ -32,6 +31,8 @@ struct ContextOptions {
     // Where validation messages go; shared so that messages reported while the device and
     // instance are destroyed (leaks) can still be read after the Context is gone.
     std::shared_ptr<ValidationLog> log = std::make_shared<ValidationLog>();
+    // Also called with each message as it arrives (e.g. to print it); may be empty.
+    std::function<void(const std::string& message)> on_message;
     // Set for a window: the instance gets `instance_extensions` (e.g. from
     // glfwGetRequiredInstanceExtensions), the device VK_KHR_swapchain, and the queue is a
     // graphics family for which `can_present` holds (e.g. glfwGetPhysicalDevicePresentationSupport).
@@ -56,8 +57,8 @@ public:
     const ValidationLog& validation_log() const { return *validation_log_; }
     const std::shared_ptr<ValidationLog>& shared_validation_log() const { return validation_log_; }
 
-    // Records commands into a fresh primary command buffer, submits it and waits.
-    void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
+    // Called by the validation layer's messenger.
+    void report_validation_message(std::string message) const;
 
 private:
     void create_instance(bool validation);
@@ -73,8 +74,8 @@ private:
     uint32_t queue_family_ = 0;
     bool validation_enabled_ = false;
     std::shared_ptr<ValidationLog> validation_log_;
+    std::function<void(const std::string& message)> on_message_;
     std::optional<ContextOptions::Presentation> presentation_;
-    VkCommandPool command_pool_ = VK_NULL_HANDLE;
 };
 
 }  // namespace penumbra::gpu

@@ -68,6 +68,7 @@ namespace penumbra::gpu {
     X(vkCreateDescriptorPool)           \
     X(vkDestroyDescriptorPool)          \
     X(vkAllocateDescriptorSets)         \
+    X(vkFreeDescriptorSets)             \
     X(vkUpdateDescriptorSets)           \
     X(vkCreateCommandPool)              \
     X(vkDestroyCommandPool)             \
@@ -100,6 +101,7 @@ namespace penumbra::gpu {
     X(vkCmdSetScissor)                  \
     X(vkCmdSetDepthBias)                \
     X(vkCmdSetCullMode)                 \
+    X(vkCmdSetFrontFace)                \
     X(vkCmdDraw)                        \
     X(vkCmdDrawIndexed)                 \
     X(vkCmdDispatch)                    \

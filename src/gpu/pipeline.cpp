@@ -51,11 +51,15 @@ UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipe
         stages.push_back(stage);
     }
 
-    const VkVertexInputBindingDescription binding{0, desc.vertex_layout.stride, VK_VERTEX_INPUT_RATE_VERTEX};
+    std::vector<VkVertexInputBindingDescription> bindings = desc.vertex_layout.bindings;
+    // One binding of `stride` by default; none when the vertex shader has no inputs
+    // (full-screen passes).
+    if (bindings.empty() && !desc.vertex_layout.attributes.empty()) {
+        bindings.push_back({0, desc.vertex_layout.stride, VK_VERTEX_INPUT_RATE_VERTEX});
+    }
     VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    // No binding at all when the vertex shader has no inputs (full-screen passes).
-    vertex_input.vertexBindingDescriptionCount = desc.vertex_layout.attributes.empty() ? 0 : 1;
-    vertex_input.pVertexBindingDescriptions = &binding;
+    vertex_input.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings.size());
+    vertex_input.pVertexBindingDescriptions = bindings.data();
     vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(desc.vertex_layout.attributes.size());
     vertex_input.pVertexAttributeDescriptions = desc.vertex_layout.attributes.data();
 
@@ -92,6 +96,11 @@ UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipe
 
     std::vector<VkDynamicState> dynamic_states = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     if (desc.depth_bias) dynamic_states.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+    if (desc.vertex_layout.dynamic_strides) dynamic_states.push_back(VK_DYNAMIC_STATE_VERTEX_INPUT_BINDING_STRIDE);
+    if (desc.dynamic_culling) {
+        dynamic_states.push_back(VK_DYNAMIC_STATE_CULL_MODE);
+        dynamic_states.push_back(VK_DYNAMIC_STATE_FRONT_FACE);
+    }
     VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
     dynamic.dynamicStateCount = static_cast<uint32_t>(dynamic_states.size());
     dynamic.pDynamicStates = dynamic_states.data();
@@ -119,6 +128,22 @@ UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipe
     return UniquePipeline(device, pipeline);
 }
 
+UniquePipeline create_compute_pipeline(const Device& device, const ShaderStage& stage, VkPipelineLayout layout) {
+    const UniqueShaderModule module = create_shader_module(device, stage.spirv);
+    StageSpecialization specialization;
+    fill_specialization(stage, specialization);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = specialization.entries.empty() ? nullptr : &specialization.info;
+    info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    PENUMBRA_VK_CHECK(device->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    return UniquePipeline(device, pipeline);
+}
+
 UniquePipelineLayout create_pipeline_layout(const Device& device, std::span<const VkDescriptorSetLayout> set_layouts,
                                             std::span<const VkPushConstantRange> push_constants) {
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -142,8 +167,10 @@ UniqueDescriptorSetLayout create_descriptor_set_layout(const Device& device,
 }
 
 UniqueDescriptorPool create_descriptor_pool(const Device& device, uint32_t max_sets,
-                                            std::span<const VkDescriptorPoolSize> sizes) {
+                                            std::span<const VkDescriptorPoolSize> sizes,
+                                            VkDescriptorPoolCreateFlags flags) {
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.flags = flags;
     info.maxSets = max_sets;
     info.poolSizeCount = static_cast<uint32_t>(sizes.size());
     info.pPoolSizes = sizes.data();
@@ -188,16 +215,29 @@ void write_storage_buffer(const Device& device, VkDescriptorSet set, uint32_t bi
     write_buffer(device, set, binding, buffer, size, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
-void write_combined_image_sampler(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view,
-                                  VkSampler sampler) {
-    const VkDescriptorImageInfo image_info{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+namespace {
+
+void write_image(const Device& device, VkDescriptorSet set, uint32_t binding, const VkDescriptorImageInfo& image,
+                 VkDescriptorType type) {
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set;
     write.dstBinding = binding;
     write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    write.pImageInfo = &image_info;
+    write.descriptorType = type;
+    write.pImageInfo = &image;
     device->vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+}
+
+}  // namespace
+
+void write_combined_image_sampler(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view,
+                                  VkSampler sampler, VkImageLayout layout) {
+    write_image(device, set, binding, {sampler, view, layout}, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+}
+
+void write_storage_image(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view) {
+    write_image(device, set, binding, {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL},
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
 UniqueSampler create_sampler(const Device& device, const SamplerDesc& desc) {

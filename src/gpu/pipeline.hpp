@@ -26,8 +26,12 @@ struct ShaderStage {
 };
 
 struct VertexLayout {
-    uint32_t stride = 0;
+    uint32_t stride = 0;  // of binding 0, when `bindings` is empty
     std::vector<VkVertexInputAttributeDescription> attributes;
+    // Several bindings (e.g. positions and UVs in separate streams); their strides are
+    // then set at draw time (vkCmdBindVertexBuffers2) when dynamic_strides is set.
+    std::vector<VkVertexInputBindingDescription> bindings;
+    bool dynamic_strides = false;
 };
 
 struct GraphicsPipelineDesc {
@@ -39,12 +43,16 @@ struct GraphicsPipelineDesc {
     VkCompareOp depth_compare = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reverse-Z
     bool depth_write = true;
     VkCullModeFlags cull_mode = VK_CULL_MODE_BACK_BIT;
-    bool depth_bias = false;   // dynamic depth bias (vkCmdSetDepthBias)
-    bool depth_clamp = false;  // flatten geometry in front of the near plane onto it
-    uint32_t view_mask = 0;    // multiview: one bit per rendered layer
+    bool depth_bias = false;       // dynamic depth bias (vkCmdSetDepthBias)
+    bool depth_clamp = false;      // flatten geometry in front of the near plane onto it
+    uint32_t view_mask = 0;        // multiview: one bit per rendered layer
+    bool dynamic_culling = false;  // cull mode and front face set at draw time (vkCmdSetCullMode/FrontFace)
 };
 
 UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDesc& desc);
+
+// A compute pipeline of `stage` (its stage must be VK_SHADER_STAGE_COMPUTE_BIT).
+UniquePipeline create_compute_pipeline(const Device& device, const ShaderStage& stage, VkPipelineLayout layout);
 
 UniquePipelineLayout create_pipeline_layout(const Device& device, std::span<const VkDescriptorSetLayout> set_layouts,
                                             std::span<const VkPushConstantRange> push_constants);
@@ -53,7 +61,8 @@ UniqueDescriptorSetLayout create_descriptor_set_layout(const Device& device,
                                                        std::span<const VkDescriptorSetLayoutBinding> bindings);
 
 UniqueDescriptorPool create_descriptor_pool(const Device& device, uint32_t max_sets,
-                                            std::span<const VkDescriptorPoolSize> sizes);
+                                            std::span<const VkDescriptorPoolSize> sizes,
+                                            VkDescriptorPoolCreateFlags flags = 0);
 
 VkDescriptorSet allocate_descriptor_set(const Device& device, VkDescriptorPool pool, VkDescriptorSetLayout layout);
 
@@ -62,7 +71,9 @@ void write_uniform_buffer(const Device& device, VkDescriptorSet set, uint32_t bi
 void write_storage_buffer(const Device& device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer,
                           VkDeviceSize size);
 void write_combined_image_sampler(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view,
-                                  VkSampler sampler);
+                                  VkSampler sampler, VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+// A storage image in VK_IMAGE_LAYOUT_GENERAL.
+void write_storage_image(const Device& device, VkDescriptorSet set, uint32_t binding, VkImageView view);
 
 struct SamplerDesc {
     VkFilter filter = VK_FILTER_LINEAR;

@@ -64,14 +64,16 @@ Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags
     return result;
 }
 
-Buffer create_buffer_with_data(const Context& context, std::span<const std::byte> bytes, VkBufferUsageFlags usage) {
+Buffer create_buffer_with_data(const OneTimeCommands& commands, std::span<const std::byte> bytes,
+                               VkBufferUsageFlags usage) {
+    const Device& device = commands.device();
     const VkDeviceSize size = bytes.empty() ? 16 : bytes.size();
-    Buffer staging = create_buffer(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload);
+    Buffer staging = create_buffer(device, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload);
     if (!bytes.empty()) std::memcpy(staging.mapped, bytes.data(), bytes.size());
-    Buffer result = create_buffer(context, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::DeviceLocal);
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    Buffer result = create_buffer(device, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::DeviceLocal);
+    commands.submit_and_wait([&](VkCommandBuffer cmd) {
         const VkBufferCopy region{0, 0, size};
-        context->vkCmdCopyBuffer(cmd, staging.get(), result.get(), 1, &region);
+        device->vkCmdCopyBuffer(cmd, staging.get(), result.get(), 1, &region);
     });
     return result;
 }
@@ -111,24 +113,26 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     return result;
 }
 
-Image create_texture_rgba8(const Context& context, uint32_t width, uint32_t height, std::span<const uint8_t> rgba) {
+Image create_texture_rgba8(const OneTimeCommands& commands, uint32_t width, uint32_t height,
+                           std::span<const uint8_t> rgba) {
+    const Device& device = commands.device();
     ImageDesc desc;
     desc.format = VK_FORMAT_R8G8B8A8_SRGB;
     desc.width = width;
     desc.height = height;
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    Image image = create_image(context, desc);
+    Image image = create_image(device, desc);
 
-    Buffer staging = create_buffer(context, rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload);
+    Buffer staging = create_buffer(device, rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::HostUpload);
     std::memcpy(staging.mapped, rgba.data(), rgba.size());
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
-        transition(context, cmd, image, ImageState::Undefined, ImageState::TransferDst);
+    commands.submit_and_wait([&](VkCommandBuffer cmd) {
+        transition(device, cmd, image, ImageState::Undefined, ImageState::TransferDst);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {width, height, 1};
-        context->vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                                        &region);
-        transition(context, cmd, image, ImageState::TransferDst, ImageState::FragmentSampled);
+        device->vkCmdCopyBufferToImage(cmd, staging.get(), image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                       &region);
+        transition(device, cmd, image, ImageState::TransferDst, ImageState::FragmentSampled);
     });
     return image;
 }

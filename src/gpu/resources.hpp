@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "gpu/context.hpp"
 #include "gpu/device.hpp"
 #include "gpu/handle.hpp"
+#include "gpu/one_time_commands.hpp"
 
 namespace penumbra::gpu {
 
@@ -33,8 +33,9 @@ struct Buffer {
 Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind);
 
 // Creates a device-local buffer holding `bytes` (copied through a staging buffer, submitted
-// and waited for on the context's queue).
-Buffer create_buffer_with_data(const Context& context, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+// and waited for on the queue of `commands`).
+Buffer create_buffer_with_data(const OneTimeCommands& commands, std::span<const std::byte> bytes,
+                               VkBufferUsageFlags usage);
 
 struct ImageDesc {
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
@@ -61,6 +62,7 @@ struct Image {
 Image create_image(const Device& device, const ImageDesc& desc);
 
 // An RGBA8 sRGB texture with the given pixels, ready for sampling (SHADER_READ_ONLY).
-Image create_texture_rgba8(const Context& context, uint32_t width, uint32_t height, std::span<const uint8_t> rgba);
+Image create_texture_rgba8(const OneTimeCommands& commands, uint32_t width, uint32_t height,
+                           std::span<const uint8_t> rgba);
 
 }  // namespace penumbra::gpu

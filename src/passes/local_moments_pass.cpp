@@ -1,8 +1,8 @@
 #include "passes/local_moments_pass.hpp"
 
-#include "embedded_shaders.hpp"
 #include "gpu/barriers.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {
 
@@ -32,7 +32,7 @@ uint64_t LocalMomentsPass::memory_bytes() const { return moments_.memory_size + 
 
 void LocalMomentsPass::record(VkCommandBuffer cmd, const std::vector<LocalMomentsLayer>& layers,
                               glm::vec2 evsm_exponents) const {
-    gpu::transition(device_, cmd, moments_, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
+    gpu::transition(device_, cmd, moments_, gpu::ImageState::DiscardAfterShaderReads, gpu::ImageState::ColorAttachment);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, convert_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &depth_set_, 0, nullptr);
     std::vector<BlurLayer> blur_layers;
@@ -49,7 +49,7 @@ void LocalMomentsPass::record(VkCommandBuffer cmd, const std::vector<LocalMoment
         blur_layers.push_back({layer.layer, layer.resolution});
     }
     if (blur_) blur_->record(cmd, moments_, blur_layers);
-    gpu::transition(device_, cmd, moments_, gpu::ImageState::ColorAttachment, gpu::ImageState::FragmentSampled);
+    gpu::transition(device_, cmd, moments_, gpu::ImageState::ColorAttachment, gpu::ImageState::ShaderSampled);
 }
 
 }  // namespace penumbra::passes

@@ -39,8 +39,8 @@ public:
     VkSampler sampler() const { return sampler_; }
     uint64_t memory_bytes() const;
 
-    // Expects the depth map in FragmentSampled (as the local shadow pass leaves it); leaves
-    // the moments in FragmentSampled. `evsm_exponents` are the clamped (positive, negative) ones.
+    // Expects the depth map in ShaderSampled (as the local shadow pass leaves it); leaves
+    // the moments in ShaderSampled. `evsm_exponents` are the clamped (positive, negative) ones.
     void record(VkCommandBuffer cmd, const std::vector<LocalMomentsLayer>& layers, glm::vec2 evsm_exponents) const;
 
 private:

@@ -1,9 +1,11 @@
 #pragma once
-// Shadow-map depth pass of spot and point lights. Owns one layered D32 map that holds
-// every shadowed local light's layers (a spot: one; a point: six cube faces) and renders
-// each layer with its culled casters, reverse-Z, with the same slope-scaled depth bias as
-// the sun's cascades. A light whose resolution is below the map's renders into the
-// top-left resolution x resolution corner of its layers (the shader scales its UVs).
+// Shadow-map depth pass of spot and point lights: renders the layers of one layered D32
+// map (passes::create_depth_map) that holds every shadowed local light's layers (a spot:
+// one; a point: six cube faces), each with its culled casters, reverse-Z, with the same
+// slope-scaled depth bias as the sun's cascades. A light whose resolution is below the
+// map's renders into the top-left resolution x resolution corner of its layers (the
+// shader scales its UVs). The map belongs to the caller of the pass: it is resized as
+// lights come and go, the pipelines stay.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -12,44 +14,42 @@
 #include "gpu/device.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
-#include "passes/draw_data.hpp"
+#include "passes/casters.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
 
-// One layer to render: its index, the texels per side it uses and the draws that may cast into it.
+// One layer to render: its index, the texels per side it uses, the draws that may cast
+// into it and the winding of faces toward the light in its projection.
 struct LocalShadowLayer {
     uint32_t layer = 0;
     uint32_t resolution = 0;
-    std::vector<uint32_t> draws;  // indices into DrawData::draws
+    DrawList draws;
+    VkFrontFace facing_light = VK_FRONT_FACE_COUNTER_CLOCKWISE;
 };
 
 class LocalShadowPass {
 public:
-    // A map of `layer_count` layers (at least 1) of `resolution` texels per side.
-    LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout material_set_layout, uint32_t resolution,
-                    uint32_t layer_count);
+    // Set 0 of its pipelines is `frame_set_layout` (PenumbraLocalShadows at binding
+    // PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS), set 1 the alpha mask.
+    LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                    VkDescriptorSetLayout alpha_mask_set_layout);
 
-    // Set 0 of the pipelines: binding 0 = LocalLightUniforms (a storage buffer).
-    VkDescriptorSetLayout set_layout() const { return set_layout_; }
-    const gpu::Image& shadow_map() const { return shadow_map_; }
+    void prepare_pipelines(const VertexFormats& formats) { pipelines_.prepare(formats); }
 
-    // Renders `layers` (others are cleared to "no caster") and leaves the map ready for
-    // fragment-shader sampling.
-    void record(VkCommandBuffer cmd, VkDescriptorSet set, const DrawData& data,
-                const std::vector<LocalShadowLayer>& layers, const BiasSettings& bias) const;
+    // Renders `layers` of `map` (other layers are cleared to "no caster") and leaves the map
+    // in ImageState::ShaderSampled.
+    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
+                const std::vector<LocalShadowLayer>& layers, const gpu::Image& map, const BiasSettings& bias,
+                CasterCulling culling) const;
 
-    // Without shadowed lights: only moves the map into the layout the lighting pass binds.
-    void record_placeholder(VkCommandBuffer cmd) const;
+    // Without shadowed lights: only moves `map` into the layout the descriptor set names.
+    void record_placeholder(VkCommandBuffer cmd, const gpu::Image& map) const;
 
 private:
     const gpu::Device& device_;
-    uint32_t resolution_;
-    gpu::Image shadow_map_;
-    gpu::UniqueDescriptorSetLayout set_layout_;
     gpu::UniquePipelineLayout pipeline_layout_;
-    gpu::UniquePipeline opaque_;
-    gpu::UniquePipeline masked_;
+    CasterPipelines pipelines_;
 };
 
 }  // namespace penumbra::passes

@@ -1,10 +1,10 @@
 #include "passes/moments_blur.hpp"
 
-#include "embedded_shaders.hpp"
 #include "gpu/barriers.hpp"
-#include "passes/draw_recording.hpp"
+#include "passes/casters.hpp"
 #include "passes/shader_interface.hpp"
 #include "passes/shadow_filter_specialization.hpp"
+#include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {
 namespace {
@@ -105,7 +105,7 @@ MomentsBlur::MomentsBlur(const gpu::Device& device, const gpu::Image& moments, V
 
 void MomentsBlur::record(VkCommandBuffer cmd, const gpu::Image& moments, const std::vector<BlurLayer>& layers) const {
     gpu::transition(device_, cmd, moments, gpu::ImageState::ColorAttachment, gpu::ImageState::FragmentSampled);
-    gpu::transition(device_, cmd, scratch_, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
+    gpu::transition(device_, cmd, scratch_, gpu::ImageState::DiscardAfterShaderReads, gpu::ImageState::ColorAttachment);
     blur_direction(cmd, sets_[0], scratch_, layers, true);
     gpu::transition(device_, cmd, scratch_, gpu::ImageState::ColorAttachment, gpu::ImageState::FragmentSampled);
     gpu::transition(device_, cmd, moments, gpu::ImageState::FragmentSampled, gpu::ImageState::ColorAttachment);

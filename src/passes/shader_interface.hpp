@@ -1,52 +1,71 @@
 #pragma once
-// The C++ side of shaders/include/penumbra_shared.h: the same structs, checked member
-// by member against std140 offsets so that C++ and GLSL cannot disagree.
+// The C++ side of penumbra/shadow_interface.h (the caller-facing descriptor set) and of
+// shaders/include/penumbra_internal.h (the passes' push constants): the same structs,
+// checked member by member against their std140/std430 offsets so that C++ and GLSL
+// cannot disagree, and the limits checked against the library's C++ constants.
 #include <cstddef>
 #include <cstdint>
 
 #include "core/glm_config.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::shader {
 
 using mat4 = glm::mat4;
 using vec4 = glm::vec4;
+using vec3 = glm::vec3;
+using vec2 = glm::vec2;
 using uvec4 = glm::uvec4;
 
-#include "penumbra_shared.h"
+#include "penumbra_internal.h"
 
-static_assert(sizeof(mat4) == 64 && sizeof(vec4) == 16 && sizeof(uvec4) == 16);
-static_assert(offsetof(FrameUniforms, view) == 64);
-static_assert(offsetof(FrameUniforms, cascade_view_projection) == 128);
-static_assert(offsetof(FrameUniforms, camera_position) == 128 + 64 * PENUMBRA_MAX_CASCADES);
-static_assert(offsetof(FrameUniforms, cascade_split_far) == offsetof(FrameUniforms, camera_position) + 16 * 4);
-static_assert(offsetof(FrameUniforms, shadow_params) ==
-              offsetof(FrameUniforms, cascade_split_far) + 16 * (PENUMBRA_MAX_CASCADES / 2));
-static_assert(offsetof(FrameUniforms, options) == offsetof(FrameUniforms, shadow_params) + 32);
-static_assert(offsetof(FrameUniforms, cascade_filter) == offsetof(FrameUniforms, options) + 16);
-static_assert(offsetof(FrameUniforms, filter_params) ==
-              offsetof(FrameUniforms, cascade_filter) + 16 * PENUMBRA_MAX_CASCADES);
-static_assert(offsetof(FrameUniforms, moment_params) == offsetof(FrameUniforms, filter_params) + 16);
-static_assert(offsetof(FrameUniforms, filter_options) == offsetof(FrameUniforms, moment_params) + 16);
-static_assert(sizeof(FrameUniforms) == offsetof(FrameUniforms, filter_options) + 16);
+static_assert(sizeof(mat4) == 64 && sizeof(vec4) == 16 && sizeof(vec3) == 12 && sizeof(vec2) == 8);
 
-static_assert(offsetof(DrawPushConstants, base_color) == 64);
-static_assert(offsetof(DrawPushConstants, material) == 80);
-static_assert(offsetof(DrawPushConstants, flags) == 96);
-static_assert(sizeof(DrawPushConstants) == 112);
-static_assert(sizeof(DrawPushConstants) <= 128, "Vulkan guarantees only 128 bytes of push constants");
+static_assert(PENUMBRA_MAX_CASCADES == kMaxCascades);
+static_assert(PENUMBRA_MAX_LIGHTS == kMaxLights);
+static_assert(PENUMBRA_MAX_LOCAL_SHADOW_LAYERS == kMaxLocalShadowLayers);
+static_assert(PENUMBRA_MAX_SHADOWED_LIGHTS == kMaxLocalShadowBudget);
 
-static_assert(offsetof(TapCeilingPushConstants, counts) == 16);
-static_assert(sizeof(TapCeilingPushConstants) == 32);
+static_assert(offsetof(PenumbraCascade, light_radius_uv_per_depth) == 64);
+static_assert(offsetof(PenumbraCascade, max_depth_gradient) == 72);
+static_assert(offsetof(PenumbraCascade, split_far) == 80);
+static_assert(offsetof(PenumbraCascade, texel_world_size) == 84);
+static_assert(sizeof(PenumbraCascade) == 96);
 
+static_assert(offsetof(PenumbraShadowUniforms, cascades) == 64);
+static_assert(offsetof(PenumbraShadowUniforms, to_sun) == 64 + 96 * PENUMBRA_MAX_CASCADES);
+static_assert(offsetof(PenumbraShadowUniforms, cascade_count) == offsetof(PenumbraShadowUniforms, to_sun) + 16);
+static_assert(offsetof(PenumbraShadowUniforms, camera_near) == offsetof(PenumbraShadowUniforms, cascade_count) + 16);
+static_assert(offsetof(PenumbraShadowUniforms, light_bleeding_reduction) ==
+              offsetof(PenumbraShadowUniforms, camera_near) + 20);
+static_assert(offsetof(PenumbraShadowUniforms, frame_index) ==
+              offsetof(PenumbraShadowUniforms, light_bleeding_reduction) + 16);
+static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms, frame_index) + 12);
+static_assert(sizeof(PenumbraShadowUniforms) % 16 == 0);
+static_assert(sizeof(PenumbraShadowUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
+
+static_assert(offsetof(PenumbraLocalShadow, range) == 12);
+static_assert(offsetof(PenumbraLocalShadow, first_layer) == 16);
+static_assert(offsetof(PenumbraLocalShadow, uv_scale) == 32);
+static_assert(sizeof(PenumbraLocalShadow) == 48);
+
+static_assert(offsetof(PenumbraLocalShadows, shadowed_count) == 16);
+static_assert(offsetof(PenumbraLocalShadows, shadowed_lights) == 32);
+static_assert(offsetof(PenumbraLocalShadows, layer_view_projection) == 32 + 16 * (PENUMBRA_MAX_SHADOWED_LIGHTS / 4));
+static_assert(offsetof(PenumbraLocalShadows, lights) ==
+              offsetof(PenumbraLocalShadows, layer_view_projection) + 64 * PENUMBRA_MAX_LOCAL_SHADOW_LAYERS);
+static_assert(sizeof(PenumbraLocalShadows) ==
+              offsetof(PenumbraLocalShadows, lights) + sizeof(PenumbraLocalShadow) * PENUMBRA_MAX_LIGHTS);
+
+static_assert(offsetof(CasterPushConstants, layer) == 64);
+static_assert(offsetof(CasterPushConstants, alpha_scale) == 72);
+static_assert(sizeof(CasterPushConstants) == 80);
 static_assert(sizeof(BlurPushConstants) == 16);
 static_assert(offsetof(LocalMomentsPushConstants, depth_range) == 16);
 static_assert(sizeof(LocalMomentsPushConstants) == 32);
-
-static_assert(sizeof(LocalLight) == 80);
-static_assert(offsetof(LocalLightUniforms, lights) == 64 * PENUMBRA_MAX_LOCAL_SHADOW_LAYERS);
-static_assert(offsetof(LocalLightUniforms, counts) ==
-              offsetof(LocalLightUniforms, lights) + sizeof(LocalLight) * PENUMBRA_MAX_LOCAL_LIGHTS);
-static_assert(sizeof(LocalLightUniforms) == offsetof(LocalLightUniforms, counts) + 32);
-static_assert(sizeof(LocalLightUniforms) <= 128u << 20, "Vulkan guarantees 128 MiB storage buffer ranges");
+static_assert(offsetof(ResolvePushConstants, width) == 64);
+static_assert(offsetof(ResolvePushConstants, background_depth) == 80);
+static_assert(sizeof(ResolvePushConstants) == 96);
+static_assert(sizeof(ResolvePushConstants) <= 128, "Vulkan guarantees only 128 bytes of push constants");
 
 }  // namespace penumbra::shader

@@ -4,8 +4,8 @@
 #include <string_view>
 
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "scene/forest_scene.hpp"
-#include "scene/scene_loader.hpp"
 
 namespace penumbra {
 namespace {

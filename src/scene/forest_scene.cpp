@@ -6,9 +6,9 @@
 #include <set>
 #include <sstream>
 
-#include "core/local_lights.hpp"
 #include "penumbra/errors.hpp"
-#include "scene/primitives.hpp"
+#include "penumbra/scene/primitives.hpp"
+#include "penumbra/scene/render_settings.hpp"
 
 namespace penumbra {
 namespace {

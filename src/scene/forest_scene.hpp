@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 

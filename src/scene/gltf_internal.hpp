@@ -10,7 +10,7 @@
 
 #include <tiny_gltf.h>
 
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 

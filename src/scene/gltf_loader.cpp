@@ -1,8 +1,9 @@
-#include "scene/gltf_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <tuple>
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 

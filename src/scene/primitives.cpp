@@ -1,8 +1,9 @@
-#include "scene/primitives.hpp"
+#include "penumbra/scene/primitives.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
 
 #include "scene/mesh_tools.hpp"

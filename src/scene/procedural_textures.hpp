@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "penumbra/errors.hpp"
-#include "scene/gltf_loader.hpp"
-#include "scene/primitives.hpp"
+#include "penumbra/scene/loader.hpp"
+#include "penumbra/scene/primitives.hpp"
 #include "scene/procedural_textures.hpp"
 
 namespace penumbra {

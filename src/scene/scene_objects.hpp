@@ -3,7 +3,7 @@
 // their materials and procedural textures, and glTF models with their instances.
 #include <filesystem>
 
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 #include "scene/toml_fields.hpp"
 
 namespace penumbra {

@@ -2,7 +2,7 @@
 #include <sstream>
 
 #include "penumbra/errors.hpp"
-#include "scene/scene_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "scene/scene_objects.hpp"
 #include "scene/toml_fields.hpp"
 

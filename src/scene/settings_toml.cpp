@@ -1,10 +1,10 @@
-#include "scene/settings_toml.hpp"
+#include "penumbra/scene/settings_files.hpp"
 
 #include <functional>
 #include <map>
 
-#include "core/shadow_filters.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/settings.hpp"
 #include "scene/toml_fields.hpp"
 
 namespace penumbra {

@@ -1,4 +1,4 @@
-#include "scene/settings_writer.hpp"
+#include "penumbra/scene/settings_files.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "core/shadow_filters.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra {
 namespace {

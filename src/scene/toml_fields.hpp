@@ -16,7 +16,7 @@
 
 #include <toml++/toml.h>
 
-#include "core/glm_config.hpp"
+#include <glm/glm.hpp>
 
 namespace penumbra {
 

@@ -7,8 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/bounds.hpp"
-#include "core/scene.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra::testing {
 

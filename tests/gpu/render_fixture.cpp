@@ -1,7 +1,7 @@
 #include "render_fixture.hpp"
 
-#include "gpu/context.hpp"
-#include "scene/scene_loader.hpp"
+#include "penumbra/scene/loader.hpp"
+#include "renderer/app_context.hpp"
 
 namespace penumbra::testing {
 
@@ -16,16 +16,16 @@ RenderSettings small_settings(uint32_t width, uint32_t height) {
 }
 
 RenderedFrame render_with_validation(const Scene& scene, const RenderSettings& settings) {
-    gpu::ContextOptions options;
+    VulkanContextOptions options;
     options.validation = true;
     RenderedFrame frame;
     {
-        gpu::Context context(options);
+        const renderer::AppContext context(options);
         renderer::Renderer renderer(context, scene, settings);
         frame.images = renderer.render(scene.camera);
         frame.info = renderer.last_frame();
     }
-    frame.validation_messages = options.log->messages;
+    frame.validation_messages = options.validation_log->messages;
     return frame;
 }
 

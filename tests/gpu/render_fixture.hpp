@@ -4,8 +4,8 @@
 // while the device and instance were destroyed); the helpers assert that.
 #include <string>
 
-#include "core/render_settings.hpp"
-#include "core/scene.hpp"
+#include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/scene.hpp"
 #include "renderer/renderer.hpp"
 
 namespace penumbra::testing {

@@ -8,12 +8,13 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_job.hpp"
 #include "bench/paths.hpp"
 #include "bench/statistics.hpp"
 #include "cli_runner.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "scene/forest_scene.hpp"
-#include "scene/scene_loader.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -133,7 +134,7 @@ TEST_F(BenchCli, TriangleCeilingCountsEveryTriangleInEveryCascade) {
     EXPECT_EQ(report["ceiling"]["mode"], "triangles");
     EXPECT_EQ(report["ceiling"]["work_per_frame"].get<uint64_t>(), 4 * triangles);
     EXPECT_GT(report["ceiling"]["per_second"].get<double>(), 0.0);
-    EXPECT_EQ(report["settings"]["shadow_resolution"], 16);
+    EXPECT_EQ(report["settings"]["shadow_resolution"], penumbra::bench::kCeilingShadowResolution);
     EXPECT_EQ(report["settings"]["cull_casters"], false);
 }
 

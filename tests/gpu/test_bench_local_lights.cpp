@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "cli_runner.hpp"
-#include "core/local_lights.hpp"
+#include "penumbra/scene/loader.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "scene/forest_scene.hpp"
-#include "scene/scene_loader.hpp"
 
 using nlohmann::json;
 using penumbra::testing::read_text;

@@ -9,9 +9,9 @@
 
 #include "analytic_shadow.hpp"
 #include "core/camera_math.hpp"
+#include "penumbra/scene/loader.hpp"
+#include "penumbra/scene/primitives.hpp"
 #include "render_fixture.hpp"
-#include "scene/gltf_loader.hpp"
-#include "scene/primitives.hpp"
 
 namespace penumbra::testing {
 namespace {
@@ -205,7 +205,7 @@ TEST(AlphaMaskedCasters, KhronosAlphaQuadsCastShadowsWithHolesWhereAlphaIsBelowT
     // Shadow edges may sit up to ~4 shadow texels from the geometric edge: 1 for the normal
     // offset, 2 for the slope-scaled bias on the quads (lit at 45 degrees), 1 for bilinear
     // comparison; plus half a pixel's footprint on the ground (2 cm).
-    const float edge_band = 0.02f + 4.0f * frame.info.cascades.cascades[0].texel_world_size;
+    const float edge_band = 0.02f + 4.0f * frame.info.cascades[0].texel_world_size;
     size_t agree = 0, decided = 0, holes = 0, solid = 0;
     for (uint32_t y = 0; y < settings.height; ++y) {
         for (uint32_t x = 0; x < settings.width; ++x) {

@@ -6,8 +6,8 @@
 #include <set>
 
 #include "core/shadow_filters.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "render_fixture.hpp"
-#include "scene/scene_loader.hpp"
 
 namespace penumbra::testing {
 namespace {
@@ -49,8 +49,8 @@ TEST(DefaultScene, SunWithoutShadowsIsFullyLitWhereItFacesTheLight) {
         EXPECT_EQ(partial, 0u) << "without shadows visibility is exactly 0 (facing away) or 1";
         const size_t lit = std::count(visibility.begin(), visibility.end(), uint16_t{65535});
         EXPECT_GT(lit, visibility.size() / 2);
-        ASSERT_FALSE(frame.info.cascade_stats.empty());
-        for (const renderer::CascadeStats& cascade : frame.info.cascade_stats) {
+        ASSERT_FALSE(frame.info.cascades.empty());
+        for (const CascadeInfo& cascade : frame.info.cascades) {
             EXPECT_EQ(cascade.draws, 0u) << "a sun without shadows renders no casters";
         }
     }

@@ -10,7 +10,7 @@
 
 #include "core/shadow_filters.hpp"
 #include "filter_measurements.hpp"
-#include "scene/scene_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 
 namespace penumbra::testing {
 namespace {
@@ -112,7 +112,7 @@ float floating_box_edge_texels(ShadowFilter filter, int pcf_radius) {
     settings.shadow.filter.pcf_radius = pcf_radius;
     const RenderedFrame frame = render_with_validation(scene, settings);
     EXPECT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
-    const float texel = frame.info.cascades.cascades[0].texel_world_size;
+    const float texel = frame.info.cascades[0].texel_world_size;
     const Aabb box{{-1.5f, 1.85f, -1.5f}, {1.5f, 2.15f, 1.5f}};
     const auto samples = ground_samples(scene, frame.images, 8.0f, {box});
     // Signed distance to the outline, in texels, away from the corners (where two edges meet).
@@ -343,7 +343,7 @@ AcneAndContact measure_acne_and_contact(ShadowFilter filter, bool receiver_plane
     const glm::vec3 light = glm::normalize(glm::vec3(0.94f, -0.342f, 0.0f));
     const auto polygon = shadow_polygon(cube, light);
     // The edge band: 3 texels, stretched by 1 / sin(elevation) on the ground.
-    const float band = 3.0f * frame.info.cascades.cascades[0].texel_world_size / std::abs(light.y);
+    const float band = 3.0f * frame.info.cascades[0].texel_world_size / std::abs(light.y);
     size_t lit = 0, lit_exact = 0, contact = 0, contact_dark = 0;
     for (const GroundSample& sample : ground_samples(scene, frame.images, 8.0f, {cube})) {
         const float edge_distance = distance_to_polygon_edge(polygon, sample.xz);

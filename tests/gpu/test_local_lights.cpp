@@ -10,8 +10,8 @@
 
 #include "analytic_shadow.hpp"
 #include "core/shadow_filters.hpp"
+#include "library/frame_setup.hpp"
 #include "render_fixture.hpp"
-#include "renderer/local_light_setup.hpp"
 
 namespace penumbra::testing {
 namespace {
@@ -281,7 +281,7 @@ RoomShadows measure_room_shadows(Scene scene, ShadowFilter filter) {
     for (const Camera& view : views) {
         scene.camera = view;
         const RenderedFrame frame = render_light(scene, settings, 0);
-        if (!frame.info.local_shadow_stats.empty()) room.layers.push_back(frame.info.local_shadow_stats[0].layers);
+        if (!frame.info.local_shadows.empty()) room.layers.push_back(frame.info.local_shadows[0].layers);
         for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
             const glm::vec4 p = frame.images.world_position[i];
             if (p.w == 0.0f) continue;
@@ -380,15 +380,15 @@ INSTANTIATE_TEST_SUITE_P(LocalLights, WideSpotRoom,
 // every draw.
 TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
     const Scene scene = wide_spot_room();
-    passes::DrawData data;
+    passes::CasterScene data;
     for (const Instance& instance : scene.instances) {
-        passes::Draw draw;
+        passes::CasterDraw draw;
         draw.world_bounds = transform_aabb(scene.meshes[instance.mesh].bounds, instance.world);
         data.draws.push_back(draw);
     }
-    LocalShadowPlan plan = plan_local_shadows(scene, {});
-    fit_local_shadows(plan, scene, renderer::draw_bounds(data));
-    const auto culled = renderer::cull_local_casters(scene, plan, data, true);
+    LocalShadowPlan plan = plan_local_shadows(scene.lights, {});
+    fit_local_shadows(plan, scene.lights, library::caster_bounds(data));
+    const auto culled = library::cull_local_casters(scene.lights, plan, data, true);
     ASSERT_EQ(culled.size(), 6u);
     for (uint32_t face = 0; face < 6; ++face) {
         EXPECT_EQ(culled[face].layer, face);
@@ -398,7 +398,7 @@ TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
             EXPECT_FALSE(culled[face].draws.empty()) << "face " << face;
         }
     }
-    for (const auto& layer : renderer::cull_local_casters(scene, plan, data, false)) {
+    for (const auto& layer : library::cull_local_casters(scene.lights, plan, data, false)) {
         EXPECT_EQ(layer.draws.size(), data.draws.size()) << "no culling: face " << layer.layer;
     }
 }
@@ -725,8 +725,8 @@ TEST(LocalLights, CoverageSizingShrinksTheMapWithDistanceAndKeepsTheShadow) {
         scene.camera.eye = glm::normalize(glm::vec3(0.0f, 12.0f, 6.0f)) * distance;
         scene.camera.far_plane = distance + 40.0f;
         const RenderedFrame frame = render_light(scene, settings, 0);
-        ASSERT_EQ(frame.info.local_shadow_stats.size(), 1u);
-        const uint32_t resolution = frame.info.local_shadow_stats[0].resolution;
+        ASSERT_EQ(frame.info.local_shadows.size(), 1u);
+        const uint32_t resolution = frame.info.local_shadows[0].resolution;
         // The box's shadow stays under the box: the ground pixel nearest (0, 0, 0) is dark.
         float best = 1e9f, visibility_at_origin = 1.0f;
         for (size_t i = 0; i < frame.images.world_position.size(); ++i) {
@@ -747,7 +747,7 @@ TEST(LocalLights, CoverageSizingShrinksTheMapWithDistanceAndKeepsTheShadow) {
     }
     settings.local_shadows.sizing = LocalShadowSizing::Fixed;
     const RenderedFrame fixed = render_light(scene, settings, 0);
-    EXPECT_EQ(fixed.info.local_shadow_stats[0].resolution, settings.local_shadows.resolution);
+    EXPECT_EQ(fixed.info.local_shadows[0].resolution, settings.local_shadows.resolution);
 }
 
 }  // namespace

@@ -20,11 +20,11 @@ struct FootprintResult {
 
 // World size of a shadow texel at a point `distance` metres along a primary ray (the
 // cascades are selected by view depth, which is at most that distance).
-float texel_size_at(const CascadeSet& cascades, float distance) {
-    for (const Cascade& cascade : cascades.cascades) {
+float texel_size_at(const std::vector<CascadeInfo>& cascades, float distance) {
+    for (const CascadeInfo& cascade : cascades) {
         if (distance <= cascade.split_far) return cascade.texel_world_size;
     }
-    return cascades.cascades.back().texel_world_size;
+    return cascades.back().texel_world_size;
 }
 
 FootprintResult measure_footprint(const glm::vec3& light_direction) {

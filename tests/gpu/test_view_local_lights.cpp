@@ -8,9 +8,9 @@
 #include <string>
 
 #include "cli_runner.hpp"
-#include "core/local_lights.hpp"
 #include "image/png_io.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/settings.hpp"
 #include "script.hpp"
 
 using penumbra::testing::read_text;

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "penumbra/errors.hpp"
-#include "scene/scene_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 
 namespace penumbra::testing {
 

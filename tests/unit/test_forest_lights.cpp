@@ -6,8 +6,9 @@
 #include <algorithm>
 
 #include "core/local_lights.hpp"
+#include "penumbra/scene/loader.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "scene/forest_scene.hpp"
-#include "scene/scene_loader.hpp"
 #include "scene_test_support.hpp"
 
 namespace penumbra {
@@ -43,7 +44,7 @@ TEST(ForestLights, SpotAngleSetsTheConesAndWideSpotsTakeCubes) {
         EXPECT_FLOAT_EQ(spot->outer_angle_degrees, 100.0f);
         EXPECT_FLOAT_EQ(spot->inner_angle_degrees, 90.0f);
     }
-    EXPECT_EQ(plan_local_shadows(scene, LocalShadowSettings{}).layer_count, 2u * 6u);
+    EXPECT_EQ(plan_local_shadows(scene.lights, LocalShadowSettings{}).layer_count, 2u * 6u);
     EXPECT_EQ(input_error_message([] { load_scene("builtin:forest?spot_angle=180"); }),
               "builtin:forest?spot_angle=180: spot_angle: expected an integer from 1 to 179, got \"180\"");
 }
@@ -93,7 +94,7 @@ TEST(ForestLights, SunFirstThenSpotsThenPointsAllCastingShadows) {
     for (size_t i = 4; i <= 5; ++i) EXPECT_EQ(scene.lights[i].type, LightType::Point) << i;
     for (const Light& light : scene.lights) EXPECT_TRUE(light.cast_shadows);
     EXPECT_EQ(scene.instances.size(), 1 + 3 * size_t{20}) << "lights add no geometry";
-    const LocalShadowPlan plan = plan_local_shadows(scene, LocalShadowSettings{});
+    const LocalShadowPlan plan = plan_local_shadows(scene.lights, LocalShadowSettings{});
     EXPECT_EQ(plan.slots.size(), 5u);
     EXPECT_EQ(plan.layer_count, 3u + 2u * 6u);
 }

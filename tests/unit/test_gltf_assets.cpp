@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "scene/gltf_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 
 namespace penumbra {
 namespace {

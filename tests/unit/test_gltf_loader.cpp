@@ -3,8 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/gltf_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
 
 namespace penumbra {

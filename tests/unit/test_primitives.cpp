@@ -4,8 +4,8 @@
 #include <functional>
 #include <string>
 
+#include "penumbra/scene/primitives.hpp"
 #include "scene/mesh_tools.hpp"
-#include "scene/primitives.hpp"
 
 namespace penumbra {
 namespace {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "quality/camera_jitter.hpp"
 #include "quality/error_images.hpp"

@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "scene/scene_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
 
 namespace penumbra {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "scene/scene_loader.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
 
 namespace penumbra {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/local_lights.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "scene_test_support.hpp"
 
 namespace penumbra {
@@ -116,14 +117,13 @@ TEST(LocalShadowPlan, BudgetAndLayers) {
         light.type = i % 2 == 0 ? LightType::Spot : LightType::Point;
         scene.lights.push_back(light);
     }
-    const LocalShadowPlan plan = plan_local_shadows(scene, {3, 256});
-    EXPECT_EQ(plan.local_lights.size(), 5u);
+    const LocalShadowPlan plan = plan_local_shadows(scene.lights, {3, 256});
     ASSERT_EQ(plan.slots.size(), 3u);
     EXPECT_EQ(plan.slots[0].light, 1u);
     EXPECT_EQ(plan.slots[1].first_layer, 1u);
     EXPECT_EQ(plan.slots[2].first_layer, 7u);
     EXPECT_EQ(plan.layer_count, 8u);
-    EXPECT_EQ(plan.over_budget, 2u);
+    EXPECT_EQ(plan.unshadowed, (std::vector<uint32_t>{4, 5}));
     EXPECT_EQ(plan.atlas_resolution, 256u);
 }
 
@@ -148,8 +148,8 @@ TEST(LocalShadowPlan, WideSpotsAreShadowedByACube) {
     EXPECT_FLOAT_EQ(local_shadow_half_fov(scene.lights[0]), glm::radians(60.0f));
     EXPECT_FLOAT_EQ(local_shadow_half_fov(scene.lights[2]), glm::radians(45.0f));
 
-    LocalShadowPlan plan = plan_local_shadows(scene, {8, 256});
-    fit_local_shadows(plan, scene, {Aabb{{-10, -1, -10}, {10, 0, 10}}});
+    LocalShadowPlan plan = plan_local_shadows(scene.lights, {8, 256});
+    fit_local_shadows(plan, scene.lights, {Aabb{{-10, -1, -10}, {10, 0, 10}}});
     ASSERT_EQ(plan.slots.size(), 3u);
     EXPECT_EQ(plan.slots[0].view_projection.size(), 1u);
     EXPECT_EQ(plan.slots[1].first_layer, 1u);
@@ -293,13 +293,13 @@ TEST(LocalShadowSizing, FixedLightsKeepTheirResolution) {
     scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 1.0f));
     scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 1.0f));
     scene.lights[1].shadow_resolution = 512;
-    LocalShadowPlan plan = plan_local_shadows(scene, {8, 2048, LocalShadowSizing::Coverage});
+    LocalShadowPlan plan = plan_local_shadows(scene.lights, {8, 2048, LocalShadowSizing::Coverage});
     EXPECT_EQ(plan.atlas_resolution, 2048u);
-    size_local_shadows(plan, scene, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 2048);
+    size_local_shadows(plan, scene.lights, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 2048);
     EXPECT_EQ(plan.slots[0].resolution, 64u);
     EXPECT_EQ(plan.slots[1].resolution, 512u) << "the light's own shadow_resolution";
-    LocalShadowPlan fixed = plan_local_shadows(scene, {8, 2048, LocalShadowSizing::Fixed});
-    size_local_shadows(fixed, scene, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 2048);
+    LocalShadowPlan fixed = plan_local_shadows(scene.lights, {8, 2048, LocalShadowSizing::Fixed});
+    size_local_shadows(fixed, scene.lights, camera_at({0, 0, 20}, {0, 0, 0}), 1080, 2048);
     EXPECT_EQ(fixed.slots[0].resolution, 2048u);
 }
 
@@ -310,8 +310,8 @@ TEST(LocalShadowMath, NearPlaneKeepsCastersOffTheAxis) {
     Scene scene;
     scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 10.0f));
     const Aabb box{{1.1f, -1.3f, 1.1f}, {1.3f, -1.2f, 1.3f}};
-    LocalShadowPlan plan = plan_local_shadows(scene, {});
-    fit_local_shadows(plan, scene, {box});
+    LocalShadowPlan plan = plan_local_shadows(scene.lights, {});
+    fit_local_shadows(plan, scene.lights, {box});
     ASSERT_EQ(plan.slots.size(), 1u);
     const float nearest = glm::length(glm::vec3(1.1f, -1.2f, 1.1f));
     EXPECT_NEAR(plan.slots[0].near_plane, nearest / std::sqrt(3.0f), 1e-4f);

@@ -3,8 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "penumbra/errors.hpp"
-#include "scene/settings_toml.hpp"
-#include "scene/settings_writer.hpp"
+#include "penumbra/scene/settings_files.hpp"
 
 namespace penumbra {
 namespace {

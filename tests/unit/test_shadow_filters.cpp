@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/settings_overrides.hpp"
 #include "core/shadow_filters.hpp"
 #include "penumbra/errors.hpp"
-#include "scene/settings_toml.hpp"
+#include "penumbra/scene/settings_files.hpp"
+#include "penumbra/scene/settings_overrides.hpp"
 
 namespace penumbra {
 namespace {

@@ -3,11 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
+#include "penumbra/scene/primitives.hpp"
 #include "quality/alpha_mask.hpp"
 #include "quality/reference_visibility.hpp"
 #include "quality/shadow_ray_tracer.hpp"
-#include "scene/primitives.hpp"
 
 namespace penumbra::quality {
 namespace {

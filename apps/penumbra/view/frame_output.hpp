@@ -11,15 +11,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/context.hpp"
 #include "gpu/resources.hpp"
 #include "present/presenter.hpp"
+#include "renderer/app_context.hpp"
 
 namespace penumbra::view {
 
 class FrameOutput {
 public:
-    explicit FrameOutput(const gpu::Context& context) : context_(context) {}
+    explicit FrameOutput(const renderer::AppContext& context) : context_(context) {}
 
     // Blits `color` over the whole swapchain image (scaled if the sizes differ) and leaves
     // the image in ColorAttachment. With `capture`, the blitted image is also copied out.
@@ -33,7 +33,7 @@ public:
     VkExtent2D captured_extent() const { return captured_extent_; }
 
 private:
-    const gpu::Context& context_;
+    const renderer::AppContext& context_;
     gpu::Buffer capture_buffer_;
     VkExtent2D captured_extent_{};
     VkFormat captured_format_ = VK_FORMAT_UNDEFINED;

@@ -6,8 +6,9 @@
 #include <bit>
 #include <string>
 
-#include "core/local_lights.hpp"
 #include "panel.hpp"
+#include "penumbra/scene/render_settings.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::view {
 namespace {
@@ -32,7 +33,7 @@ LocalLightCounts count_local_lights(const PanelStats& stats) {
         }
     }
     if (!stats.frame) return counts;
-    counts.shadowed = static_cast<uint32_t>(stats.frame->local_shadow_stats.size());
+    counts.shadowed = static_cast<uint32_t>(stats.frame->local_shadows.size());
     for (const gpu::ScopeTime& scope : stats.frame->gpu_times) {
         if (scope.name == "shadow_local") counts.shadow_pass_ms = scope.milliseconds;
     }
@@ -73,7 +74,7 @@ void local_shadow_table(const PanelStats& stats) {
         ImGui::TableSetupColumn(heading);
     }
     ImGui::TableHeadersRow();
-    for (const renderer::LocalShadowStats& light : stats.frame->local_shadow_stats) {
+    for (const LocalShadowInfo& light : stats.frame->local_shadows) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::Text("%u", light.light);
@@ -105,7 +106,7 @@ void draw_local_lights(LocalShadowSettings& local, const PanelStats& stats) {
                             counts.casting - counts.shadowed);
     }
     if (counts.shadow_pass_ms >= 0.0) ImGui::Text("GPU shadow_local %.3f ms", counts.shadow_pass_ms);
-    if (stats.frame && !stats.frame->local_shadow_stats.empty()) local_shadow_table(stats);
+    if (stats.frame && !stats.frame->local_shadows.empty()) local_shadow_table(stats);
 }
 
 }  // namespace penumbra::view

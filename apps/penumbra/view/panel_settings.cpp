@@ -5,8 +5,8 @@
 #include <array>
 #include <string>
 
-#include "core/shadow_filters.hpp"
 #include "panel.hpp"
+#include "penumbra/settings.hpp"
 
 namespace penumbra::view {
 namespace {
@@ -39,8 +39,8 @@ void manual_splits(CascadeSettings& cascades, const renderer::FrameInfo* frame) 
     const size_t wanted = static_cast<size_t>(cascades.count - 1);
     if (cascades.manual_splits.size() != wanted) {
         cascades.manual_splits.clear();
-        if (frame && frame->cascades.cascades.size() == static_cast<size_t>(cascades.count)) {
-            for (size_t i = 0; i < wanted; ++i) cascades.manual_splits.push_back(frame->cascades.cascades[i].split_far);
+        if (frame && frame->cascades.size() == static_cast<size_t>(cascades.count)) {
+            for (size_t i = 0; i < wanted; ++i) cascades.manual_splits.push_back(frame->cascades[i].split_far);
         } else {
             for (size_t i = 0; i < wanted; ++i) {
                 cascades.manual_splits.push_back(cascades.max_distance * static_cast<float>(i + 1) / (wanted + 1));

@@ -32,8 +32,8 @@ void cascade_table(const renderer::FrameInfo& frame) {
     if (!ImGui::BeginTable("cascades", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
     for (const char* heading : {"#", "range (m)", "texels/m", "draws", "triangles"}) ImGui::TableSetupColumn(heading);
     ImGui::TableHeadersRow();
-    for (size_t i = 0; i < frame.cascades.cascades.size(); ++i) {
-        const Cascade& cascade = frame.cascades.cascades[i];
+    for (size_t i = 0; i < frame.cascades.size(); ++i) {
+        const CascadeInfo& cascade = frame.cascades[i];
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::Text("%zu", i);
@@ -42,11 +42,9 @@ void cascade_table(const renderer::FrameInfo& frame) {
         ImGui::TableNextColumn();
         ImGui::Text("%.1f", cascade.texel_world_size > 0.0f ? 1.0f / cascade.texel_world_size : 0.0f);
         ImGui::TableNextColumn();
-        if (i < frame.cascade_stats.size()) ImGui::Text("%u", frame.cascade_stats[i].draws);
+        ImGui::Text("%u", cascade.draws);
         ImGui::TableNextColumn();
-        if (i < frame.cascade_stats.size()) {
-            ImGui::Text("%llu", static_cast<unsigned long long>(frame.cascade_stats[i].triangles));
-        }
+        ImGui::Text("%llu", static_cast<unsigned long long>(cascade.triangles));
     }
     ImGui::EndTable();
 }
@@ -83,7 +81,7 @@ void shadow_map_layers(const renderer::GrayImage& strip) {
 void draw_statistics(const PanelStats& stats) {
     timing_section(stats);
     if (stats.frame && ImGui::CollapsingHeader("Cascade statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Text("shadow distance %.1f m", stats.frame->cascades.shadow_distance);
+        ImGui::Text("shadow distance %.1f m", stats.frame->shadow_distance);
         cascade_table(*stats.frame);
     }
     if (ImGui::CollapsingHeader("Shadow-map layers")) shadow_map_layers(stats.shadow_map_layers);

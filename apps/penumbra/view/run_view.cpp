@@ -2,7 +2,7 @@
 // written once the run has passed validation.
 #include <cstdio>
 
-#include "scene/settings_writer.hpp"
+#include "penumbra/scene/settings_files.hpp"
 #include "view_job.hpp"
 #include "viewer.hpp"
 
@@ -24,8 +24,8 @@ struct RunResult {
 };
 
 RunResult run_window(const ViewJob& job, PreparedJob prepared, std::vector<TimedAction> script, present::Window& window,
-                     gpu::ContextOptions options) {
-    gpu::Context context(options);
+                     const VulkanContextOptions& options) {
+    renderer::AppContext context(options);
     present::Surface surface(context, window);
     // Automation does not wait for vertical blank.
     present::Presenter presenter(context, window, surface, present::SwapchainOptions{!job.frames.has_value()});
@@ -33,7 +33,7 @@ RunResult run_window(const ViewJob& job, PreparedJob prepared, std::vector<Timed
     Viewer viewer(job, std::move(prepared), std::move(script), ViewerParts{context, window, presenter, ui});
     RunResult result;
     result.frames = viewer.run();
-    result.device_name = context.info().name;
+    result.device_name = context.physical_device_info().name;
     result.final_capture = viewer.take_final_capture();
     result.settings = viewer.state().settings;
     result.camera = viewer.state().camera.camera();
@@ -47,12 +47,12 @@ ViewSummary run_view(const ViewJob& job) {
     PreparedJob prepared = prepare_render_job(job.render);
     std::vector<TimedAction> script = job.script ? load_script(*job.script) : std::vector<TimedAction>{};
     present::Window window({window_title(job), prepared.settings.width, prepared.settings.height});
-    gpu::ContextOptions options = job.render.device;
-    options.log = std::make_shared<gpu::ValidationLog>();
-    options.presentation = window.presentation_options();
+    VulkanContextOptions options = job.render.device;
+    options.validation_log = std::make_shared<ValidationLog>();
+    window.add_presentation(options);
     const RunResult result = run_window(job, std::move(prepared), std::move(script), window, options);
     // Checked after the device and instance are gone, so leak reports count too.
-    check_validation(*options.log);
+    check_validation(*options.validation_log);
 
     ViewSummary summary{result.frames, result.device_name, std::nullopt};
     if (result.final_capture) {

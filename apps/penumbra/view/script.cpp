@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "penumbra/errors.hpp"
-#include "scene/settings_toml.hpp"
+#include "penumbra/scene/settings_files.hpp"
 
 namespace penumbra::view {
 namespace {

@@ -27,8 +27,8 @@
 #include <variant>
 #include <vector>
 
-#include "core/glm_config.hpp"
-#include "core/settings_overrides.hpp"
+#include <glm/glm.hpp>
+#include "penumbra/scene/settings_overrides.hpp"
 #include "view_controls.hpp"
 
 namespace penumbra::view {

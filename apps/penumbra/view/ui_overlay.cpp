@@ -73,7 +73,8 @@ gpu::UniqueDescriptorPool create_font_pool(const gpu::Device& device) {
 
 }  // namespace
 
-UiOverlay::UiOverlay(const gpu::Context& context, const present::Window& window, const present::Presenter& presenter)
+UiOverlay::UiOverlay(const renderer::AppContext& context, const present::Window& window,
+                     const present::Presenter& presenter)
     : context_(context), presenter_(presenter), format_(presenter.swapchain().format()) {
     pool_ = create_font_pool(context);
     render_pass_ = create_render_pass(context, format_);

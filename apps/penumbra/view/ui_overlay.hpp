@@ -9,16 +9,16 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 #include "present/presenter.hpp"
 #include "present/window.hpp"
+#include "renderer/app_context.hpp"
 
 namespace penumbra::view {
 
 class UiOverlay {
 public:
-    UiOverlay(const gpu::Context& context, const present::Window& window, const present::Presenter& presenter);
+    UiOverlay(const renderer::AppContext& context, const present::Window& window, const present::Presenter& presenter);
     ~UiOverlay();
     UiOverlay(const UiOverlay&) = delete;
     UiOverlay& operator=(const UiOverlay&) = delete;
@@ -31,7 +31,7 @@ public:
 private:
     void rebuild_framebuffers();
 
-    const gpu::Context& context_;
+    const renderer::AppContext& context_;
     const present::Presenter& presenter_;
     gpu::UniqueDescriptorPool pool_;
     gpu::UniqueRenderPass render_pass_;

@@ -4,8 +4,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "core/settings_overrides.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/settings_overrides.hpp"
 
 namespace penumbra::view {
 namespace {

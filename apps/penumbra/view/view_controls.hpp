@@ -6,8 +6,8 @@
 // Orbit: turn the eye about the target, zoom changes the eye-target distance.
 // Both keep the camera's up vector as the world's up and never let the view direction
 // come within 1 degree of it.
-#include "core/glm_config.hpp"
-#include "core/scene.hpp"
+#include <glm/glm.hpp>
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra::view {
 

@@ -9,8 +9,8 @@
 
 #include <vulkan/vulkan.h>
 
-#include "core/render_settings.hpp"
-#include "core/scene.hpp"
+#include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/scene.hpp"
 #include "view_controls.hpp"
 
 namespace penumbra::view {

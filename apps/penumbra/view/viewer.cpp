@@ -4,7 +4,7 @@
 #include <string>
 
 #include "penumbra/errors.hpp"
-#include "scene/settings_writer.hpp"
+#include "penumbra/scene/settings_files.hpp"
 #include "view_actions.hpp"
 
 namespace penumbra::view {

@@ -21,7 +21,7 @@
 namespace penumbra::view {
 
 struct ViewerParts {
-    const gpu::Context& context;
+    const renderer::AppContext& context;
     present::Window& window;
     present::Presenter& presenter;
     UiOverlay& ui;

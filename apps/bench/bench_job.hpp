@@ -1,0 +1,119 @@
+#pragma once
+// The library entry point behind `penumbra bench`: render N frames of a scene (after a
+// warm-up) along a deterministic camera path, without reading images back, and
+// collect per-pass GPU times (timestamp queries), per-step CPU times, and the draw and
+// triangle counts of every cascade and every shadowed spot/point light. Ceiling modes
+// measure the same pipeline state at its limits instead: triangle rate (the shadow pass
+// at a tiny resolution, no culling) or texture sampling rate (a full-screen pass of N
+// shadow-map taps). docs/bench.md.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/paths.hpp"
+#include "bench/statistics.hpp"
+#include "penumbra/scene/render_settings.hpp"
+#include "renderer/render_job.hpp"
+
+namespace penumbra::bench {
+
+enum class Ceiling {
+    None,
+    Triangles,  // shadow pass at kCeilingShadowResolution, every caster in every cascade
+    Taps,       // full-screen pass of `taps` comparison taps per pixel
+};
+
+// The smallest cascade map the library accepts: rasterisation costs little next to the
+// triangles themselves.
+constexpr uint32_t kCeilingShadowResolution = 512;
+constexpr uint32_t kMaxTaps = 4096;
+
+struct BenchJob {
+    RenderJob render;  // scene, config, overrides, device, validation; output and aov unused
+    uint32_t frames = 100;
+    uint32_t warmup = 10;
+    CameraPath camera_path = CameraPath::Orbit;
+    LightPath light_path = LightPath::Fixed;
+    Ceiling ceiling = Ceiling::None;
+    uint32_t taps = 16;     // per pixel, for Ceiling::Taps
+    bool readback = false;  // read the images back every frame, as `render` does
+    std::optional<std::filesystem::path> json;
+    // Called after every frame (warm-up included) with frames done and the total.
+    std::function<void(uint32_t done, uint32_t total)> progress;
+};
+
+struct DeviceReport {
+    std::string name;
+    std::string driver;
+    std::string type;
+    std::string api_version;
+    uint32_t timestamp_valid_bits = 0;
+    double timestamp_period_ns = 0.0;
+};
+
+struct SceneReport {
+    std::string spec;
+    size_t meshes = 0;
+    size_t materials = 0;
+    size_t instances = 0;  // = draws per pass without culling
+    uint64_t triangles = 0;
+    uint64_t vertices = 0;  // stored once per mesh
+};
+
+struct CountSummary {
+    double mean = 0.0;
+    uint64_t min = 0;
+    uint64_t max = 0;
+};
+
+struct CascadeReport {
+    CountSummary draws;      // per frame
+    CountSummary triangles;  // per frame
+};
+
+// One shadowed spot or point light (renderer::LocalShadowStats), over the measured frames.
+struct LocalShadowReport {
+    uint32_t light = 0;  // index into the scene's lights
+    std::string type;    // "spot" or "point"
+    uint32_t layers = 0;
+    // Texels per side of each of its layers, per frame: the renderer may size a light's map
+    // by its screen coverage, which changes along the camera path.
+    CountSummary resolution;
+    float near_plane = 0.0f;  // metres, the smallest of the frames (lights and casters stand still)
+    CountSummary draws;       // per frame, over all its layers
+    CountSummary triangles;   // per frame, over all its layers
+};
+
+struct CeilingReport {
+    std::string mode;  // "triangles" or "taps"
+    std::string unit;  // what work_per_frame counts
+    uint64_t work_per_frame = 0;
+    double per_second = 0.0;  // work_per_frame / median time of the measured passes
+};
+
+struct BenchResult {
+    std::string version;
+    DeviceReport device;
+    SceneReport scene;
+    RenderSettings settings;
+    BenchJob job;                             // without the progress callback
+    std::vector<std::string> gpu_pass_order;  // first-seen order, "frame" last
+    std::map<std::string, Summary> gpu_ms;
+    std::vector<std::string> cpu_step_order;
+    std::map<std::string, Summary> cpu_ms;
+    std::vector<CascadeReport> cascades;
+    std::vector<LocalShadowReport> local_shadows;  // shadowed local lights, in light order
+    // Every shadow map: the cascades, the moments maps of a moment filter and the shared
+    // layered map of the shadowed local lights (not the placeholder without any).
+    uint64_t shadow_map_bytes = 0;
+    uint32_t frames_without_gpu_times = 0;  // timestamps unsupported or not ready
+    std::optional<CeilingReport> ceiling;
+};
+
+// Throws InputError (bad job or scene), DeviceError (no device) or ValidationFailure.
+BenchResult run_bench_job(const BenchJob& job);
+
+}  // namespace penumbra::bench

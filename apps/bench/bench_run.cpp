@@ -1,0 +1,300 @@
+// run_bench_job: the frame loops of `penumbra bench` and the collection of their samples.
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <map>
+
+#include "bench/bench_job.hpp"
+#include "bench/tap_ceiling_pass.hpp"
+#include "gpu/frame_commands.hpp"
+#include "gpu/timestamps.hpp"
+#include "penumbra/errors.hpp"
+#include "penumbra/scene/loader.hpp"
+#include "renderer/renderer.hpp"
+
+namespace penumbra::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Named samples, remembering the order in which names first appeared.
+class SampleSet {
+public:
+    void add(const std::string& name, double value) {
+        auto [entry, inserted] = samples_.try_emplace(name);
+        if (inserted) order_.push_back(name);
+        entry->second.push_back(value);
+    }
+
+    // `last` (when present) goes to the end of the order: totals read best after their parts.
+    void summarize_into(std::vector<std::string>& order, std::map<std::string, Summary>& summaries,
+                        const std::string& last = "") const {
+        for (const std::string& name : order_) {
+            if (name != last) order.push_back(name);
+        }
+        if (samples_.contains(last)) order.push_back(last);
+        for (const auto& [name, values] : samples_) summaries[name] = summarize(values);
+    }
+
+private:
+    std::vector<std::string> order_;
+    std::map<std::string, std::vector<double>> samples_;
+};
+
+// One shadowed local light's counts, frame after frame. Which lights are shadowed is fixed
+// when the Renderer is created, so every frame reports the same lights in the same order.
+struct LocalShadowSamples {
+    uint32_t light = 0;  // index into the scene's lights
+    uint32_t layers = 0;
+    float near_plane = std::numeric_limits<float>::infinity();
+    std::vector<uint64_t> resolution;  // [frame]
+    std::vector<uint64_t> draws;
+    std::vector<uint64_t> triangles;
+};
+
+struct FrameSamples {
+    SampleSet gpu;
+    SampleSet cpu;
+    std::vector<std::vector<uint64_t>> cascade_draws;  // [cascade][frame]
+    std::vector<std::vector<uint64_t>> cascade_triangles;
+    std::vector<LocalShadowSamples> local_shadows;
+    uint32_t frames_without_gpu_times = 0;
+
+    void add_gpu_times(const std::vector<gpu::ScopeTime>& times) {
+        if (times.empty()) ++frames_without_gpu_times;
+        for (const gpu::ScopeTime& time : times) gpu.add(time.name, time.milliseconds);
+    }
+};
+
+CountSummary summarize_counts(const std::vector<uint64_t>& counts) {
+    CountSummary summary;
+    if (counts.empty()) return summary;
+    summary.min = *std::min_element(counts.begin(), counts.end());
+    summary.max = *std::max_element(counts.begin(), counts.end());
+    double total = 0.0;
+    for (const uint64_t count : counts) total += static_cast<double>(count);
+    summary.mean = total / static_cast<double>(counts.size());
+    return summary;
+}
+
+void validate_job(const BenchJob& job) {
+    if (job.frames == 0) throw InputError("--frames: must be at least 1, got 0");
+    if (job.ceiling == Ceiling::Taps && (job.taps == 0 || job.taps > kMaxTaps)) {
+        throw InputError("--taps: must be between 1 and " + std::to_string(kMaxTaps) + ", got " +
+                         std::to_string(job.taps));
+    }
+}
+
+// Path parameter of frame `index`: warm-up frames repeat the first measured frame.
+float path_parameter(const BenchJob& job, uint32_t index) {
+    if (index < job.warmup) return 0.0f;
+    return static_cast<float>(index - job.warmup) / static_cast<float>(job.frames);
+}
+
+DeviceReport describe_device(const renderer::AppContext& context, const gpu::GpuTimer& timer) {
+    const PhysicalDeviceInfo& info = context.physical_device_info();
+    DeviceReport report;
+    report.name = info.name;
+    report.driver = info.driver;
+    report.type = info.type;
+    report.api_version = vulkan_version_string(info.api_version);
+    report.timestamp_valid_bits = timer.valid_bits();
+    report.timestamp_period_ns = timer.period_ns();
+    return report;
+}
+
+SceneReport describe_scene(const std::string& spec, const Scene& scene) {
+    SceneReport report;
+    report.spec = spec.empty() ? std::string(kDefaultSceneName) : spec;
+    report.meshes = scene.meshes.size();
+    report.materials = scene.materials.size();
+    report.instances = scene.instances.size();
+    report.triangles = scene.triangle_count();
+    for (const Mesh& mesh : scene.meshes) report.vertices += mesh.vertices.size();
+    return report;
+}
+
+void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, FrameSamples& samples) {
+    samples.add_gpu_times(frame.gpu_times);
+    samples.cpu.add("cascade_setup", frame.cpu_times.cascade_setup_ms);
+    samples.cpu.add("culling", frame.cpu_times.culling_ms);
+    samples.cpu.add("recording", frame.cpu_times.recording_ms);
+    samples.cpu.add("submit_wait", frame.cpu_times.submit_wait_ms);
+    samples.cpu.add("frame_wall", wall_ms);
+    samples.cascade_draws.resize(frame.cascades.size());
+    samples.cascade_triangles.resize(frame.cascades.size());
+    for (size_t c = 0; c < frame.cascades.size(); ++c) {
+        samples.cascade_draws[c].push_back(frame.cascades[c].draws);
+        samples.cascade_triangles[c].push_back(frame.cascades[c].triangles);
+    }
+    samples.local_shadows.resize(frame.local_shadows.size());
+    for (size_t i = 0; i < frame.local_shadows.size(); ++i) {
+        const LocalShadowInfo& stats = frame.local_shadows[i];
+        LocalShadowSamples& light = samples.local_shadows[i];
+        light.light = stats.light;
+        light.layers = stats.layers;
+        light.near_plane = std::min(light.near_plane, stats.near_plane);
+        light.resolution.push_back(stats.resolution);
+        light.draws.push_back(stats.draws);
+        light.triangles.push_back(stats.triangles);
+    }
+}
+
+Light* find_sun(Scene& scene) {
+    for (Light& light : scene.lights) {
+        if (light.type == LightType::Directional) return &light;
+    }
+    return nullptr;
+}
+
+// The renderer's frames along the camera and light paths. The Renderer keeps a reference
+// to `prepared.scene` and reads its sun every frame, so moving the sun here moves it there.
+FrameSamples run_renderer_frames(const renderer::AppContext& context, const BenchJob& job, PreparedJob& prepared,
+                                 BenchResult& result) {
+    renderer::Renderer renderer(context, prepared.scene, prepared.settings);
+    result.device = describe_device(context, renderer.gpu_timer());
+    const Camera start_camera = prepared.scene.camera;
+    Light* sun = find_sun(prepared.scene);
+    const glm::vec3 start_sun = sun ? sun->direction : glm::vec3{0.0f, -1.0f, 0.0f};
+    const auto readback = job.readback ? renderer::ReadbackMode::Images : renderer::ReadbackMode::None;
+
+    FrameSamples samples;
+    const uint32_t total = job.warmup + job.frames;
+    for (uint32_t index = 0; index < total; ++index) {
+        const float t = path_parameter(job, index);
+        if (sun) sun->direction = glm::normalize(sun_on_path(job.light_path, start_sun, t));
+        const Clock::time_point start = Clock::now();
+        renderer.render(camera_on_path(job.camera_path, start_camera, t), readback);
+        const double wall_ms = milliseconds_since(start);
+        if (index >= job.warmup) record_renderer_frame(renderer.last_frame(), wall_ms, samples);
+        if (job.progress) job.progress(index + 1, total);
+    }
+    // The maps as the last frame's lights sized them (spot/point maps follow the lights).
+    result.shadow_map_bytes = renderer.shadow_map_bytes();
+    return samples;
+}
+
+// The sampling-rate ceiling: no scene rendering, only the full-screen tap pass.
+FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob& job, const RenderSettings& settings,
+                            BenchResult& result) {
+    const TapCeilingPass pass(context, {settings.width, settings.height, settings.shadow.cascades.resolution,
+                                        static_cast<uint32_t>(settings.shadow.cascades.count), job.taps});
+    gpu::FrameCommands commands(context);
+    gpu::GpuTimer timer(context, 2);
+    result.device = describe_device(context, timer);
+    result.shadow_map_bytes = pass.shadow_map_bytes();
+    context.submit_and_wait([&](VkCommandBuffer cmd) { pass.record_setup(cmd); });
+
+    FrameSamples samples;
+    const uint32_t total = job.warmup + job.frames;
+    for (uint32_t index = 0; index < total; ++index) {
+        double recording_ms = 0.0;
+        const Clock::time_point start = Clock::now();
+        commands.submit_and_wait([&](VkCommandBuffer cmd) {
+            const Clock::time_point record_start = Clock::now();
+            timer.begin_frame(cmd);
+            gpu::TimedScope frame_scope(&timer, cmd, "frame");
+            gpu::TimedScope taps_scope(&timer, cmd, "taps");
+            pass.record(cmd);
+            recording_ms = milliseconds_since(record_start);
+        });
+        const double wall_ms = milliseconds_since(start);
+        if (index >= job.warmup) {
+            samples.add_gpu_times(timer.read().value_or(std::vector<gpu::ScopeTime>{}));
+            samples.cpu.add("recording", recording_ms);
+            samples.cpu.add("frame_wall", wall_ms);
+        }
+        if (job.progress) job.progress(index + 1, total);
+    }
+    result.ceiling = CeilingReport{"taps", "texture taps", pass.taps_per_frame(), 0.0};
+    return samples;
+}
+
+// The triangle-rate ceiling renders the same casters with the same pipelines into a map so
+// small that rasterisation costs nothing, with every caster in every cascade.
+void apply_triangle_ceiling(RenderSettings& settings) {
+    settings.shadow.cascades.resolution = kCeilingShadowResolution;
+    settings.shadow.cull_casters = false;
+    settings.width = kCeilingShadowResolution;
+    settings.height = kCeilingShadowResolution;
+}
+
+// The cascades' shadow passes: the triangle ceiling counts cascade triangles only, so the
+// spot/point lights' passes ("shadow_local...") are timed but not part of the rate.
+double cascade_shadow_median_ms(const BenchResult& result) {
+    double total = 0.0;
+    for (const auto& [name, summary] : result.gpu_ms) {
+        if (name.starts_with("shadow_") && !name.starts_with("shadow_local")) total += summary.median;
+    }
+    return total;
+}
+
+LocalShadowReport summarize_local_shadow(const LocalShadowSamples& samples, const Scene& scene) {
+    LocalShadowReport report;
+    report.light = samples.light;
+    report.type = scene.lights.at(samples.light).type == LightType::Spot ? "spot" : "point";
+    report.layers = samples.layers;
+    report.resolution = summarize_counts(samples.resolution);
+    report.near_plane = samples.near_plane;
+    report.draws = summarize_counts(samples.draws);
+    report.triangles = summarize_counts(samples.triangles);
+    return report;
+}
+
+void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchResult& result) {
+    samples.gpu.summarize_into(result.gpu_pass_order, result.gpu_ms, "frame");
+    samples.cpu.summarize_into(result.cpu_step_order, result.cpu_ms, "frame_wall");
+    for (size_t c = 0; c < samples.cascade_draws.size(); ++c) {
+        result.cascades.push_back(
+            {summarize_counts(samples.cascade_draws[c]), summarize_counts(samples.cascade_triangles[c])});
+    }
+    for (const LocalShadowSamples& light : samples.local_shadows) {
+        result.local_shadows.push_back(summarize_local_shadow(light, scene));
+    }
+    result.frames_without_gpu_times = samples.frames_without_gpu_times;
+}
+
+void finish_ceiling(const BenchJob& job, const Scene& scene, const RenderSettings& settings, BenchResult& result) {
+    if (job.ceiling == Ceiling::Triangles) {
+        const uint64_t work = scene.triangle_count() * static_cast<uint64_t>(settings.shadow.cascades.count);
+        const double ms = cascade_shadow_median_ms(result);
+        result.ceiling = CeilingReport{"triangles", "cascade triangles", work, ms > 0.0 ? work / (ms * 1e-3) : 0.0};
+    } else if (job.ceiling == Ceiling::Taps && result.ceiling) {
+        const double ms = result.gpu_ms.contains("taps") ? result.gpu_ms.at("taps").median : 0.0;
+        result.ceiling->per_second = ms > 0.0 ? static_cast<double>(result.ceiling->work_per_frame) / (ms * 1e-3) : 0.0;
+    }
+}
+
+}  // namespace
+
+BenchResult run_bench_job(const BenchJob& job) {
+    validate_job(job);
+    PreparedJob prepared = prepare_render_job(job.render);
+    if (job.ceiling == Ceiling::Triangles) apply_triangle_ceiling(prepared.settings);
+
+    BenchResult result;
+    result.version = PENUMBRA_VERSION;
+    result.job = job;
+    result.job.progress = nullptr;
+    result.settings = prepared.settings;
+    result.scene = describe_scene(job.render.scene, prepared.scene);
+    VulkanContextOptions device_options = job.render.device;
+    device_options.validation_log = std::make_shared<ValidationLog>();
+    {
+        renderer::AppContext context(device_options);
+        const FrameSamples samples = job.ceiling == Ceiling::Taps
+                                         ? run_tap_frames(context, job, prepared.settings, result)
+                                         : run_renderer_frames(context, job, prepared, result);
+        summarize_samples(samples, prepared.scene, result);
+    }
+    // Checked after the device and instance are gone, so leak reports count too.
+    check_validation(*device_options.validation_log);
+    finish_ceiling(job, prepared.scene, prepared.settings, result);
+    return result;
+}
+
+}  // namespace penumbra::bench

@@ -1,0 +1,41 @@
+#pragma once
+// What the renderer's camera passes (lighting, geometry AOVs) draw: geometry buffers,
+// materials (with their descriptor sets) and draws. Built by GpuScene from a Scene.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace penumbra::renderer {
+
+struct MaterialBinding {
+    VkDescriptorSet descriptor_set = VK_NULL_HANDLE;  // set RENDERER_SET_MATERIAL
+    VkImageView texture_view = VK_NULL_HANDLE;        // the base colour texture (or a white texel)
+    glm::vec4 base_color{1.0f};
+    float alpha_cutoff = 0.5f;
+    float roughness = 0.6f;
+    float metallic = 0.0f;
+    bool has_texture = false;
+    bool alpha_masked = false;  // MASK, or BLEND cast and shaded as MASK
+    bool double_sided = false;
+};
+
+struct Draw {
+    uint32_t first_index = 0;
+    uint32_t index_count = 0;
+    int32_t vertex_offset = 0;
+    uint32_t material = 0;  // index into DrawData::materials
+    glm::mat4 model{1.0f};
+};
+
+struct DrawData {
+    VkBuffer vertex_buffer = VK_NULL_HANDLE;  // penumbra::Vertex
+    VkBuffer index_buffer = VK_NULL_HANDLE;   // uint32
+    std::vector<MaterialBinding> materials;
+    std::vector<Draw> draws;
+    VkDescriptorSetLayout material_set_layout = VK_NULL_HANDLE;
+};
+
+}  // namespace penumbra::renderer

@@ -1,0 +1,95 @@
+#include "renderer/draw_recording.hpp"
+
+#include <cstddef>
+
+#include "penumbra/scene/scene.hpp"
+
+namespace penumbra::renderer {
+
+gpu::VertexLayout scene_vertex_layout() {
+    gpu::VertexLayout layout;
+    layout.stride = sizeof(Vertex);
+    layout.attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))});
+    layout.attributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))});
+    layout.attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv))});
+    return layout;
+}
+
+shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBinding& material) {
+    shader::DrawPushConstants constants{};
+    constants.model = draw.model;
+    constants.base_color = material.base_color;
+    constants.material = {material.alpha_cutoff, material.roughness, material.metallic, 0.0f};
+    constants.flags = {0u, material.has_texture ? 1u : 0u,
+                       material.alpha_masked ? RENDERER_ALPHA_MASK : RENDERER_ALPHA_OPAQUE, 0u};
+    return constants;
+}
+
+void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+    const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    device->vkCmdSetViewport(cmd, 0, 1, &viewport);
+    device->vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                 const Draw& draw) {
+    const MaterialBinding& material = data.materials[draw.material];
+    device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, RENDERER_SET_MATERIAL, 1,
+                                    &material.descriptor_set, 0, nullptr);
+    const shader::DrawPushConstants constants = draw_push_constants(draw, material);
+    device->vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(constants), &constants);
+    device->vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+}
+
+VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear) {
+    VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    attachment.imageView = view;
+    attachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attachment.clearValue.color = clear;
+    return attachment;
+}
+
+void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
+                            std::span<const VkRenderingAttachmentInfo> colors, VkImageView depth_view, uint32_t width,
+                            uint32_t height) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depth_view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {0.0f, 0};
+
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {width, height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = &depth;
+    device->vkCmdBeginRendering(cmd, &info);
+    set_viewport_and_scissor(device, cmd, width, height);
+}
+
+void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                         VkPipeline single_sided, VkPipeline double_sided) {
+    VkDeviceSize offset = 0;
+    device->vkCmdBindVertexBuffers(cmd, 0, 1, &data.vertex_buffer, &offset);
+    device->vkCmdBindIndexBuffer(cmd, data.index_buffer, 0, VK_INDEX_TYPE_UINT32);
+    for (const bool double_sided_pass : {false, true}) {
+        device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                  double_sided_pass ? double_sided : single_sided);
+        for (const Draw& draw : data.draws) {
+            if (data.materials[draw.material].double_sided != double_sided_pass) continue;
+            record_draw(device, cmd, layout, data, draw);
+        }
+    }
+}
+
+VkPushConstantRange draw_push_constant_range() {
+    return {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(shader::DrawPushConstants)};
+}
+
+}  // namespace penumbra::renderer

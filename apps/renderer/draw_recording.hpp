@@ -1,0 +1,44 @@
+#pragma once
+// Helpers shared by the camera passes for recording draws: push constants from a draw and
+// its material, vertex layout, viewport and scissor.
+#include <vulkan/vulkan.h>
+
+#include <span>
+
+#include "gpu/pipeline.hpp"
+#include "renderer/draw_data.hpp"
+#include "renderer/shader_interface.hpp"
+
+namespace penumbra::renderer {
+
+// The scene's interleaved Vertex: position, normal, uv at locations 0, 1, 2.
+gpu::VertexLayout scene_vertex_layout();
+
+shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBinding& material);
+
+void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
+
+// Binds the material's descriptor set and push constants, then issues the indexed draw.
+void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                 const Draw& draw);
+
+VkPushConstantRange draw_push_constant_range();
+
+// A colour attachment cleared to `clear` at the start of the pass and stored at its end.
+VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear);
+
+// Begins the dynamic rendering of a camera pass (one layer, the whole `width` x `height`
+// area) with the given colour attachments and a reverse-Z depth buffer cleared to 0 (far)
+// and not stored, then sets the viewport and scissor to the same area.
+void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
+                            std::span<const VkRenderingAttachmentInfo> colors, VkImageView depth_view, uint32_t width,
+                            uint32_t height);
+
+// Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
+// passes do: single-sided materials with `single_sided` (back faces culled), then
+// double-sided ones with `double_sided`. Passes that must cover the same fragments (the
+// lighting and geometry-AOV passes) share this order, so depth ties resolve identically.
+void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                         VkPipeline single_sided, VkPipeline double_sided);
+
+}  // namespace penumbra::renderer

@@ -1,0 +1,148 @@
+#include "renderer/gpu_scene.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "renderer/shader_interface.hpp"
+
+namespace penumbra::renderer {
+namespace {
+
+template <typename T>
+std::span<const std::byte> as_bytes(const std::vector<T>& values) {
+    return std::as_bytes(std::span<const T>(values));
+}
+
+Vec3 to_vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+Mat4 to_mat4(const glm::mat4& m) {
+    Mat4 result;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) result(row, column) = m[column][row];
+    }
+    return result;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const AppContext& context, const Scene& scene, ShadowSystem& shadows) {
+    const std::vector<MeshRange> ranges = upload_geometry(context, scene);
+    create_materials(context, scene);
+    add_draws(scene, ranges);
+    add_shadow_casters(scene, ranges, shadows);
+}
+
+std::vector<GpuScene::MeshRange> GpuScene::upload_geometry(const AppContext& context, const Scene& scene) {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<MeshRange> ranges;
+    for (const Mesh& mesh : scene.meshes) {
+        ranges.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(mesh.indices.size()),
+                          static_cast<int32_t>(vertices.size())});
+        vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+        indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    }
+    vertices_ = gpu::create_buffer_with_data(context.one_time(), as_bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    indices_ = gpu::create_buffer_with_data(context.one_time(), as_bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    draw_data_.vertex_buffer = vertices_.get();
+    draw_data_.index_buffer = indices_.get();
+    return ranges;
+}
+
+void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& ranges) {
+    for (const Instance& instance : scene.instances) {
+        const MeshRange& range = ranges.at(instance.mesh);
+        if (range.index_count == 0) continue;
+        Draw draw;
+        draw.first_index = range.first_index;
+        draw.index_count = range.index_count;
+        draw.vertex_offset = range.vertex_offset;
+        draw.material = scene.meshes[instance.mesh].material;
+        draw.model = instance.world;
+        draw_data_.draws.push_back(draw);
+    }
+}
+
+void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
+    for (const Texture& texture : scene.textures) {
+        textures_.push_back(
+            gpu::create_texture_rgba8(context.one_time(), texture.width, texture.height, texture.rgba8));
+    }
+    const std::array<uint8_t, 4> white{255, 255, 255, 255};
+    textures_.push_back(gpu::create_texture_rgba8(context.one_time(), 1, 1, white));
+    texture_sampler_ = gpu::create_sampler(context, {});
+
+    const VkDescriptorSetLayoutBinding binding{RENDERER_BINDING_BASE_COLOR_TEXTURE,
+                                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    material_set_layout_ = gpu::create_descriptor_set_layout(context, {&binding, 1});
+    draw_data_.material_set_layout = material_set_layout_;
+
+    std::vector<Material> materials = scene.materials;
+    if (materials.empty()) materials.emplace_back();  // a scene may have meshes but no materials
+    const auto count = static_cast<uint32_t>(materials.size());
+    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count};
+    descriptor_pool_ = gpu::create_descriptor_pool(context, count, {&pool_size, 1});
+
+    for (const Material& material : materials) {
+        MaterialBinding binding_data;
+        binding_data.descriptor_set = gpu::allocate_descriptor_set(context, descriptor_pool_, material_set_layout_);
+        const bool has_texture = material.base_color_texture >= 0 &&
+                                 material.base_color_texture < static_cast<int32_t>(scene.textures.size());
+        const gpu::Image& texture = has_texture ? textures_[material.base_color_texture] : textures_.back();
+        gpu::write_combined_image_sampler(context, binding_data.descriptor_set, RENDERER_BINDING_BASE_COLOR_TEXTURE,
+                                          texture.view, texture_sampler_);
+        binding_data.texture_view = texture.view;
+        binding_data.base_color = material.base_color;
+        binding_data.has_texture = has_texture;
+        // BLEND materials are drawn and cast alpha-tested at 0.5 (docs/techniques.md):
+        // sorted transparency is out of scope and a shadow map stores one depth per texel.
+        binding_data.alpha_masked = material.alpha_mode != AlphaMode::Opaque;
+        binding_data.alpha_cutoff = material.alpha_mode == AlphaMode::Blend ? 0.5f : material.alpha_cutoff;
+        binding_data.roughness = material.roughness;
+        binding_data.metallic = material.metallic;
+        binding_data.double_sided = material.double_sided;
+        draw_data_.materials.push_back(binding_data);
+    }
+}
+
+// Each mesh is the range of the shared buffers that the camera passes draw, positions and
+// UVs read in place from the interleaved vertices; a masked material's texture is its alpha
+// mask. A masked material without a texture has one alpha everywhere: it casts entirely or
+// not at all, as the lighting pass shows it entirely or not at all.
+void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges,
+                                  ShadowSystem& shadows) const {
+    std::vector<MeshId> ids(scene.meshes.size());
+    std::vector<bool> casts(scene.meshes.size(), true);
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const MeshRange& range = ranges[m];
+        if (range.index_count == 0) continue;
+        const MaterialBinding& material = draw_data_.materials.at(scene.meshes[m].material);
+        MeshDesc desc;
+        desc.positions = {vertices_.get(), offsetof(Vertex, position), sizeof(Vertex), VK_FORMAT_R32G32B32_SFLOAT};
+        desc.index_buffer = indices_.get();
+        desc.index_offset = VkDeviceSize{range.first_index} * sizeof(uint32_t);
+        desc.index_count = range.index_count;
+        desc.vertex_offset = range.vertex_offset;
+        desc.bounds = {to_vec3(scene.meshes[m].bounds.min), to_vec3(scene.meshes[m].bounds.max)};
+        if (material.alpha_masked && material.has_texture) {
+            desc.uvs = VertexStream{vertices_.get(), offsetof(Vertex, uv), sizeof(Vertex), VK_FORMAT_R32G32_SFLOAT};
+            desc.alpha_mask = AlphaMaskDesc{material.texture_view, texture_sampler_, material.alpha_cutoff,
+                                            std::clamp(material.base_color.a, 0.0f, 1.0f)};
+        }
+        casts[m] = !material.alpha_masked || material.has_texture || material.base_color.a >= material.alpha_cutoff;
+        ids[m] = shadows.add_mesh(desc);
+    }
+    for (const Instance& instance : scene.instances) {
+        if (ranges.at(instance.mesh).index_count == 0) continue;
+        const MaterialBinding& material = draw_data_.materials.at(scene.meshes[instance.mesh].material);
+        uint32_t flags = kInstanceAlphaMasked;
+        if (casts[instance.mesh]) flags |= kInstanceCastsShadows;
+        if (material.double_sided) flags |= kInstanceDoubleSided;
+        shadows.add_instance({ids[instance.mesh], to_mat4(instance.world), flags});
+    }
+}
+
+}  // namespace penumbra::renderer

@@ -1,0 +1,45 @@
+#pragma once
+// A Scene uploaded to the GPU by the tools' renderer: one vertex and one index buffer for
+// every mesh, a texture per scene texture (plus a white fallback), a descriptor set per
+// material and the draw list of the camera passes. Its meshes and instances are also given
+// to the ShadowSystem as any renderer gives its own: the mesh ranges of these very buffers
+// (nothing is copied), with the material's texture as the alpha mask of masked casters.
+#include <vector>
+
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "penumbra/scene/scene.hpp"
+#include "penumbra/shadow_system.hpp"
+#include "renderer/app_context.hpp"
+#include "renderer/draw_data.hpp"
+
+namespace penumbra::renderer {
+
+class GpuScene {
+public:
+    GpuScene(const AppContext& context, const Scene& scene, ShadowSystem& shadows);
+
+    const DrawData& draw_data() const { return draw_data_; }
+
+private:
+    struct MeshRange {
+        uint32_t first_index = 0;
+        uint32_t index_count = 0;
+        int32_t vertex_offset = 0;
+    };
+
+    std::vector<MeshRange> upload_geometry(const AppContext& context, const Scene& scene);
+    void create_materials(const AppContext& context, const Scene& scene);
+    void add_draws(const Scene& scene, const std::vector<MeshRange>& ranges);
+    void add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows) const;
+
+    gpu::Buffer vertices_;
+    gpu::Buffer indices_;
+    std::vector<gpu::Image> textures_;  // scene textures, then the white fallback last
+    gpu::UniqueSampler texture_sampler_;
+    gpu::UniqueDescriptorSetLayout material_set_layout_;
+    gpu::UniqueDescriptorPool descriptor_pool_;
+    DrawData draw_data_;
+};
+
+}  // namespace penumbra::renderer

@@ -1,0 +1,33 @@
+#pragma once
+// The C++ side of shaders/include/renderer_shared.h, checked against its std140/std430
+// offsets.
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "penumbra/scene/render_settings.hpp"
+
+namespace penumbra::renderer::shader {
+
+using mat4 = glm::mat4;
+using vec4 = glm::vec4;
+using vec3 = glm::vec3;
+using uvec4 = glm::uvec4;
+
+#include "renderer_shared.h"
+
+static_assert(RENDERER_MAX_LOCAL_LIGHTS == kMaxLocalLights);
+static_assert(offsetof(FrameUniforms, camera_position) == 64);
+static_assert(offsetof(FrameUniforms, debug_view) == 128);
+static_assert(sizeof(FrameUniforms) == 144);
+static_assert(offsetof(LocalLight, direction) == 16);
+static_assert(offsetof(LocalLight, radiance) == 32);
+static_assert(offsetof(LocalLight, cos_inner) == 48);
+static_assert(sizeof(LocalLight) == 64);
+static_assert(sizeof(LocalLights) == 64 * RENDERER_MAX_LOCAL_LIGHTS);
+static_assert(offsetof(DrawPushConstants, base_color) == 64);
+static_assert(offsetof(DrawPushConstants, flags) == 96);
+static_assert(sizeof(DrawPushConstants) == 112);
+
+}  // namespace penumbra::renderer::shader

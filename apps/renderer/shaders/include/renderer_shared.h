@@ -1,0 +1,71 @@
+// The tools' renderer's GPU interface, shared by its C++ (apps/renderer/shader_interface.hpp
+// checks every offset) and its shaders: the frame uniforms, the lights it shades, the
+// per-draw push constants, and where Penumbra's descriptor set is bound.
+#ifndef PENUMBRA_RENDERER_SHARED_H
+#define PENUMBRA_RENDERER_SHARED_H
+
+#ifdef __cplusplus
+#define RENDERER_UINT uint32_t
+#define RENDERER_INT int32_t
+#else
+#define RENDERER_UINT uint
+#define RENDERER_INT int
+#endif
+
+#define RENDERER_SET_FRAME 0
+#define RENDERER_BINDING_FRAME_UNIFORMS 0
+#define RENDERER_BINDING_LIGHTS 1
+#define RENDERER_SET_MATERIAL 1
+#define RENDERER_BINDING_BASE_COLOR_TEXTURE 0
+// The ShadowSystem's descriptor set (the shaders define PENUMBRA_SHADOW_SET to this).
+#define RENDERER_SET_SHADOWS 2
+
+#define RENDERER_DEBUG_VIEW_NONE 0u
+#define RENDERER_DEBUG_VIEW_CASCADES 1u
+#define RENDERER_ALPHA_OPAQUE 0u
+#define RENDERER_ALPHA_MASK 1u
+// Cascade index written where no cascade applies (no geometry, beyond the shadow distance).
+#define RENDERER_NO_CASCADE 255u
+#define RENDERER_MAX_LOCAL_LIGHTS 64
+#define RENDERER_LIGHT_SPOT 1u
+#define RENDERER_LIGHT_POINT 2u
+
+struct FrameUniforms {
+    mat4 view_projection;             // camera: world -> clip
+    vec4 camera_position;             // xyz
+    vec4 to_sun;                      // xyz: unit vector toward the sun; w: 1 when there is a sun
+    vec4 sun_radiance;                // rgb: colour * intensity
+    vec4 ambient;                     // rgb: ambient radiance
+    RENDERER_UINT debug_view;         // RENDERER_DEBUG_VIEW_*
+    RENDERER_INT visibility_light;    // the local light written to the visibility target (-1: the sun)
+    RENDERER_UINT local_light_count;  // entries of LocalLights::lights
+    RENDERER_UINT padding;
+};
+
+// A spot or point light as the renderer shades it; its shadow comes from Penumbra.
+struct LocalLight {
+    vec3 position;
+    float range;
+    vec3 direction;      // unit travel direction (spot)
+    RENDERER_UINT type;  // RENDERER_LIGHT_SPOT or _POINT
+    vec3 radiance;       // colour * intensity
+    float cos_outer;     // spot cone (-1 for points)
+    float cos_inner;
+    RENDERER_UINT shadow_index;  // the light's index in the ShadowSystem's set_lights() list
+    float padding0;
+    float padding1;
+};
+
+struct LocalLights {
+    LocalLight lights[RENDERER_MAX_LOCAL_LIGHTS];
+};
+
+struct DrawPushConstants {
+    mat4 model;       // model -> world
+    vec4 base_color;  // linear RGBA factor
+    vec4 material;    // x: alpha cutoff, y: roughness, z: metallic
+    // y: 1 when the material has a base colour texture, z: alpha mode (RENDERER_ALPHA_*)
+    uvec4 flags;
+};
+
+#endif

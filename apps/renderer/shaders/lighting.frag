@@ -1,0 +1,82 @@
+#version 460
+// Forward shading of the sun (Lambert diffuse + GGX specular), spot and point lights and
+// ambient, with every light's shadow from Penumbra's shadow library, included here as any
+// renderer would include it (penumbra/shadow.glsl, its descriptor set at set 2). Besides
+// the tone-mapped colour it writes two exact outputs used by tests and tools: a light's
+// visibility (R16_UNORM: the sun's, or light N's with `--aov shadow:N`) and the index of
+// the cascade that shadowed the pixel (R8_UINT).
+#extension GL_GOOGLE_include_directive : require
+#include "renderer_shared.h"
+
+layout(std140, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_FRAME_UNIFORMS) uniform FrameBlock {
+    FrameUniforms frame;
+};
+layout(std430, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_LIGHTS) readonly buffer LightBlock {
+    LocalLights local;
+};
+layout(push_constant) uniform PushBlock { DrawPushConstants draw; };
+layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_BASE_COLOR_TEXTURE) uniform sampler2D base_color_texture;
+
+#define PENUMBRA_SHADOW_SET RENDERER_SET_SHADOWS
+#include "penumbra/shadow.glsl"
+#include "penumbra/shadow_fragment.glsl"
+#include "shading.glsl"
+#include "local_lighting.glsl"
+
+layout(location = 0) in vec3 in_world_position;
+layout(location = 1) in vec3 in_world_normal;
+layout(location = 2) in vec2 in_uv;
+
+layout(location = 0) out vec4 out_color;
+layout(location = 1) out float out_visibility;
+layout(location = 2) out uint out_cascade;
+
+const vec3 kCascadeTints[8] = vec3[](vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25), vec3(0.3, 0.45, 1.0),
+                                     vec3(1.0, 1.0, 0.25), vec3(1.0, 0.3, 1.0), vec3(0.25, 1.0, 1.0),
+                                     vec3(1.0, 0.6, 0.2), vec3(0.7, 0.7, 0.7));
+
+void main() {
+    vec3 normal = normalize(in_world_normal);
+    if (!gl_FrontFacing) normal = -normal;  // double-sided materials are lit from both sides
+    // Before the discard and every per-pixel branch: they take screen-space derivatives.
+    const PenumbraSunReceiver receiver = penumbra_sun_receiver_fragment(in_world_position, normal);
+    const vec3 plane_normal = penumbra_geometric_normal(in_world_position, normal);
+
+    vec4 base_color = draw.base_color;
+    if (draw.flags.y != 0u) base_color *= texture(base_color_texture, in_uv);
+    if (draw.flags.z == RENDERER_ALPHA_MASK && base_color.a < draw.material.x) discard;
+
+    float visibility = penumbra_sun_visibility(receiver, normal);
+    const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
+    vec3 color = shade_sun(base_color.rgb, normal, to_view, frame.to_sun.xyz, frame.sun_radiance.rgb * visibility,
+                           draw.material.y, draw.material.z);
+    // Spot and point lights; with `--aov shadow:N` light N's visibility (shadow, cone, range,
+    // facing) replaces the sun's in the visibility target.
+    for (uint i = 0u; i < frame.local_light_count; ++i) {
+        // Only the position and range first: most lights do not reach most pixels, and
+        // those pixels skip the cone, the shadow lookup and the BRDF.
+        const vec3 light_vector = local.lights[i].position - in_world_position;
+        const float distance = length(light_vector);
+        const vec3 to_light = light_vector / max(distance, 1e-4);
+        const bool in_range = distance < local.lights[i].range && dot(normal, to_light) > 0.0;
+        const float cone = in_range ? spot_cone(local.lights[i], to_light) : 0.0;
+        if (cone <= 0.0) {
+            if (int(i) == frame.visibility_light) visibility = 0.0;
+            continue;
+        }
+        const LocalLight light = local.lights[i];
+        const float shadow =
+            penumbra_light_shadow(light.shadow_index, in_world_position, normal, plane_normal, gl_FragCoord.xy);
+        if (int(i) == frame.visibility_light) visibility = shadow * cone;
+        const float falloff = distance_falloff(distance, light.range);
+        color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance * (falloff * cone * shadow),
+                           draw.material.y, draw.material.z);
+    }
+    color += base_color.rgb * frame.ambient.rgb;
+    const int cascade = receiver.cascade;
+    if (frame.debug_view == RENDERER_DEBUG_VIEW_CASCADES && cascade >= 0) color *= kCascadeTints[cascade];
+
+    out_color = vec4(tone_map(color), 1.0);
+    out_visibility = visibility;
+    out_cascade = cascade >= 0 ? uint(cascade) : RENDERER_NO_CASCADE;
+}

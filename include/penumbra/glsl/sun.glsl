@@ -1,0 +1,172 @@
+// The sun's cascaded shadow map (included by penumbra/shadow.glsl): cascade selection,
+// receiver coordinates with normal offset and receiver-plane bias, every filter, and the
+// blend band between cascades.
+//
+// Cascade selection by view depth, a blend band between neighbouring cascades and a
+// distance fade follow the usual cascaded-shadow-map practice (PSSM, Zhang et al. 2006;
+// Microsoft's "Cascaded Shadow Maps" article). The map stores reverse-Z depth (1 = nearest
+// the light), so a receiver is lit when its depth >= the stored depth: the comparison
+// sampler uses VK_COMPARE_OP_GREATER_OR_EQUAL.
+#ifndef PENUMBRA_GLSL_SUN
+#define PENUMBRA_GLSL_SUN
+
+int penumbra_cascade_count() { return int(penumbra_shadow.cascade_count); }
+
+float penumbra_cascade_split_far(int cascade) { return penumbra_shadow.cascades[cascade].split_far; }
+
+float penumbra_cascade_split_near(int cascade) {
+    return cascade == 0 ? penumbra_shadow.camera_near : penumbra_cascade_split_far(cascade - 1);
+}
+
+// Distance along the prepared camera's view direction.
+float penumbra_view_depth(vec3 world_position) {
+    return -(penumbra_shadow.camera_view * vec4(world_position, 1.0)).z;
+}
+
+// The first cascade whose far split lies beyond the view depth, or -1 past the last one
+// (and always -1 when the sun casts no shadow).
+int penumbra_select_cascade(float view_depth) {
+    for (int cascade = 0; cascade < penumbra_cascade_count(); ++cascade) {
+        if (view_depth <= penumbra_cascade_split_far(cascade)) return cascade;
+    }
+    return -1;
+}
+
+// A receiver point in one cascade's shadow map.
+struct PenumbraShadowCoord {
+    vec2 uv;
+    float depth;          // reverse-Z depth of the receiver (1 = nearest the light)
+    vec2 depth_gradient;  // receiver plane dz/du, dz/dv (0 without receiver-plane bias)
+};
+
+// Shadow-map coordinates (u, v, reverse-Z depth) of a receiver in `cascade`. The receiver
+// moves along its normal by a multiple of the cascade's world texel size (normal-offset
+// shadows, Holbert 2011): larger texels need a larger offset.
+vec3 penumbra_project_to_cascade(int cascade, vec3 world_position, vec3 world_normal) {
+    const float offset = penumbra_shadow.normal_offset_texels * penumbra_shadow.cascades[cascade].texel_world_size;
+    const vec4 clip = penumbra_shadow.cascades[cascade].view_projection * vec4(world_position + world_normal * offset, 1.0);
+    const vec3 ndc = clip.xyz / clip.w;
+    return vec3(ndc.xy * 0.5 + 0.5, ndc.z);
+}
+
+// Receiver-plane depth bias (Isidoro 2006, "Shadow Mapping: GPU-based Tips and
+// Techniques"): the receiver is locally a plane z(u, v). The chain rule links the
+// screen-space derivatives, (dz/dx, dz/dy) = (dz/du, dz/dv) J with J the Jacobian of
+// (u, v) over (x, y), so the plane's gradient is (dz/dx, dz/dy) J^-1. `coord_dx` and
+// `coord_dy` are how the projected coordinates change to the next pixel in x and y
+// (dFdx/dFdy in a fragment shader, differences of neighbours in a compute shader).
+// Clamped to the cascade's limit (grazing receivers, quads straddling a silhouette).
+vec2 penumbra_receiver_plane_gradient(int cascade, vec3 coord_dx, vec3 coord_dy) {
+    const mat2 uv_jacobian = mat2(coord_dx.xy, coord_dy.xy);  // columns: d(u, v)/dx, d(u, v)/dy
+    const float det = determinant(uv_jacobian);
+    if (abs(det) < 1e-30) return vec2(0.0);
+    const vec2 gradient = vec2(coord_dx.z, coord_dy.z) * inverse(uv_jacobian);
+    const vec2 limit = penumbra_shadow.cascades[cascade].max_depth_gradient;
+    return clamp(gradient, -limit, limit);
+}
+
+// A receiver of the sun: its cascade, and its coordinates in that cascade ([0]) and in
+// the next one ([1], for the blend band).
+struct PenumbraSunReceiver {
+    int cascade;  // -1: beyond the last cascade, or the sun casts no shadow
+    float view_depth;
+    vec2 pixel;  // rotates the sampling patterns (gl_FragCoord.xy, or the pixel centre)
+    PenumbraShadowCoord coords[2];
+};
+
+// The cascades a receiver's coordinates are taken in: its own (the first when it has
+// none) and the next one (itself for the last).
+ivec2 penumbra_receiver_cascades(int cascade) {
+    const int last = max(penumbra_cascade_count(), 1) - 1;
+    const int current = clamp(cascade, 0, last);
+    return ivec2(current, min(current + 1, last));
+}
+
+// Without receiver-plane gradients; penumbra_set_receiver_plane() adds them.
+PenumbraSunReceiver penumbra_sun_receiver(vec3 world_position, vec3 world_normal, vec2 pixel) {
+    PenumbraSunReceiver receiver;
+    receiver.view_depth = penumbra_view_depth(world_position);
+    receiver.cascade = penumbra_select_cascade(receiver.view_depth);
+    receiver.pixel = pixel;
+    const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
+    for (int i = 0; i < 2; ++i) {
+        const vec3 coord = penumbra_project_to_cascade(cascades[i], world_position, world_normal);
+        receiver.coords[i] = PenumbraShadowCoord(coord.xy, coord.z, vec2(0.0));
+    }
+    return receiver;
+}
+
+// The receiver-plane gradients of both coordinates, from their changes to the next pixel
+// in x and y ([0]: the receiver's cascade, [1]: the next one). Where neighbouring pixels
+// lie in different cascades (`seam`) the changes mix two projections: no gradient there.
+void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_dx[2], vec3 coord_dy[2], bool seam) {
+    if (!penumbra_uses_receiver_plane_bias() || seam) return;
+    const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
+    for (int i = 0; i < 2; ++i) {
+        receiver.coords[i].depth_gradient = penumbra_receiver_plane_gradient(cascades[i], coord_dx[i], coord_dy[i]);
+    }
+}
+
+// Rotation of the Poisson patterns: interleaved gradient noise per pixel (Jimenez 2014,
+// "Next Generation Post Processing in Call of Duty: Advanced Warfare") plus a golden-ratio
+// step per frame, so that successive frames sample new directions and a temporal filter
+// can accumulate them. The frame step is Fibonacci hashing (frame * 2^32 / phi, wrapping),
+// exact for any frame index, where fract(frame * 0.618) would lose precision.
+mat2 penumbra_sample_rotation(vec2 pixel) {
+    const float noise = fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+    const float frame_offset = float(penumbra_shadow.frame_index * 2654435769u) * (1.0 / 4294967296.0);
+    const float angle = 6.28318530718 * fract(noise + frame_offset);
+    const float c = cos(angle);
+    const float s = sin(angle);
+    return mat2(c, s, -s, c);
+}
+
+#include "penumbra/glsl/sun_filters.glsl"
+
+// Visibility through one cascade with the configured filter; lookups outside the map are lit.
+float penumbra_sample_cascade(int cascade, PenumbraShadowCoord coord, vec2 pixel) {
+    if (any(lessThan(coord.uv, vec2(0.0))) || any(greaterThan(coord.uv, vec2(1.0)))) return 1.0;
+    switch (kPenumbraFilterMode) {
+        case PENUMBRA_FILTER_PCF:
+            return penumbra_shadow_pcf(cascade, coord);
+        case PENUMBRA_FILTER_POISSON:
+            return penumbra_shadow_poisson(cascade, coord, pixel);
+        case PENUMBRA_FILTER_PCSS:
+            return penumbra_shadow_pcss(cascade, coord, pixel);
+        case PENUMBRA_FILTER_VSM:
+        case PENUMBRA_FILTER_EVSM:
+        case PENUMBRA_FILTER_MSM:
+            return penumbra_shadow_moments(cascade, coord, pixel);
+        default:
+            return penumbra_shadow_hard(cascade, coord);
+    }
+}
+
+// The sun's shadow at a receiver in [0, 1] (1 beyond the cascades). Inside the last
+// `blend width` fraction of a cascade the result blends linearly into the next cascade,
+// hiding the resolution seam; the last cascade fades to fully lit over the same fraction
+// before the shadow distance. Every filter goes through here.
+float penumbra_sun_shadow(PenumbraSunReceiver receiver) {
+    const int cascade = receiver.cascade;
+    if (cascade < 0) return 1.0;
+    float visibility = penumbra_sample_cascade(cascade, receiver.coords[0], receiver.pixel);
+    const float split_near = penumbra_cascade_split_near(cascade);
+    const float split_far = penumbra_cascade_split_far(cascade);
+    const float band = penumbra_shadow.blend_width * (split_far - split_near);
+    if (band > 0.0 && receiver.view_depth > split_far - band) {
+        const float t = (receiver.view_depth - (split_far - band)) / band;
+        const bool has_next = cascade + 1 < penumbra_cascade_count();
+        const float next = has_next ? penumbra_sample_cascade(cascade + 1, receiver.coords[1], receiver.pixel) : 1.0;
+        visibility = mix(visibility, next, t);
+    }
+    return visibility;
+}
+
+// The sun's visibility for shading: 0 without a sun and where the surface faces away from
+// it (its own shadow), else the shadow above. `normal` is the shading normal.
+float penumbra_sun_visibility(PenumbraSunReceiver receiver, vec3 normal) {
+    if (penumbra_shadow.to_sun.w == 0.0 || dot(normal, penumbra_shadow.to_sun.xyz) <= 0.0) return 0.0;
+    return penumbra_sun_shadow(receiver);
+}
+
+#endif

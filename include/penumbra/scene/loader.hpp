@@ -1,0 +1,41 @@
+#pragma once
+// Loading scenes (Penumbra::scene): TOML scene files (docs/scene-format.md), the glTF 2.0
+// models they reference, and the built-in scenes. Every problem a user can cause throws
+// InputError with one line naming the file, the key and the offending value.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "penumbra/scene/scene.hpp"
+
+namespace penumbra {
+
+constexpr std::string_view kBuiltinPrefix = "builtin:";
+constexpr std::string_view kDefaultSceneName = "builtin:default";
+
+// A path to a .toml scene file, or "builtin:NAME".
+Scene load_scene(const std::string& path_or_builtin);
+
+// Parses scene-file text. `origin` names the source in error messages; relative glTF
+// paths are resolved against `base_directory`.
+Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory);
+
+// Names accepted after "builtin:".
+std::vector<std::string> builtin_scene_names();
+Scene builtin_scene(const std::string& name);
+
+// glTF 2.0 (.gltf with external or embedded buffers, and .glb): node hierarchy and
+// transforms, triangle meshes with 16/32-bit indices, positions, normals (computed when
+// missing), UV0, base colour factor and texture, alphaMode with alphaCutoff, doubleSided.
+// Appends the model's meshes, materials and textures to `scene` and one Instance per
+// (mesh primitive, placement): instance.world = placement * node world transform.
+// Triangle strips and fans become lists; points and lines are skipped. A placement whose
+// world transform mirrors (negative determinant) gets a copy of the mesh with reversed
+// winding, so front faces stay counter-clockwise in world space.
+// Throws InputError naming the file and the problem (missing file, malformed JSON,
+// out-of-range accessor or index, missing buffer, unsupported primitive mode...); the
+// scene is then left as it was.
+void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements);
+
+}  // namespace penumbra

@@ -1,0 +1,123 @@
+// The GPU side of a ShadowSystem's descriptor set, shared by C++ and GLSL: binding
+// numbers, limits, filter ids and the two uniform blocks. penumbra/shadow.glsl includes it;
+// Penumbra's C++ includes it inside a namespace and checks every offset with
+// static_assert (src/passes/shader_interface.hpp), so the two cannot drift apart. The
+// blocks use only vec4-aligned groups of named scalars, vec2 pairs, vec4s and mat4s, for
+// which std140/std430 and C++ lay out alike.
+#ifndef PENUMBRA_SHADOW_INTERFACE_H
+#define PENUMBRA_SHADOW_INTERFACE_H
+
+#ifdef __cplusplus
+#define PENUMBRA_UINT uint32_t
+#define PENUMBRA_INT int32_t
+#else
+#define PENUMBRA_UINT uint
+#define PENUMBRA_INT int
+#endif
+
+#define PENUMBRA_MAX_CASCADES 8
+#define PENUMBRA_MAX_LIGHTS 256
+#define PENUMBRA_MAX_LOCAL_SHADOW_LAYERS 192
+
+// Bindings of the ShadowSystem's descriptor set (the set index is the caller's choice).
+#define PENUMBRA_BINDING_SHADOW_UNIFORMS 0  // PenumbraShadowUniforms (uniform buffer)
+#define PENUMBRA_BINDING_CASCADE_MAP 1      // sampler2DArrayShadow: the cascades, hardware comparison
+#define PENUMBRA_BINDING_CASCADE_DEPTH 2    // sampler2DArray: the same map's raw depth (PCSS blocker search)
+#define PENUMBRA_BINDING_CASCADE_MOMENTS 3  // sampler2DArray: filtered moments (vsm/evsm/msm), else the depth map
+#define PENUMBRA_BINDING_LOCAL_SHADOWS 4    // PenumbraLocalShadows (storage buffer)
+#define PENUMBRA_BINDING_LOCAL_MAP 5        // sampler2DArrayShadow: every shadowed spot/point light's layers
+#define PENUMBRA_BINDING_LOCAL_DEPTH 6      // sampler2DArray: the same map's raw depth
+#define PENUMBRA_BINDING_LOCAL_MOMENTS 7    // sampler2DArray: local lights' filtered moments, else their depth map
+
+// Filters (Settings::shadow.filter.mode), the value of the first specialization constant.
+#define PENUMBRA_FILTER_HARD 0u
+#define PENUMBRA_FILTER_PCF 1u
+#define PENUMBRA_FILTER_POISSON 2u
+#define PENUMBRA_FILTER_PCSS 3u
+#define PENUMBRA_FILTER_VSM 4u
+#define PENUMBRA_FILTER_EVSM 5u
+#define PENUMBRA_FILTER_MSM 6u
+
+// Specialization constant ids, relative to the shaders' PENUMBRA_SPEC_ID_BASE
+// (ShadowSystem::shader_specialization()).
+#define PENUMBRA_SPEC_FILTER_MODE 0
+#define PENUMBRA_SPEC_SEARCH_TAPS 1      // poisson taps, or PCSS blocker-search taps: 16 or 32
+#define PENUMBRA_SPEC_FILTER_TAPS 2      // PCSS filter taps: 16, 25 or 49
+#define PENUMBRA_SPEC_RECEIVER_PLANE 3   // bool: receiver-plane depth bias
+#define PENUMBRA_SPEC_PCSS_EARLY_OUT 4   // bool
+#define PENUMBRA_SPEC_MOMENTS_POISSON 5  // bool: 16 Poisson taps of the moments
+#define PENUMBRA_SPEC_EVSM_COMPONENTS 6  // 2 or 4
+#define PENUMBRA_SPEC_MSM_QUANTIZED 7    // bool: optimized moment quantization (RGBA16)
+#define PENUMBRA_SPEC_CONSTANT_COUNT 8
+
+#define PENUMBRA_LIGHT_SPOT 1u
+#define PENUMBRA_LIGHT_POINT 2u
+
+// One cascade of the sun's map.
+struct PenumbraCascade {
+    mat4 view_projection;  // world -> the cascade's clip space (reverse-Z)
+    // The light's angular radius in UV per unit of reverse-Z depth: depth range *
+    // tan(angular diameter / 2) / light-space (width, height) (PCSS).
+    vec2 light_radius_uv_per_depth;
+    vec2 max_depth_gradient;  // clamp of the receiver-plane gradient dz/du, dz/dv
+    float split_far;          // camera view distance where the cascade ends
+    float texel_world_size;   // metres per texel (normal offset)
+    float padding0;
+    float padding1;
+};
+
+struct PenumbraShadowUniforms {
+    mat4 camera_view;  // world -> view of the prepared camera (cascade selection by view depth)
+    PenumbraCascade cascades[PENUMBRA_MAX_CASCADES];
+    vec4 to_sun;                     // xyz: unit vector toward the sun; w: 1 when there is a sun
+    PENUMBRA_UINT cascade_count;     // 0: the sun casts no shadow (or there is no sun)
+    float normal_offset_texels;      // receivers move along their normal by this many texels
+    float blend_width;               // fraction of a cascade blended into the next
+    float shadow_distance;           // where the last cascade ends
+    float camera_near;               // where cascade 0 starts
+    float texel_uv;                  // one texel of the cascade map in UV
+    float pcf_radius;                // pcf: (2R+1)^2 taps
+    float poisson_radius_texels;     // poisson, and the moments' Poisson taps
+    float pcss_max_penumbra_texels;  // pcss: largest search and filter radius
+    float light_bleeding_reduction;  // vsm/evsm/msm
+    float evsm_positive_exponent;    // clamped to the moments' format
+    float evsm_negative_exponent;
+    float msm_moment_bias;
+    PENUMBRA_UINT frame_index;  // rotates the sampling patterns from frame to frame
+    float padding0;
+    float padding1;
+};
+
+// Shadow of one light of the set_lights() list (spot and point lights; others unshadowed).
+struct PenumbraLocalShadow {
+    vec3 position;             // the light
+    float range;               // its shadow ends here (metres)
+    PENUMBRA_INT first_layer;  // in the local map; -1: no shadow
+    PENUMBRA_UINT cube;        // 1: six cube-face layers (+X, -X, +Y, -Y, +Z, -Z), selected by major axis
+    float near_plane;          // of its perspective layers
+    float fov_scale;           // 2 tan(fov / 2) of a layer
+    float uv_scale;            // the fraction of the map's side its layers use (top-left corner)
+    float radius;              // the light's radius (pcss)
+    float padding0;
+    float padding1;
+};  // 48 bytes
+
+#define PENUMBRA_MAX_SHADOWED_LIGHTS 32
+
+struct PenumbraLocalShadows {
+    PENUMBRA_UINT light_count;  // entries of `lights` written (the set_lights() list's length)
+    float normal_offset_texels;
+    float texel_uv;                // one texel of the local map in UV
+    float max_receiver_slope;      // receiver-plane gradient clamp (metres of depth per metre across)
+    PENUMBRA_UINT shadowed_count;  // lights with a shadow map this frame
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT padding2;
+    // The set_lights() index of the i-th shadowed light (visibility slot 1 + i) is element
+    // [i / 4][i % 4].
+    uvec4 shadowed_lights[PENUMBRA_MAX_SHADOWED_LIGHTS / 4];
+    mat4 layer_view_projection[PENUMBRA_MAX_LOCAL_SHADOW_LAYERS];  // world -> reverse-Z clip per layer
+    PenumbraLocalShadow lights[PENUMBRA_MAX_LIGHTS];
+};
+
+#endif

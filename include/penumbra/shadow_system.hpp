@@ -1,0 +1,350 @@
+#pragma once
+// ShadowSystem: shadow maps for the sun (cascades), spot and point lights, on the
+// caller's Vulkan device and recorded into the caller's command buffers. The guide with
+// the whole contract is docs/library.md; in short, per frame:
+//
+//   const penumbra::FrameInfo& frame = shadows.prepare(view);   // CPU: fit, cull, budget
+//   shadows.record_shadow_maps(cmd);                            // the shadow passes
+//   // then either sample in your own forward shaders (#include "penumbra/shadow.glsl",
+//   // bind frame.descriptor_set at your set index), or resolve screen-space visibility:
+//   shadows.record_visibility(cmd, screen);                     // compute, from your depth
+//
+// Penumbra records commands and never submits, waits or presents. It inserts barriers
+// for its own images only; the state of the caller's images on entry and exit is part of
+// each call's contract below. A ShadowSystem is not thread-safe: call it from one thread
+// at a time (separate ShadowSystems may be used from separate threads).
+//
+// Errors are exceptions (penumbra/errors.hpp): InputError for invalid values, UsageError
+// for calls out of order or unknown handles, DeviceError for a device that lacks
+// something, VulkanError for a failed Vulkan call. After any of them the ShadowSystem is
+// still usable and unchanged by the failed call.
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "penumbra/device.hpp"
+#include "penumbra/lights.hpp"
+#include "penumbra/math.hpp"
+#include "penumbra/settings.hpp"
+
+namespace penumbra {
+
+// ---------------------------------------------------------------------------- meshes
+
+// Handles are small values; 0 is never a valid handle.
+struct MeshId {
+    uint32_t value = 0;
+    friend bool operator==(MeshId, MeshId) = default;
+};
+struct InstanceId {
+    uint32_t value = 0;
+    friend bool operator==(InstanceId, InstanceId) = default;
+};
+
+// One vertex attribute in a caller's buffer: `format` at `offset` bytes, every `stride`.
+struct VertexStream {
+    VkBuffer buffer = VK_NULL_HANDLE;  // created with VK_BUFFER_USAGE_VERTEX_BUFFER_BIT
+    VkDeviceSize offset = 0;           // of vertex 0
+    uint32_t stride = 0;               // bytes between vertices
+    VkFormat format = VK_FORMAT_UNDEFINED;
+};
+
+// Alpha-tested casters (glTF alphaMode MASK, foliage): a texel casts where
+// alpha_scale * texture alpha >= cutoff. The texture is sampled with the caller's sampler
+// at the mesh's UVs, and must be in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL whenever
+// record_shadow_maps() runs.
+struct AlphaMaskDesc {
+    VkImageView view = VK_NULL_HANDLE;  // a 2D colour view; its alpha channel is read
+    VkSampler sampler = VK_NULL_HANDLE;
+    float cutoff = 0.5f;       // (0, 1]
+    float alpha_scale = 1.0f;  // e.g. the material's base colour alpha factor, [0, 1]
+};
+
+// A triangle list in the caller's buffers: nothing is copied. The buffers must stay valid
+// until the mesh is removed and the frames that used it are complete.
+//   positions: R32G32B32_SFLOAT, R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT or _SNORM / _UNORM
+//              (quantized meshes: put the dequantization into the instance transform)
+//   uvs (masked casters only): R32G32_SFLOAT, R16G16_SFLOAT, R16G16_UNORM, R16G16_SNORM
+struct MeshDesc {
+    VertexStream positions;
+    VkBuffer index_buffer = VK_NULL_HANDLE;  // created with VK_BUFFER_USAGE_INDEX_BUFFER_BIT
+    VkDeviceSize index_offset = 0;           // bytes
+    VkIndexType index_type = VK_INDEX_TYPE_UINT32;
+    uint32_t index_count = 0;   // a multiple of 3
+    int32_t vertex_offset = 0;  // added to every index (vkCmdDrawIndexed's vertexOffset)
+    // Model-space bounds of the vertices the indices reach: Penumbra cannot read GPU
+    // buffers and culls with these. Must contain the mesh (a smaller box drops shadows).
+    Bounds bounds;
+    std::optional<VertexStream> uvs;  // required with alpha_mask
+    std::optional<AlphaMaskDesc> alpha_mask;
+};
+
+// A triangle list on the CPU that Penumbra uploads into buffers of its own (copied during
+// the next record_shadow_maps()). Bounds are computed from the positions.
+struct MeshData {
+    std::span<const Vec3> positions;
+    std::span<const uint32_t> indices;  // a multiple of 3, each < positions.size()
+    std::span<const Vec2> uvs;          // empty, or one per position (required with alpha_mask)
+    std::optional<AlphaMaskDesc> alpha_mask;
+};
+
+// --------------------------------------------------------------------------- instances
+
+enum InstanceFlags : uint32_t {
+    kInstanceCastsShadows = 1u << 0,  // drawn into shadow maps; without it the instance only receives
+    // Never face-culled in the shadow passes, whatever Settings::shadow.bias.caster_cull says.
+    kInstanceDoubleSided = 1u << 1,
+    // Alpha-tested with its mesh's AlphaMaskDesc (ignored for meshes without one); without
+    // this flag such a mesh casts as opaque.
+    kInstanceAlphaMasked = 1u << 2,
+};
+
+struct InstanceDesc {
+    MeshId mesh;
+    Mat4 world;  // model -> world; any invertible affine transform (mirroring is fine)
+    uint32_t flags = kInstanceCastsShadows | kInstanceAlphaMasked;
+};
+
+// -------------------------------------------------------------------------- the frame
+
+// The camera the shadows are fitted to and that the shaders' cascade selection uses.
+// Penumbra's conventions: right-handed world, view space looks down -Z.
+struct ViewDesc {
+    Mat4 view;                   // world -> view
+    float fov_y_radians = 1.0f;  // vertical field of view of the caller's projection, (0, pi)
+    float near_plane = 0.1f;     // > 0
+    float far_plane = 200.0f;    // > near_plane, finite: the cascades reach min(far, max_distance)
+    uint32_t width = 1280;       // the rendered image in pixels: aspect ratio, and the local
+    uint32_t height = 720;       // shadow maps' coverage sizing
+};
+
+// A look-at ViewDesc (eye, target, up; up may not be parallel to target - eye).
+ViewDesc look_at_view(Vec3 eye, Vec3 target, Vec3 up, float fov_y_radians, float near_plane, float far_plane,
+                      uint32_t width, uint32_t height);
+
+// The projection Penumbra's own passes use for a ViewDesc: Vulkan clip space, Y flipped
+// (image row 0 at the top), reverse-Z (depth 1 at the near plane, 0 at the far plane).
+Mat4 reverse_z_projection(const ViewDesc& view);
+
+struct CascadeInfo {
+    Mat4 view_projection;           // world -> this cascade's clip space (reverse-Z)
+    float split_near = 0.0f;        // camera view distance where the cascade starts
+    float split_far = 0.0f;         // ... and ends
+    float texel_world_size = 0.0f;  // metres per shadow-map texel
+    Vec3 light_extent;              // light-space width, height and depth range (metres)
+    uint32_t draws = 0;             // casters drawn into it this frame (after culling)
+    uint64_t triangles = 0;
+};
+
+struct LocalShadowInfo {
+    uint32_t light = 0;        // index into the set_lights() list
+    uint32_t slot = 0;         // 1 + its position in FrameInfo::local_shadows: its visibility slot
+    uint32_t first_layer = 0;  // in the local shadow map
+    uint32_t layers = 0;       // 1 for a spot, 6 for a cube (points, spots wider than 60 degrees)
+    uint32_t resolution = 0;   // texels per side of each of its layers this frame
+    float near_plane = 0.0f;   // metres (the nearest caster)
+    uint32_t draws = 0;        // casters drawn over all its layers
+    uint64_t triangles = 0;
+};
+
+struct FrameInfo {
+    uint64_t frame = 0;  // counts prepare() calls, from 1
+    // The sun (the first directional light), when there is one. Its cascades are fitted
+    // even when it casts no shadow (then nothing is drawn into them: draws 0).
+    std::optional<uint32_t> sun;
+    Vec3 sun_direction{0.0f, -1.0f, 0.0f};  // the direction its light travels, normalised
+    std::vector<CascadeInfo> cascades;
+    float shadow_distance = 0.0f;                // where the last cascade ends (fading to lit before it)
+    std::vector<LocalShadowInfo> local_shadows;  // shadowed spot/point lights, in light order
+    // Spot/point lights that cast shadows but got none: beyond the budget or the layers.
+    std::vector<uint32_t> unshadowed_lights;
+    // The set the caller binds for penumbra/shadow.glsl (at the set index of its choosing),
+    // valid for the command buffer that records this frame.
+    VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
+    double cpu_fit_ms = 0.0;   // prepare(): cascade splits and fitting, local-light fitting
+    double cpu_cull_ms = 0.0;  // prepare(): caster culling of every map
+};
+
+// ------------------------------------------------------------- deferred (screen) path
+
+enum class NormalEncoding {
+    SignedFloat,         // xyz in [-1, 1] (e.g. R16G16B16A16_SFLOAT), world space
+    UnsignedNormalized,  // xyz * 0.5 + 0.5 (e.g. R8G8B8A8_UNORM, A2B10G10R10_UNORM), world space
+};
+
+// The caller's screen inputs of record_visibility(). Both images are sampled by a compute
+// shader in the layouts given here; the caller makes its writes to them available to
+// VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT reads before the call.
+struct ScreenInputs {
+    VkImageView depth = VK_NULL_HANDLE;  // a 2D view of the depth aspect (any depth format)
+    VkImageLayout depth_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    // World-space normals; VK_NULL_HANDLE: reconstructed from the depth (the geometric normal).
+    VkImageView normals = VK_NULL_HANDLE;
+    VkImageLayout normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    NormalEncoding normal_encoding = NormalEncoding::SignedFloat;
+    uint32_t width = 0;  // pixels: the images' extent
+    uint32_t height = 0;
+    // world -> clip of the projection the depth was rendered with (any convention: reverse
+    // or forward Z, jittered, infinite far), and the depth value of pixels with no geometry
+    // (0 for reverse-Z, 1 for forward Z): those get visibility 1.
+    Mat4 view_projection;
+    float background_depth = 0.0f;
+};
+
+// What record_visibility() writes: one visibility value per pixel and light, 1 lit,
+// 0 shadowed or facing away from the light, in a 2D array image of RGBA8 layers. Slot s
+// is layer s / 4, channel s % 4: slot 0 the sun, slot k the local light with
+// LocalShadowInfo::slot == k. Left in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, its writes
+// visible to fragment and compute shader reads; valid until the next record_visibility().
+struct VisibilityImage {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;  // VK_IMAGE_VIEW_TYPE_2D_ARRAY
+    VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t layers = 0;
+    uint32_t slots = 0;  // 1 + FrameInfo::local_shadows.size()
+};
+
+// ---------------------------------------------------------------- the shadow maps
+
+// One of Penumbra's maps, for callers that read them directly (debug views, custom
+// filters). After record_shadow_maps() they are in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+// with their writes visible to fragment and compute shader reads. A caller that moves one
+// into another layout (e.g. to copy it) returns it to that layout, with its reads made
+// available, before the next record_shadow_maps().
+struct MapImage {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;  // VK_IMAGE_VIEW_TYPE_2D_ARRAY, every layer
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkImageAspectFlags aspect = 0;
+    uint32_t resolution = 0;  // texels per side
+    uint32_t layers = 0;
+};
+
+struct ShadowMaps {
+    MapImage cascades;         // D32 reverse-Z depth, one layer per cascade
+    MapImage cascade_moments;  // vsm/evsm/msm only (else image == VK_NULL_HANDLE)
+    MapImage local;            // D32 reverse-Z depth of every shadowed spot/point light's layers
+    MapImage local_moments;    // vsm/evsm/msm with shadowed local lights only
+};
+
+// -------------------------------------------------------------- timings and memory
+
+struct PassTime {
+    std::string name;  // "shadow_cascade_<i>", "shadow_multiview", "shadow_moments", "shadow_local", "visibility"
+    double milliseconds = 0.0;
+};
+
+struct GpuTimes {
+    uint64_t frame = 0;  // the FrameInfo::frame they belong to
+    std::vector<PassTime> passes;
+};
+
+struct MemoryStats {
+    uint64_t cascade_maps = 0;  // depth, moments and blur scratch of the cascades
+    uint64_t local_maps = 0;    // depth, moments and blur scratch of spot/point lights
+    uint64_t visibility = 0;    // record_visibility()'s image
+    uint64_t buffers = 0;       // uniforms, uploaded meshes, staging
+    uint64_t shadow_maps() const { return cascade_maps + local_maps; }
+    uint64_t total() const { return cascade_maps + local_maps + visibility + buffers; }
+};
+
+// ---------------------------------------------------------------- the system
+
+struct ShadowSystemDesc {
+    DeviceDesc device;
+    Settings settings;
+    // How many frames the caller records before it waits for the oldest: prepare() for
+    // frame F reuses the per-frame resources of frame F - frames_in_flight, whose
+    // submission must have completed (1..8).
+    uint32_t frames_in_flight = 2;
+};
+
+// The constants of penumbra/shadow.glsl's specialization, for the caller's pipelines.
+struct ShaderSpecialization {
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<uint32_t> data;
+    // Points into entries and data: valid while this object lives and is not copied.
+    VkSpecializationInfo info() const;
+};
+
+class ShadowSystem {
+public:
+    // Checks the device (DeviceError naming what is missing) and the settings (InputError),
+    // then creates the pipelines and the maps the settings ask for.
+    explicit ShadowSystem(const ShadowSystemDesc& desc);
+    // Destroys everything Penumbra created. The caller must have waited for every
+    // submission that used this ShadowSystem (e.g. vkDeviceWaitIdle).
+    ~ShadowSystem();
+    ShadowSystem(const ShadowSystem&) = delete;
+    ShadowSystem& operator=(const ShadowSystem&) = delete;
+
+    // Geometry. Meshes and instances may be added, changed and removed between frames;
+    // the next prepare() sees them.
+    MeshId add_mesh(const MeshDesc& mesh);
+    MeshId add_mesh(const MeshData& mesh);
+    // A mesh still used by an instance cannot be removed (UsageError).
+    void remove_mesh(MeshId mesh);
+    InstanceId add_instance(const InstanceDesc& instance);
+    void set_instance_transform(InstanceId instance, const Mat4& world);
+    void set_instance_flags(InstanceId instance, uint32_t flags);
+    void remove_instance(InstanceId instance);
+
+    // The lights, replacing the previous list (at most kMaxLights). The first directional
+    // light is the sun; other directional lights are ignored. Spot and point lights with
+    // cast_shadows get shadow maps in list order, up to the local shadow budget.
+    void set_lights(std::span<const LightDesc> lights);
+
+    // Settings that do not size or specialise anything (see requires_recreation()) take
+    // effect from the next prepare(); others throw UsageError: create a new ShadowSystem.
+    void update_settings(const Settings& settings);
+    const Settings& settings() const;
+
+    // CPU work of a frame: cascade splits and fitting for `view`, the local lights' fits,
+    // budget and sizing, caster culling, and the frame's uniforms. Starts a new frame (see
+    // ShadowSystemDesc::frames_in_flight). The result is valid until the next prepare().
+    const FrameInfo& prepare(const ViewDesc& view);
+
+    // Records the frame's shadow passes into `cmd` (a primary command buffer in the
+    // recording state, outside any render pass, on a queue of the DeviceDesc's family),
+    // after the uploads of meshes added since the last recording. On exit the maps are
+    // ready for sampling (see ShadowMaps). Requires prepare() first (UsageError).
+    void record_shadow_maps(VkCommandBuffer cmd);
+
+    // Records the compute resolve: the visibility of the sun and of every shadowed local
+    // light at each pixel of `screen`, with the configured filter, into visibility_image().
+    // Requires record_shadow_maps() earlier in this frame (in this or an earlier submitted
+    // command buffer of the same frame).
+    void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen);
+    VisibilityImage visibility_image() const;
+
+    // For forward shading with penumbra/shadow.glsl: the layout of FrameInfo::descriptor_set
+    // (include it in your pipeline layout at the set index your shaders define as
+    // PENUMBRA_SHADOW_SET; its bindings are visible to every stage), and the specialization
+    // constants of the configured filter, with IDs from first_constant_id (your shaders'
+    // PENUMBRA_SPEC_ID_BASE) to first_constant_id + 7.
+    VkDescriptorSetLayout descriptor_set_layout() const;
+    ShaderSpecialization shader_specialization(uint32_t first_constant_id = 0) const;
+
+    ShadowMaps shadow_maps() const;
+
+    // GPU time of each pass of `frame` (a FrameInfo::frame), once the submission that
+    // recorded it has completed; nullopt when the queue family has no timestamps, when the
+    // frame's slot has been reused (older than frames_in_flight), or when the results are
+    // not there yet. Never waits.
+    std::optional<GpuTimes> gpu_times(uint64_t frame) const;
+    MemoryStats memory() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace penumbra

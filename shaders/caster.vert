@@ -1,0 +1,37 @@
+#version 460
+// The caster passes' vertex shader: transforms a caster into one shadow-map layer's clip
+// space. Compiled in four variants (shaders/CMakeLists.txt):
+//   PENUMBRA_LOCAL_LAYER: a spot or point light's layer, PenumbraLocalShadows.layer_view_projection;
+//                         otherwise a cascade (with multiview, gl_ViewIndex is added to the layer)
+//   PENUMBRA_MASKED:      also passes the UVs on to the alpha test
+#extension GL_EXT_multiview : require
+#extension GL_GOOGLE_include_directive : require
+#include "penumbra_internal.h"
+
+layout(push_constant) uniform PushBlock { CasterPushConstants caster; };
+
+#ifdef PENUMBRA_LOCAL_LAYER
+layout(std430, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS) readonly buffer
+    LocalBlock {
+    PenumbraLocalShadows local_shadows;
+};
+mat4 layer_view_projection() { return local_shadows.layer_view_projection[caster.layer]; }
+#else
+layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS) uniform ShadowBlock {
+    PenumbraShadowUniforms shadow;
+};
+mat4 layer_view_projection() { return shadow.cascades[caster.layer + gl_ViewIndex].view_projection; }
+#endif
+
+layout(location = PENUMBRA_LOCATION_POSITION) in vec3 in_position;
+#ifdef PENUMBRA_MASKED
+layout(location = PENUMBRA_LOCATION_UV) in vec2 in_uv;
+layout(location = 0) out vec2 out_uv;
+#endif
+
+void main() {
+    gl_Position = layer_view_projection() * (caster.model * vec4(in_position, 1.0));
+#ifdef PENUMBRA_MASKED
+    out_uv = in_uv;
+#endif
+}

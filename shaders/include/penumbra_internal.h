@@ -1,0 +1,60 @@
+// Push constants of Penumbra's own passes, shared by C++ and GLSL (src/passes/
+// shader_interface.hpp checks the offsets). Not installed: callers see only
+// penumbra/shadow_interface.h.
+#ifndef PENUMBRA_INTERNAL_H
+#define PENUMBRA_INTERNAL_H
+
+#include "penumbra/shadow_interface.h"
+
+// Descriptor sets of the caster passes: set 0 holds the frame's uniforms, set 1 the
+// alpha mask of a masked caster.
+#define PENUMBRA_SET_CASTER_FRAME 0
+#define PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS 0  // PenumbraShadowUniforms
+#define PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS 1    // PenumbraLocalShadows
+#define PENUMBRA_SET_ALPHA_MASK 1
+#define PENUMBRA_BINDING_ALPHA_MASK 0
+// The moments blur pass and the local moments pass: set 0 holds the image they read.
+#define PENUMBRA_BINDING_BLUR_SOURCE 0
+
+// Vertex inputs of the caster passes (one binding each: positions, uvs).
+#define PENUMBRA_LOCATION_POSITION 0
+#define PENUMBRA_LOCATION_UV 1
+
+// One caster draw: its transform, the shadow map layer (a cascade, or a local light's
+// layer; 0 with multiview, which adds gl_ViewIndex) and its alpha test.
+struct CasterPushConstants {
+    mat4 model;  // model -> world
+    PENUMBRA_UINT layer;
+    float alpha_cutoff;  // masked casters: a texel casts where alpha_scale * texture alpha >= cutoff
+    float alpha_scale;
+    float padding;
+};
+
+// The moments blur pass (shaders/moments_blur.frag).
+struct BlurPushConstants {
+    // x: layer, y: radius in texels, z: 1 horizontal / 0 vertical, w: texels per side the
+    // layer uses from its top-left corner (0: all)
+    uvec4 params;
+};
+
+// The local lights' moments pass (shaders/local_moments.frag): one layer of the local
+// shadow map's reverse-Z depth converted to moments of the normalised linear distance.
+struct LocalMomentsPushConstants {
+    uvec4 layer;       // x: layer
+    vec4 depth_range;  // x: near plane, y: far plane (range), zw: EVSM exponents (positive, negative)
+};
+
+// The screen-space resolve (shaders/visibility_resolve.comp).
+struct ResolvePushConstants {
+    mat4 inverse_view_projection;  // the caller's clip -> world
+    PENUMBRA_UINT width;
+    PENUMBRA_UINT height;
+    PENUMBRA_UINT has_normals;      // 0: normals from the depth
+    PENUMBRA_UINT normal_encoding;  // 0: signed float, 1: unsigned normalized
+    float background_depth;         // no geometry: visibility 1
+    PENUMBRA_UINT slot_count;       // 1 (the sun) + the shadowed local lights
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+};
+
+#endif

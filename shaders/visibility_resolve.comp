@@ -1,0 +1,127 @@
+#version 460
+// The screen-space shadow resolve (ShadowSystem::record_visibility): once per pixel of the
+// caller's depth buffer, the visibility of the sun and of every shadowed spot and point
+// light, with the same filters as forward shading (penumbra/shadow.glsl), into slots of
+// RGBA8 layers (slot s: layer s / 4, channel s % 4; 0 the sun, 1 + i the i-th shadowed
+// local light). The deferred shadow buffer of ShadowLib's RenderBuffer and AMD ShadowFX.
+//
+// Positions come from the depth and the caller's inverse view-projection. What a fragment
+// shader takes from screen-space derivatives comes from the neighbouring pixels: on each
+// axis the neighbour whose view depth is closer (so that a silhouette does not count as a
+// slope, as in Turanszki's normal reconstruction), giving the receiver-plane gradients of
+// the sun's cascades and the geometric normal (the shading normal too, without a normal
+// buffer). Pixels without geometry are lit in every slot.
+#extension GL_GOOGLE_include_directive : require
+#include "penumbra_internal.h"
+#define PENUMBRA_SHADOW_SET 0
+#include "penumbra/shadow.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 1, binding = 0) uniform sampler2D screen_depth;
+layout(set = 1, binding = 1) uniform sampler2D screen_normals;  // the depth again when there are none
+layout(set = 1, binding = 2, rgba8) uniform writeonly image2DArray visibility;
+layout(push_constant) uniform PushBlock { ResolvePushConstants resolve; };
+
+bool has_geometry(float depth) { return depth != resolve.background_depth; }
+
+float depth_at(ivec2 pixel) { return texelFetch(screen_depth, pixel, 0).r; }
+
+vec3 world_position(ivec2 pixel, float depth) {
+    const vec2 ndc = (vec2(pixel) + 0.5) / vec2(resolve.width, resolve.height) * 2.0 - 1.0;
+    const vec4 world = resolve.inverse_view_projection * vec4(ndc, depth, 1.0);
+    return world.xyz / world.w;
+}
+
+// The neighbour along `axis` (+1 or -1 steps) that continues this pixel's surface best, as
+// the signed step and its world position; step 0 when neither has geometry.
+struct Neighbour {
+    int step;
+    vec3 position;
+};
+
+Neighbour neighbour_along(ivec2 pixel, ivec2 axis, float view_depth) {
+    Neighbour best = Neighbour(0, vec3(0.0));
+    float best_difference = 1e30;
+    for (int step = 1; step >= -1; step -= 2) {
+        const ivec2 other = pixel + step * axis;
+        if (any(lessThan(other, ivec2(0))) || any(greaterThanEqual(other, ivec2(resolve.width, resolve.height)))) continue;
+        const float depth = depth_at(other);
+        if (!has_geometry(depth)) continue;
+        const vec3 position = world_position(other, depth);
+        const float difference = abs(penumbra_view_depth(position) - view_depth);
+        if (difference < best_difference) {
+            best_difference = difference;
+            best = Neighbour(step, position);
+        }
+    }
+    return best;
+}
+
+vec3 camera_position() {
+    const mat4 view = penumbra_shadow.camera_view;
+    return -(transpose(mat3(view)) * view[3].xyz);
+}
+
+vec3 decode_normal(ivec2 pixel) {
+    const vec3 stored = texelFetch(screen_normals, pixel, 0).xyz;
+    const vec3 normal = resolve.normal_encoding == 1u ? stored * 2.0 - 1.0 : stored;
+    return normalize(normal);
+}
+
+void write_slot(ivec2 pixel, uint slot, float value, inout vec4 texel) {
+    texel[slot % 4u] = value;
+    if (slot % 4u == 3u || slot + 1u == resolve.slot_count) {
+        imageStore(visibility, ivec3(pixel, int(slot / 4u)), texel);
+        texel = vec4(1.0);
+    }
+}
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x >= int(resolve.width) || pixel.y >= int(resolve.height)) return;
+    const float depth = depth_at(pixel);
+    vec4 texel = vec4(1.0);
+    if (!has_geometry(depth)) {
+        for (uint slot = 0u; slot < resolve.slot_count; ++slot) write_slot(pixel, slot, 1.0, texel);
+        return;
+    }
+    const vec3 position = world_position(pixel, depth);
+    const float view_depth = penumbra_view_depth(position);
+    const Neighbour x = neighbour_along(pixel, ivec2(1, 0), view_depth);
+    const Neighbour y = neighbour_along(pixel, ivec2(0, 1), view_depth);
+    const vec3 to_camera = camera_position() - position;
+
+    // The geometric normal from the neighbours, facing the camera.
+    vec3 plane_normal = vec3(0.0);
+    if (x.step != 0 && y.step != 0) {
+        const vec3 n = cross(float(x.step) * (x.position - position), float(y.step) * (y.position - position));
+        if (dot(n, n) > 1e-20) plane_normal = normalize(n);
+    }
+    vec3 normal = resolve.has_normals != 0u ? decode_normal(pixel) : plane_normal;
+    if (resolve.has_normals == 0u && dot(normal, to_camera) < 0.0) normal = -normal;
+    if (dot(plane_normal, plane_normal) == 0.0) plane_normal = normal;
+    if (dot(normal, normal) == 0.0) normal = normalize(to_camera);  // a lone pixel: face the camera
+
+    const vec2 centre = vec2(pixel) + 0.5;
+    PenumbraSunReceiver receiver = penumbra_sun_receiver(position, normal, centre);
+    if (x.step != 0 && y.step != 0) {
+        const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
+        vec3 coord_dx[2];
+        vec3 coord_dy[2];
+        for (int i = 0; i < 2; ++i) {
+            const vec3 coord = penumbra_project_to_cascade(cascades[i], position, normal);
+            coord_dx[i] = float(x.step) * (penumbra_project_to_cascade(cascades[i], x.position, normal) - coord);
+            coord_dy[i] = float(y.step) * (penumbra_project_to_cascade(cascades[i], y.position, normal) - coord);
+        }
+        const bool seam = penumbra_select_cascade(penumbra_view_depth(x.position)) != receiver.cascade ||
+                          penumbra_select_cascade(penumbra_view_depth(y.position)) != receiver.cascade;
+        penumbra_set_receiver_plane(receiver, coord_dx, coord_dy, seam);
+    }
+    write_slot(pixel, 0u, penumbra_sun_visibility(receiver, normal), texel);
+    for (uint slot = 1u; slot < resolve.slot_count; ++slot) {
+        const uint shadowed = slot - 1u;
+        const uint light = penumbra_local.shadowed_lights[shadowed / 4u][shadowed % 4u];
+        write_slot(pixel, slot, penumbra_light_visibility(light, position, normal, plane_normal, centre), texel);
+    }
+}

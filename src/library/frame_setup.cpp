@@ -1,0 +1,134 @@
+#include "library/frame_setup.hpp"
+
+#include <cmath>
+
+#include "core/caster_facing.hpp"
+#include "core/shadow_filters.hpp"
+
+namespace penumbra::library {
+namespace {
+
+VkFrontFace facing_light(const glm::mat4& view_projection) {
+    return light_facing_is_counter_clockwise(view_projection) ? VK_FRONT_FACE_COUNTER_CLOCKWISE
+                                                              : VK_FRONT_FACE_CLOCKWISE;
+}
+
+}  // namespace
+
+std::vector<passes::DrawList> cull_cascade_casters(const CascadeSet& cascades, const passes::CasterScene& scene,
+                                                   bool cull) {
+    std::vector<passes::DrawList> lists(cascades.cascades.size());
+    for (size_t c = 0; c < cascades.cascades.size(); ++c) {
+        for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+            if (cull && !caster_may_shadow_cascade(cascades.cascades[c], scene.draws[d].world_bounds)) continue;
+            lists[c].push_back(d);
+        }
+    }
+    return lists;
+}
+
+std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
+                                                         const passes::CasterScene& scene, bool cull) {
+    std::vector<passes::LocalShadowLayer> layers;
+    for (const LocalShadowSlot& slot : plan.slots) {
+        const Light& light = lights[slot.light];
+        const bool cube = local_shadow_is_cube(light);
+        for (size_t face = 0; face < slot.view_projection.size(); ++face) {
+            passes::LocalShadowLayer layer{slot.first_layer + static_cast<uint32_t>(face),
+                                           slot.resolution,
+                                           {},
+                                           facing_light(slot.view_projection[face])};
+            // With culling, a cube face of a wide spot that its cone cannot reach stays cleared.
+            if (cull && cube && !cube_face_reaches_cone(light, face)) {
+                layers.push_back(std::move(layer));
+                continue;
+            }
+            for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+                const Aabb& box = scene.draws[d].world_bounds;
+                const bool may_cast = caster_may_shadow_frustum(slot.view_projection[face], box) &&
+                                      (!cube || caster_may_shadow_sphere(light.position, light.range, box));
+                if (!cull || may_cast) layer.draws.push_back(d);
+            }
+            layers.push_back(std::move(layer));
+        }
+    }
+    return layers;
+}
+
+std::vector<Aabb> caster_bounds(const passes::CasterScene& scene) {
+    std::vector<Aabb> boxes;
+    boxes.reserve(scene.draws.size());
+    for (const passes::CasterDraw& draw : scene.draws) boxes.push_back(draw.world_bounds);
+    return boxes;
+}
+
+shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
+                                                     const Light* sun, bool sun_casts_shadows,
+                                                     const ShadowSettings& settings, uint32_t frame_index) {
+    shader::PenumbraShadowUniforms uniforms{};
+    uniforms.camera_view = camera.view;
+    uniforms.camera_near = camera.near_plane;
+    if (sun) uniforms.to_sun = glm::vec4(-glm::normalize(sun->direction), 1.0f);
+    const float angular_diameter = sun ? sun->angular_diameter_degrees : 0.0f;
+    for (size_t c = 0; c < cascades.cascades.size(); ++c) {
+        const Cascade& cascade = cascades.cascades[c];
+        const CascadeFilterParams params = cascade_filter_params(cascade, angular_diameter);
+        shader::PenumbraCascade& out = uniforms.cascades[c];
+        out.view_projection = cascade.view_projection;
+        out.light_radius_uv_per_depth = params.light_radius_uv_per_depth;
+        out.max_depth_gradient = params.max_depth_gradient;
+        out.split_far = cascade.split_far;
+        out.texel_world_size = cascade.texel_world_size;
+    }
+    uniforms.cascade_count = sun_casts_shadows ? static_cast<uint32_t>(cascades.cascades.size()) : 0u;
+    uniforms.normal_offset_texels = settings.bias.normal_offset;
+    uniforms.blend_width = settings.blend_width;
+    uniforms.shadow_distance = cascades.shadow_distance;
+    const FilterSettings& filter = settings.filter;
+    uniforms.texel_uv = 1.0f / static_cast<float>(settings.cascades.resolution);
+    uniforms.pcf_radius = static_cast<float>(filter.pcf_radius);
+    uniforms.poisson_radius_texels = filter.poisson_radius;
+    uniforms.pcss_max_penumbra_texels = filter.pcss_max_penumbra;
+    uniforms.light_bleeding_reduction = filter.light_bleeding_reduction;
+    const glm::vec2 exponents = clamped_evsm_exponents(filter);
+    uniforms.evsm_positive_exponent = exponents.x;
+    uniforms.evsm_negative_exponent = exponents.y;
+    uniforms.msm_moment_bias = filter.msm_moment_bias;
+    uniforms.frame_index = frame_index;
+    return uniforms;
+}
+
+shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, const LocalShadowPlan& plan,
+                                                 const ShadowSettings& settings) {
+    shader::PenumbraLocalShadows uniforms{};
+    uniforms.light_count = static_cast<uint32_t>(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Light& light = lights[i];
+        shader::PenumbraLocalShadow& out = uniforms.lights[i];
+        out.position = light.position;
+        out.range = light.range;
+        out.first_layer = -1;
+        out.cube = local_shadow_is_cube(light) ? 1u : 0u;
+        out.uv_scale = 1.0f;
+        out.radius = light.radius;
+    }
+    for (size_t s = 0; s < plan.slots.size(); ++s) {
+        const LocalShadowSlot& slot = plan.slots[s];
+        shader::PenumbraLocalShadow& out = uniforms.lights[slot.light];
+        out.first_layer = static_cast<int32_t>(slot.first_layer);
+        out.near_plane = slot.near_plane;
+        out.fov_scale = 2.0f * std::tan(local_shadow_half_fov(lights[slot.light]));
+        out.uv_scale = static_cast<float>(slot.resolution) / static_cast<float>(plan.atlas_resolution);
+        for (size_t layer = 0; layer < slot.view_projection.size(); ++layer) {
+            uniforms.layer_view_projection[slot.first_layer + layer] = slot.view_projection[layer];
+        }
+        uniforms.shadowed_lights[s / 4][static_cast<int>(s % 4)] = slot.light;
+    }
+    uniforms.shadowed_count = static_cast<uint32_t>(plan.slots.size());
+    uniforms.normal_offset_texels = settings.bias.normal_offset;
+    uniforms.texel_uv = plan.atlas_resolution > 0 ? 1.0f / static_cast<float>(plan.atlas_resolution) : 0.0f;
+    uniforms.max_receiver_slope = kMaxReceiverSlope;
+    return uniforms;
+}
+
+}  // namespace penumbra::library

@@ -1,0 +1,45 @@
+#pragma once
+// A frame's CPU work that makes no Vulkan calls: caster culling for every cascade and
+// local-light layer, and the contents of the two uniform blocks of the descriptor set.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/camera_math.hpp"
+#include "core/cascades.hpp"
+#include "core/local_lights.hpp"
+#include "passes/casters.hpp"
+#include "passes/local_shadow_pass.hpp"
+#include "passes/shader_interface.hpp"
+#include "penumbra/scene/scene.hpp"
+#include "penumbra/settings.hpp"
+
+namespace penumbra::library {
+
+struct CullStats {
+    uint32_t draws = 0;
+    uint64_t triangles = 0;
+};
+
+// Draws that may cast into each cascade (all of them when `cull` is off).
+std::vector<passes::DrawList> cull_cascade_casters(const CascadeSet& cascades, const passes::CasterScene& scene,
+                                                   bool cull);
+
+// The layers to render for every shadowed local light: the draws inside each layer's
+// frustum (and, for a cube face, the sphere of the range), none on a wide spot's cube
+// faces its cone cannot reach; every draw when `cull` is off. Each layer knows the winding
+// of faces toward its light.
+std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
+                                                         const passes::CasterScene& scene, bool cull);
+
+// World bounds of every draw (what local lights fit their near planes to).
+std::vector<Aabb> caster_bounds(const passes::CasterScene& scene);
+
+shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
+                                                     const Light* sun, bool sun_casts_shadows,
+                                                     const ShadowSettings& settings, uint32_t frame_index);
+
+shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, const LocalShadowPlan& plan,
+                                                 const ShadowSettings& settings);
+
+}  // namespace penumbra::library

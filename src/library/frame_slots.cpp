@@ -1,0 +1,110 @@
+#include "library/frame_slots.hpp"
+
+#include <array>
+
+#include "passes/shader_interface.hpp"
+
+namespace penumbra::library {
+namespace {
+
+// Scopes a frame can open: one per cascade, the local lights, the resolve, and room.
+constexpr uint32_t kMaxTimedScopes = 16;
+
+}  // namespace
+
+FrameSetLayouts create_frame_set_layouts(const gpu::Device& device) {
+    // The caller may read the maps from any stage of its own pipelines.
+    constexpr VkShaderStageFlags kAll = VK_SHADER_STAGE_ALL;
+    const std::array<VkDescriptorSetLayoutBinding, 8> sampling{{
+        {PENUMBRA_BINDING_SHADOW_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_CASCADE_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_CASCADE_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_CASCADE_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_LOCAL_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_LOCAL_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_LOCAL_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_LOCAL_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+    }};
+    const std::array<VkDescriptorSetLayoutBinding, 2> caster{{
+        {PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
+         nullptr},
+    }};
+    return {gpu::create_descriptor_set_layout(device, sampling), gpu::create_descriptor_set_layout(device, caster)};
+}
+
+FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSetLayouts& layouts,
+                       VkDescriptorSetLayout screen_set_layout)
+    : device_(device) {
+    const std::array<VkDescriptorPoolSize, 4> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * count},
+                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * count},
+                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * count},
+                                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, count}}};
+    pool_ = gpu::create_descriptor_pool(device, 3 * count, sizes);
+    // Hardware depth comparison with bilinear filtering. Clamp-to-edge rather than a
+    // border: the shaders already treat lookups outside the map as lit, and lavapipe
+    // (Mesa 22.3) returns the border colour for in-range taps of linear-compare array
+    // lookups, which halves the visibility of every pixel.
+    gpu::SamplerDesc comparison;
+    comparison.filter = VK_FILTER_LINEAR;
+    comparison.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    comparison.compare = true;
+    comparison.compare_op = VK_COMPARE_OP_GREATER_OR_EQUAL;
+    comparison_sampler_ = gpu::create_sampler(device, comparison);
+    // Raw depth for the blocker search: point sampling, so a blocker's depth is a real
+    // caster depth rather than a blend with the background.
+    gpu::SamplerDesc raw;
+    raw.filter = VK_FILTER_NEAREST;
+    raw.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    raw_depth_sampler_ = gpu::create_sampler(device, raw);
+
+    slots_.reserve(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        FrameSlot slot{gpu::create_buffer(device, sizeof(shader::PenumbraShadowUniforms),
+                                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload),
+                       gpu::create_buffer(device, sizeof(shader::PenumbraLocalShadows),
+                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::HostUpload),
+                       gpu::allocate_descriptor_set(device, pool_, layouts.sampling),
+                       gpu::allocate_descriptor_set(device, pool_, layouts.caster),
+                       gpu::allocate_descriptor_set(device, pool_, screen_set_layout),
+                       gpu::GpuTimer(device, kMaxTimedScopes)};
+        gpu::write_uniform_buffer(device, slot.sampling_set, PENUMBRA_BINDING_SHADOW_UNIFORMS,
+                                  slot.shadow_uniforms.get(), slot.shadow_uniforms.size);
+        gpu::write_storage_buffer(device, slot.sampling_set, PENUMBRA_BINDING_LOCAL_SHADOWS, slot.local_shadows.get(),
+                                  slot.local_shadows.size);
+        gpu::write_uniform_buffer(device, slot.caster_set, PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS,
+                                  slot.shadow_uniforms.get(), slot.shadow_uniforms.size);
+        gpu::write_storage_buffer(device, slot.caster_set, PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS,
+                                  slot.local_shadows.get(), slot.local_shadows.size);
+        slots_.push_back(std::move(slot));
+    }
+}
+
+uint64_t FrameSlots::buffer_bytes() const {
+    uint64_t bytes = 0;
+    for (const FrameSlot& slot : slots_) bytes += slot.shadow_uniforms.size + slot.local_shadows.size;
+    return bytes;
+}
+
+void FrameSlots::write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades,
+                                    const SampledMaps& local) const {
+    const auto write_maps = [&](const SampledMaps& maps, uint32_t comparison, uint32_t raw, uint32_t moments) {
+        const VkImageView depth = maps.depth->view;
+        gpu::write_combined_image_sampler(device_, slot.sampling_set, comparison, depth, comparison_sampler_);
+        gpu::write_combined_image_sampler(device_, slot.sampling_set, raw, depth, raw_depth_sampler_);
+        // Without moments the binding still needs a valid image: the depth, which the
+        // comparison filters never read through it.
+        if (maps.moments) {
+            gpu::write_combined_image_sampler(device_, slot.sampling_set, moments, maps.moments->view,
+                                              maps.moments_sampler);
+        } else {
+            gpu::write_combined_image_sampler(device_, slot.sampling_set, moments, depth, raw_depth_sampler_);
+        }
+    };
+    write_maps(cascades, PENUMBRA_BINDING_CASCADE_MAP, PENUMBRA_BINDING_CASCADE_DEPTH,
+               PENUMBRA_BINDING_CASCADE_MOMENTS);
+    write_maps(local, PENUMBRA_BINDING_LOCAL_MAP, PENUMBRA_BINDING_LOCAL_DEPTH, PENUMBRA_BINDING_LOCAL_MOMENTS);
+}
+
+}  // namespace penumbra::library

@@ -1,0 +1,59 @@
+#pragma once
+// The per-frame resources of a ShadowSystem, one set per frame in flight: the uniform
+// buffers prepare() writes, the descriptor sets the caller and the passes bind, and the
+// timestamp queries. Slot `frame % frames_in_flight` is reused once its last frame has
+// completed (the caller's guarantee).
+#include <cstdint>
+#include <vector>
+
+#include "gpu/device.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "gpu/timestamps.hpp"
+#include "library/shadow_maps.hpp"
+
+namespace penumbra::library {
+
+struct FrameSlot {
+    gpu::Buffer shadow_uniforms;                    // PenumbraShadowUniforms
+    gpu::Buffer local_shadows;                      // PenumbraLocalShadows
+    VkDescriptorSet sampling_set = VK_NULL_HANDLE;  // the caller's (penumbra/shadow.glsl) and the resolve's set 0
+    VkDescriptorSet caster_set = VK_NULL_HANDLE;    // set 0 of the caster passes
+    VkDescriptorSet screen_set = VK_NULL_HANDLE;    // set 1 of the resolve
+    gpu::GpuTimer timer;
+    uint64_t frame = 0;  // the frame that last used the slot
+    bool shadow_maps_recorded = false;
+    bool visibility_recorded = false;
+};
+
+// The descriptor set layouts every slot's sets use.
+struct FrameSetLayouts {
+    gpu::UniqueDescriptorSetLayout sampling;
+    gpu::UniqueDescriptorSetLayout caster;
+};
+
+FrameSetLayouts create_frame_set_layouts(const gpu::Device& device);
+
+class FrameSlots {
+public:
+    FrameSlots(const gpu::Device& device, uint32_t count, const FrameSetLayouts& layouts,
+               VkDescriptorSetLayout screen_set_layout);
+
+    FrameSlot& at(uint64_t frame) { return slots_[frame % slots_.size()]; }
+    const FrameSlot& at(uint64_t frame) const { return slots_[frame % slots_.size()]; }
+    uint32_t count() const { return static_cast<uint32_t>(slots_.size()); }
+    uint64_t buffer_bytes() const;
+
+    // Points the slot's sampling set at the current maps (rewritten every frame: maps are
+    // replaced as local lights come and go, and the slot's last frame is complete).
+    void write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades, const SampledMaps& local) const;
+
+private:
+    const gpu::Device& device_;
+    gpu::UniqueDescriptorPool pool_;
+    gpu::UniqueSampler comparison_sampler_;
+    gpu::UniqueSampler raw_depth_sampler_;
+    std::vector<FrameSlot> slots_;
+};
+
+}  // namespace penumbra::library

@@ -1,0 +1,94 @@
+#pragma once
+// A ShadowSystem's meshes and instances: the caller's vertex streams (or buffers Penumbra
+// uploads CPU arrays into), alpha masks, instance transforms and flags, and the caster
+// scene the passes draw, rebuilt for each frame from the current instances.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "gpu/device.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "library/retired.hpp"
+#include "passes/casters.hpp"
+#include "penumbra/scene/scene.hpp"
+#include "penumbra/shadow_system.hpp"
+
+namespace penumbra::library {
+
+class Geometry {
+public:
+    // `prepare_pipelines` is called for every vertex format combination a new mesh brings.
+    Geometry(const gpu::Device& device, RetiredObjects& retired, VkDescriptorSetLayout alpha_mask_set_layout,
+             std::function<void(const passes::VertexFormats&)> prepare_pipelines);
+
+    MeshId add_mesh(const MeshDesc& mesh);
+    MeshId add_mesh(const MeshData& mesh);
+    void remove_mesh(MeshId mesh, uint64_t frame);
+    InstanceId add_instance(const InstanceDesc& instance);
+    void set_instance_transform(InstanceId instance, const Mat4& world);
+    void set_instance_flags(InstanceId instance, uint32_t flags);
+    void remove_instance(InstanceId instance);
+
+    // The casting instances as draws, and the world bounds of every instance (casting or not:
+    // receivers bound the cascades' depth range too).
+    const passes::CasterScene& build_scene();
+    const passes::CasterScene& scene() const { return scene_; }  // as the last build_scene() made it
+    const Aabb& world_bounds() const { return world_bounds_; }
+    uint64_t triangles(uint32_t draw) const { return scene_.meshes[scene_.draws[draw].mesh].index_count / 3; }
+
+    // Records the copies of meshes uploaded since the last call and makes them visible to
+    // vertex input; the staging buffers are retired.
+    void record_uploads(VkCommandBuffer cmd, uint64_t frame);
+
+    uint64_t buffer_bytes() const;
+
+private:
+    struct Mesh {
+        passes::CasterMesh caster;
+        Aabb bounds;
+        uint32_t instances = 0;
+        std::vector<gpu::Buffer> owned;  // uploaded streams (MeshData)
+        VkDescriptorSet alpha_mask_set = VK_NULL_HANDLE;
+        VkDescriptorPool alpha_mask_pool = VK_NULL_HANDLE;
+        uint32_t scene_index = 0;  // into scene_.meshes, this frame
+    };
+    struct Instance {
+        uint32_t id = 0;
+        uint32_t mesh = 0;  // MeshId value
+        glm::mat4 world{1.0f};
+        uint32_t flags = 0;
+        Aabb world_bounds;
+    };
+    struct Upload {
+        gpu::Buffer staging;
+        VkBuffer destination;
+        VkDeviceSize size;
+    };
+
+    MeshId insert_mesh(Mesh mesh);
+    void attach_alpha_mask(Mesh& mesh, const AlphaMaskDesc& mask);
+    VkBuffer upload(std::span<const std::byte> bytes, VkBufferUsageFlags usage, Mesh& mesh);
+    Mesh& find_mesh(MeshId mesh, const char* call);
+    Instance& find_instance(InstanceId instance, const char* call);
+    void update_bounds(Instance& instance);
+
+    const gpu::Device& device_;
+    RetiredObjects& retired_;
+    VkDescriptorSetLayout alpha_mask_set_layout_;
+    std::function<void(const passes::VertexFormats&)> prepare_pipelines_;
+    std::unordered_map<uint32_t, Mesh> meshes_;
+    std::vector<Instance> instances_;                        // dense, in insertion order (swap on removal)
+    std::unordered_map<uint32_t, uint32_t> instance_index_;  // InstanceId value -> index into instances_
+    uint32_t next_mesh_id_ = 1;
+    uint32_t next_instance_id_ = 1;
+    std::vector<gpu::UniqueDescriptorPool> alpha_mask_pools_;
+    uint32_t alpha_masks_in_last_pool_ = 0;
+    std::vector<Upload> uploads_;
+    passes::CasterScene scene_;
+    Aabb world_bounds_;
+};
+
+}  // namespace penumbra::library

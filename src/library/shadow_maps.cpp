@@ -1,0 +1,109 @@
+#include "library/shadow_maps.hpp"
+
+#include <algorithm>
+
+#include "core/shadow_filters.hpp"
+
+namespace penumbra::library {
+namespace {
+
+// The map is at least 16 x 16 with one layer, so the descriptor set always binds a valid image.
+constexpr uint32_t kPlaceholderResolution = 16;
+
+}  // namespace
+
+CascadeMaps::CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                         VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings) {
+    const auto count = static_cast<uint32_t>(settings.cascades.count);
+    if (is_moment_filter(settings.filter.mode)) {
+        moments_pass_.emplace(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution, count,
+                              settings.filter);
+    } else {
+        depth_pass_.emplace(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution, count,
+                            settings.strategy);
+    }
+}
+
+void CascadeMaps::prepare_pipelines(const passes::VertexFormats& formats) {
+    if (depth_pass_) depth_pass_->prepare_pipelines(formats);
+    if (moments_pass_) moments_pass_->prepare_pipelines(formats);
+}
+
+SampledMaps CascadeMaps::sampled() const {
+    if (moments_pass_) {
+        return {&moments_pass_->depth(), &moments_pass_->moments(), moments_pass_->moments_sampler()};
+    }
+    return {&depth_pass_->shadow_map(), nullptr, VK_NULL_HANDLE};
+}
+
+uint64_t CascadeMaps::memory_bytes() const {
+    return moments_pass_ ? moments_pass_->memory_bytes() : depth_pass_->shadow_map().memory_size;
+}
+
+void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
+                         const std::vector<passes::DrawList>& lists, const ShadowSettings& settings,
+                         const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
+    if (moments_pass_) {
+        gpu::TimedScope scope(timer, cmd, "shadow_moments");
+        moments_pass_->record(cmd, frame_set, scene, lists, culling);
+        return;
+    }
+    depth_pass_->record(cmd, frame_set, scene, lists, settings.bias, culling, timer);
+}
+
+LocalMaps::LocalMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                     VkDescriptorSetLayout alpha_mask_set_layout, const FilterSettings& filter, RetiredObjects& retired)
+    : device_(device), filter_(filter), retired_(retired), pass_(device, frame_set_layout, alpha_mask_set_layout) {
+    gpu::SamplerDesc sampler;
+    sampler.filter = VK_FILTER_NEAREST;
+    sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    depth_sampler_ = gpu::create_sampler(device, sampler);
+    map_ = std::make_unique<gpu::Image>(passes::create_depth_map(device, kPlaceholderResolution, 1));
+}
+
+void LocalMaps::fit(const LocalShadowPlan& plan, uint64_t frame) {
+    const uint32_t layers = plan.layer_count;
+    const uint32_t resolution = layers > 0 ? plan.atlas_resolution : 0u;
+    if (layers == layers_ && resolution == resolution_) return;
+    retired_.retire(std::move(map_), frame);
+    retired_.retire(std::move(moments_), frame);
+    layers_ = layers;
+    resolution_ = resolution;
+    map_ = std::make_unique<gpu::Image>(
+        passes::create_depth_map(device_, std::max(resolution, kPlaceholderResolution), std::max(layers, 1u)));
+    if (is_moment_filter(filter_.mode) && layers > 0) {
+        moments_ = std::make_unique<passes::LocalMomentsPass>(device_, *map_, depth_sampler_, filter_);
+    }
+}
+
+SampledMaps LocalMaps::sampled() const {
+    if (moments_) return {map_.get(), &moments_->moments(), moments_->sampler()};
+    return {map_.get(), nullptr, VK_NULL_HANDLE};
+}
+
+uint64_t LocalMaps::memory_bytes() const {
+    if (layers_ == 0) return 0;  // the 16 x 16 placeholder is not counted
+    return map_->memory_size + (moments_ ? moments_->memory_bytes() : 0u);
+}
+
+void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
+                       const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
+                       const ShadowSettings& settings, gpu::GpuTimer* timer) const {
+    if (layers_ == 0) {
+        // Nothing samples the placeholder map, but the descriptor set binds it in this layout.
+        pass_.record_placeholder(cmd, *map_);
+        return;
+    }
+    gpu::TimedScope scope(timer, cmd, "shadow_local");
+    pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling);
+    if (!moments_) return;
+    std::vector<passes::LocalMomentsLayer> moments_layers;
+    for (const LocalShadowSlot& slot : plan.slots) {
+        for (uint32_t face = 0; face < slot.view_projection.size(); ++face) {
+            moments_layers.push_back({slot.first_layer + face, slot.resolution, slot.near_plane, slot.far_plane});
+        }
+    }
+    moments_->record(cmd, moments_layers, clamped_evsm_exponents(settings.filter));
+}
+
+}  // namespace penumbra::library

@@ -1,0 +1,78 @@
+#pragma once
+// The maps a ShadowSystem renders and their passes: the sun's cascades (a depth pass, or a
+// moments pass for the moment filters) and the spot/point lights' layered map (resized to
+// what the frame's lights need, with a moments conversion for the moment filters).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/local_lights.hpp"
+#include "gpu/device.hpp"
+#include "gpu/resources.hpp"
+#include "gpu/timestamps.hpp"
+#include "library/retired.hpp"
+#include "passes/casters.hpp"
+#include "passes/local_moments_pass.hpp"
+#include "passes/local_shadow_pass.hpp"
+#include "passes/moments_pass.hpp"
+#include "passes/shadow_pass.hpp"
+#include "penumbra/settings.hpp"
+
+namespace penumbra::library {
+
+// A map as the descriptor set binds it: the depth (comparison and raw) and, for the moment
+// filters, the moments with their sampler.
+struct SampledMaps {
+    const gpu::Image* depth = nullptr;
+    const gpu::Image* moments = nullptr;
+    VkSampler moments_sampler = VK_NULL_HANDLE;
+};
+
+class CascadeMaps {
+public:
+    CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings);
+
+    void prepare_pipelines(const passes::VertexFormats& formats);
+    SampledMaps sampled() const;
+    uint64_t memory_bytes() const;
+
+    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
+                const std::vector<passes::DrawList>& lists, const ShadowSettings& settings,
+                const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+
+private:
+    std::optional<passes::ShadowPass> depth_pass_;     // comparison filters
+    std::optional<passes::MomentsPass> moments_pass_;  // vsm, evsm, msm
+};
+
+class LocalMaps {
+public:
+    LocalMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+              VkDescriptorSetLayout alpha_mask_set_layout, const FilterSettings& filter, RetiredObjects& retired);
+
+    void prepare_pipelines(const passes::VertexFormats& formats) { pass_.prepare_pipelines(formats); }
+    // Makes the map hold `plan`'s layers at its atlas resolution (a 16 x 16 placeholder
+    // without shadowed lights); a replaced map is retired.
+    void fit(const LocalShadowPlan& plan, uint64_t frame);
+    SampledMaps sampled() const;
+    uint64_t memory_bytes() const;  // 0 for the placeholder
+
+    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
+                const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
+                const ShadowSettings& settings, gpu::GpuTimer* timer) const;
+
+private:
+    const gpu::Device& device_;
+    FilterSettings filter_;
+    RetiredObjects& retired_;
+    passes::LocalShadowPass pass_;
+    gpu::UniqueSampler depth_sampler_;  // nearest: the moments conversion reads raw depth
+    std::unique_ptr<gpu::Image> map_;
+    std::unique_ptr<passes::LocalMomentsPass> moments_;  // moment filters with shadowed lights only
+    uint32_t layers_ = 0;                                // 0: the placeholder
+    uint32_t resolution_ = 0;
+};
+
+}  // namespace penumbra::library

@@ -1,0 +1,408 @@
+// ShadowSystem: the public API over the device layer and the passes. The Impl holds the
+// geometry, the lights, the maps and the per-frame slots; each public call checks its
+// arguments and its place in the frame (prepare -> record_shadow_maps -> record_visibility)
+// before it changes anything.
+#include "penumbra/shadow_system.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "core/camera_math.hpp"
+#include "core/cascades.hpp"
+#include "core/caster_facing.hpp"
+#include "core/local_lights.hpp"
+#include "gpu/device.hpp"
+#include "library/conversions.hpp"
+#include "library/device_checks.hpp"
+#include "library/frame_setup.hpp"
+#include "library/frame_slots.hpp"
+#include "library/geometry.hpp"
+#include "library/light_checks.hpp"
+#include "library/retired.hpp"
+#include "library/shadow_maps.hpp"
+#include "passes/shadow_filter_specialization.hpp"
+#include "passes/visibility_resolve_pass.hpp"
+#include "penumbra/errors.hpp"
+
+namespace penumbra {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+constexpr uint32_t kMaxFramesInFlight = 8;
+constexpr uint32_t kMaxScreenSize = 16384;
+
+PFN_vkGetInstanceProcAddr instance_proc_addr(const DeviceDesc& desc) {
+    return desc.get_instance_proc_addr ? desc.get_instance_proc_addr : gpu::loader_instance_proc_addr();
+}
+
+gpu::Device make_device(const DeviceDesc& desc) {
+    const gpu::EnabledFeatures features = library::check_device(desc, instance_proc_addr(desc));
+    return gpu::Device({desc.instance, desc.physical_device, desc.device, desc.queue, desc.queue_family}, features,
+                       instance_proc_addr(desc));
+}
+
+uint32_t checked_frames_in_flight(uint32_t frames) {
+    if (frames < 1 || frames > kMaxFramesInFlight) {
+        throw InputError("ShadowSystem: frames_in_flight: " + std::to_string(frames) + " is out of range (1.." +
+                         std::to_string(kMaxFramesInFlight) + ")");
+    }
+    return frames;
+}
+
+const Settings& checked_settings(const Settings& settings) {
+    validate_settings(settings, "ShadowSystem settings");
+    return settings;
+}
+
+void check_view(const ViewDesc& view) {
+    const auto reject = [](const std::string& field, const std::string& problem) {
+        throw InputError("ShadowSystem::prepare: ViewDesc::" + field + ": " + problem);
+    };
+    for (const float value : view.view.m) {
+        if (!std::isfinite(value)) reject("view", "must be finite");
+    }
+    if (std::abs(glm::determinant(library::to_glm(view.view))) < 1e-12f) reject("view", "is not invertible");
+    if (!(view.fov_y_radians > 0.0f && view.fov_y_radians < 3.14159f)) {
+        reject("fov_y_radians", std::to_string(view.fov_y_radians) + " is outside (0, pi)");
+    }
+    if (!(view.near_plane > 0.0f) || !std::isfinite(view.near_plane)) {
+        reject("near_plane", std::to_string(view.near_plane) + " must be finite and > 0");
+    }
+    if (!(view.far_plane > view.near_plane) || !std::isfinite(view.far_plane)) {
+        reject("far_plane", std::to_string(view.far_plane) + " must be finite and > near_plane");
+    }
+    if (view.width == 0 || view.height == 0 || view.width > kMaxScreenSize || view.height > kMaxScreenSize) {
+        reject("width/height", std::to_string(view.width) + "x" + std::to_string(view.height) +
+                                   " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
+    }
+}
+
+MapImage map_image(const gpu::Image* image) {
+    if (!image) return {};
+    return {image->get(), image->view, image->desc.format, image->desc.aspect, image->desc.width, image->desc.layers};
+}
+
+}  // namespace
+
+struct ShadowSystem::Impl {
+    gpu::Device device;
+    Settings settings;
+    uint32_t frames_in_flight;
+    library::RetiredObjects retired;
+    library::FrameSetLayouts layouts;
+    gpu::UniqueDescriptorSetLayout alpha_mask_layout;
+    library::CascadeMaps cascades;
+    library::LocalMaps local;
+    passes::VisibilityResolvePass resolve;
+    library::FrameSlots slots;
+    library::Geometry geometry;
+
+    std::vector<Light> lights;
+    uint64_t frame = 0;  // prepare() calls so far; the current frame's number
+    FrameInfo info;
+    // What prepare() computed for record_shadow_maps().
+    std::vector<passes::DrawList> cascade_lists;
+    LocalShadowPlan plan;
+    std::vector<passes::LocalShadowLayer> local_layers;
+    passes::CasterFaceCulling cascade_culling;
+    std::unique_ptr<gpu::Image> visibility;
+    uint32_t visibility_slots = 0;
+
+    explicit Impl(const ShadowSystemDesc& desc)
+        : device(make_device(desc.device)),
+          settings(checked_settings(desc.settings)),
+          frames_in_flight(checked_frames_in_flight(desc.frames_in_flight)),
+          retired(frames_in_flight),
+          layouts(library::create_frame_set_layouts(device)),
+          alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
+          cascades(device, layouts.caster, alpha_mask_layout, settings.shadow),
+          local(device, layouts.caster, alpha_mask_layout, settings.shadow.filter, retired),
+          resolve(device, layouts.sampling, settings.shadow.filter),
+          slots(device, frames_in_flight, layouts, resolve.screen_set_layout()),
+          geometry(device, retired, alpha_mask_layout, [this](const passes::VertexFormats& formats) {
+              cascades.prepare_pipelines(formats);
+              local.prepare_pipelines(formats);
+          }) {}
+
+    ~Impl() {
+        // Nothing the caller recorded may still run (the destructor's contract); retired
+        // objects go before the pools and passes they came from.
+        retired.release(~uint64_t{0} / 2);
+    }
+
+    const Light* sun() const {
+        for (const Light& light : lights) {
+            if (light.type == LightType::Directional) return &light;
+        }
+        return nullptr;
+    }
+
+    void prepare_sun(const CameraView& camera, const passes::CasterScene& scene) {
+        Clock::time_point start = Clock::now();
+        const Light* sun_light = sun();
+        const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
+        const CascadeSet set = compute_cascades(camera, direction, settings.shadow.cascades, geometry.world_bounds());
+        info.cpu_fit_ms += milliseconds_since(start);
+        start = Clock::now();
+        const bool casts = sun_light && sun_light->cast_shadows;
+        cascade_lists = casts ? library::cull_cascade_casters(set, scene, settings.shadow.cull_casters)
+                              : std::vector<passes::DrawList>(set.cascades.size());
+        info.cpu_cull_ms += milliseconds_since(start);
+        cascade_culling = {settings.shadow.caster_culling,
+                           light_facing_is_counter_clockwise(set.cascades.front().view_projection)
+                               ? VK_FRONT_FACE_COUNTER_CLOCKWISE
+                               : VK_FRONT_FACE_CLOCKWISE};
+        info.sun_direction = library::to_public(direction);
+        info.shadow_distance = set.shadow_distance;
+        info.cascades.clear();
+        for (size_t c = 0; c < set.cascades.size(); ++c) {
+            const Cascade& cascade = set.cascades[c];
+            CascadeInfo out{library::to_public(cascade.view_projection),
+                            cascade.split_near,
+                            cascade.split_far,
+                            cascade.texel_world_size,
+                            library::to_public(cascade.light_extent),
+                            0,
+                            0};
+            out.draws = static_cast<uint32_t>(cascade_lists[c].size());
+            for (const uint32_t draw : cascade_lists[c]) out.triangles += geometry.triangles(draw);
+            info.cascades.push_back(out);
+        }
+        library::FrameSlot& slot = slots.at(frame);
+        const shader::PenumbraShadowUniforms uniforms = library::build_shadow_uniforms(
+            camera, set, sun_light, casts, settings.shadow, static_cast<uint32_t>(frame - 1));
+        std::memcpy(slot.shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
+    }
+
+    void prepare_local(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
+        Clock::time_point start = Clock::now();
+        plan = plan_local_shadows(lights, settings.local_shadows);
+        fit_local_shadows(plan, lights, library::caster_bounds(scene));
+        size_local_shadows(plan, lights, camera, view.height, settings.local_shadows.resolution);
+        info.cpu_fit_ms += milliseconds_since(start);
+        start = Clock::now();
+        local.fit(plan, frame);
+        local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters);
+        info.cpu_cull_ms += milliseconds_since(start);
+        info.local_shadows.clear();
+        for (size_t s = 0; s < plan.slots.size(); ++s) {
+            const LocalShadowSlot& slot = plan.slots[s];
+            LocalShadowInfo out{slot.light,
+                                static_cast<uint32_t>(s + 1),
+                                slot.first_layer,
+                                static_cast<uint32_t>(slot.view_projection.size()),
+                                slot.resolution,
+                                slot.near_plane,
+                                0,
+                                0};
+            for (const passes::LocalShadowLayer& layer : local_layers) {
+                if (layer.layer < slot.first_layer || layer.layer >= slot.first_layer + out.layers) continue;
+                out.draws += static_cast<uint32_t>(layer.draws.size());
+                for (const uint32_t draw : layer.draws) out.triangles += geometry.triangles(draw);
+            }
+            info.local_shadows.push_back(out);
+        }
+        info.unshadowed_lights = plan.unshadowed;
+        const shader::PenumbraLocalShadows uniforms = library::build_local_shadows(lights, plan, settings.shadow);
+        std::memcpy(slots.at(frame).local_shadows.mapped, &uniforms, sizeof(uniforms));
+    }
+
+    library::FrameSlot& current_slot(const char* call) {
+        if (frame == 0) throw UsageError(std::string("ShadowSystem::") + call + ": call prepare() first");
+        return slots.at(frame);
+    }
+
+    void ensure_visibility_image(uint32_t width, uint32_t height, uint32_t slot_count) {
+        const uint32_t layers = (slot_count + 3) / 4;
+        if (visibility && visibility->desc.width == width && visibility->desc.height == height &&
+            visibility->desc.layers == layers) {
+            return;
+        }
+        retired.retire(std::move(visibility), frame);
+        visibility = std::make_unique<gpu::Image>(passes::create_visibility_image(device, width, height, layers));
+    }
+};
+
+ShadowSystem::ShadowSystem(const ShadowSystemDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
+
+ShadowSystem::~ShadowSystem() = default;
+
+MeshId ShadowSystem::add_mesh(const MeshDesc& mesh) { return impl_->geometry.add_mesh(mesh); }
+MeshId ShadowSystem::add_mesh(const MeshData& mesh) { return impl_->geometry.add_mesh(mesh); }
+void ShadowSystem::remove_mesh(MeshId mesh) { impl_->geometry.remove_mesh(mesh, impl_->frame); }
+InstanceId ShadowSystem::add_instance(const InstanceDesc& instance) { return impl_->geometry.add_instance(instance); }
+void ShadowSystem::set_instance_transform(InstanceId instance, const Mat4& world) {
+    impl_->geometry.set_instance_transform(instance, world);
+}
+void ShadowSystem::set_instance_flags(InstanceId instance, uint32_t flags) {
+    impl_->geometry.set_instance_flags(instance, flags);
+}
+void ShadowSystem::remove_instance(InstanceId instance) { impl_->geometry.remove_instance(instance); }
+
+void ShadowSystem::set_lights(std::span<const LightDesc> lights) {
+    library::check_lights(lights);
+    std::vector<Light> converted;
+    converted.reserve(lights.size());
+    for (const LightDesc& light : lights) converted.push_back(library::to_light(light));
+    impl_->lights = std::move(converted);
+}
+
+void ShadowSystem::update_settings(const Settings& settings) {
+    validate_settings(settings, "ShadowSystem::update_settings");
+    if (requires_recreation(impl_->settings, settings)) {
+        throw UsageError(
+            "ShadowSystem::update_settings: the new settings change the cascade count or resolution, the filter, "
+            "the strategy or the local shadow budget, resolution or sizing; create a new ShadowSystem for them");
+    }
+    impl_->settings = settings;
+}
+
+const Settings& ShadowSystem::settings() const { return impl_->settings; }
+
+const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
+    check_view(view);
+    Impl& impl = *impl_;
+    impl.frame += 1;
+    impl.retired.release(impl.frame);
+    library::FrameSlot& slot = impl.slots.at(impl.frame);
+    slot.frame = impl.frame;
+    slot.shadow_maps_recorded = false;
+    slot.visibility_recorded = false;
+    impl.info.frame = impl.frame;
+    impl.info.sun.reset();
+    for (uint32_t i = 0; i < impl.lights.size(); ++i) {
+        if (impl.lights[i].type == LightType::Directional) {
+            impl.info.sun = i;
+            break;
+        }
+    }
+
+    const Clock::time_point start = Clock::now();
+    const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
+    const CameraView camera =
+        make_camera_view(library::to_glm(view.view), view.fov_y_radians, aspect, view.near_plane, view.far_plane);
+    const passes::CasterScene& scene = impl.geometry.build_scene();
+    impl.info.cpu_fit_ms = milliseconds_since(start);
+    impl.info.cpu_cull_ms = 0.0;
+    impl.prepare_sun(camera, scene);
+    impl.prepare_local(camera, view, scene);
+    impl.slots.write_sampling_set(slot, impl.cascades.sampled(), impl.local.sampled());
+    impl.info.descriptor_set = slot.sampling_set;
+    return impl.info;
+}
+
+void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
+    Impl& impl = *impl_;
+    library::FrameSlot& slot = impl.current_slot("record_shadow_maps");
+    if (slot.shadow_maps_recorded) {
+        throw UsageError("ShadowSystem::record_shadow_maps: already recorded for this frame; call prepare() first");
+    }
+    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_shadow_maps: cmd is VK_NULL_HANDLE");
+    slot.timer.begin_frame(cmd);
+    impl.geometry.record_uploads(cmd, impl.frame);
+    // The scene prepare() culled: instances changed since then show in the next frame.
+    const passes::CasterScene& scene = impl.geometry.scene();
+    impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_lists, impl.settings.shadow, impl.cascade_culling,
+                         &slot.timer);
+    impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, &slot.timer);
+    slot.shadow_maps_recorded = true;
+}
+
+void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen) {
+    Impl& impl = *impl_;
+    library::FrameSlot& slot = impl.current_slot("record_visibility");
+    const auto reject = [](const std::string& problem) {
+        throw InputError("ShadowSystem::record_visibility: " + problem);
+    };
+    if (!slot.shadow_maps_recorded) {
+        throw UsageError("ShadowSystem::record_visibility: record_shadow_maps() has not been recorded for this frame");
+    }
+    if (slot.visibility_recorded) {
+        throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame)");
+    }
+    if (cmd == VK_NULL_HANDLE) reject("cmd is VK_NULL_HANDLE");
+    if (screen.depth == VK_NULL_HANDLE) reject("ScreenInputs::depth is VK_NULL_HANDLE");
+    if (screen.width == 0 || screen.height == 0 || screen.width > kMaxScreenSize || screen.height > kMaxScreenSize) {
+        reject("ScreenInputs::width/height: " + std::to_string(screen.width) + "x" + std::to_string(screen.height) +
+               " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
+    }
+    const glm::mat4 view_projection = library::to_glm(screen.view_projection);
+    if (std::abs(glm::determinant(view_projection)) < 1e-30f) reject("ScreenInputs::view_projection is not invertible");
+
+    const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
+    impl.ensure_visibility_image(screen.width, screen.height, slot_count);
+    impl.visibility_slots = slot_count;
+    impl.resolve.write_screen_set(slot.screen_set, screen.depth, screen.depth_layout, screen.normals,
+                                  screen.normals_layout, *impl.visibility);
+    shader::ResolvePushConstants constants{};
+    constants.inverse_view_projection = glm::inverse(view_projection);
+    constants.width = screen.width;
+    constants.height = screen.height;
+    constants.has_normals = screen.normals != VK_NULL_HANDLE ? 1u : 0u;
+    constants.normal_encoding = screen.normal_encoding == NormalEncoding::UnsignedNormalized ? 1u : 0u;
+    constants.background_depth = screen.background_depth;
+    constants.slot_count = slot_count;
+    gpu::TimedScope scope(&slot.timer, cmd, "visibility");
+    impl.resolve.record(cmd, slot.sampling_set, slot.screen_set, *impl.visibility, constants);
+    slot.visibility_recorded = true;
+}
+
+VisibilityImage ShadowSystem::visibility_image() const {
+    const gpu::Image* image = impl_->visibility.get();
+    if (!image) return {};
+    return {image->get(),       image->view,        image->desc.format,     image->desc.width,
+            image->desc.height, image->desc.layers, impl_->visibility_slots};
+}
+
+VkDescriptorSetLayout ShadowSystem::descriptor_set_layout() const { return impl_->layouts.sampling; }
+
+ShaderSpecialization ShadowSystem::shader_specialization(uint32_t first_constant_id) const {
+    ShaderSpecialization result;
+    for (const gpu::SpecializationValue& value : passes::shadow_filter_specialization(impl_->settings.shadow.filter)) {
+        result.entries.push_back({first_constant_id + value.constant_id,
+                                  static_cast<uint32_t>(result.data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+        result.data.push_back(value.value);
+    }
+    return result;
+}
+
+VkSpecializationInfo ShaderSpecialization::info() const {
+    return {static_cast<uint32_t>(entries.size()), entries.data(), data.size() * sizeof(uint32_t), data.data()};
+}
+
+ShadowMaps ShadowSystem::shadow_maps() const {
+    const library::SampledMaps cascades = impl_->cascades.sampled();
+    const library::SampledMaps local = impl_->local.sampled();
+    return {map_image(cascades.depth), map_image(cascades.moments), map_image(local.depth), map_image(local.moments)};
+}
+
+std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
+    const Impl& impl = *impl_;
+    if (frame == 0 || frame > impl.frame || frame + impl.frames_in_flight <= impl.frame) return std::nullopt;
+    const library::FrameSlot& slot = impl.slots.at(frame);
+    if (slot.frame != frame || !slot.shadow_maps_recorded) return std::nullopt;
+    const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();
+    if (!times) return std::nullopt;
+    GpuTimes result{frame, {}};
+    for (const gpu::ScopeTime& time : *times) result.passes.push_back({time.name, time.milliseconds});
+    return result;
+}
+
+MemoryStats ShadowSystem::memory() const {
+    const Impl& impl = *impl_;
+    MemoryStats stats;
+    stats.cascade_maps = impl.cascades.memory_bytes();
+    stats.local_maps = impl.local.memory_bytes();
+    stats.visibility = impl.visibility ? impl.visibility->memory_size : 0u;
+    stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
+    return stats;
+}
+
+}  // namespace penumbra

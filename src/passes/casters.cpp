@@ -1,0 +1,183 @@
+#include "passes/casters.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "gpu/check.hpp"
+#include "passes/shader_interface.hpp"
+
+namespace penumbra::passes {
+namespace {
+
+constexpr VkFormat kShadowFormat = VK_FORMAT_D32_SFLOAT;
+
+gpu::VertexLayout caster_vertex_layout(const VertexFormats& formats) {
+    gpu::VertexLayout layout;
+    layout.dynamic_strides = true;  // each mesh brings its own strides
+    layout.bindings.push_back({0, 0, VK_VERTEX_INPUT_RATE_VERTEX});
+    layout.attributes.push_back({PENUMBRA_LOCATION_POSITION, 0, formats.position, 0});
+    if (formats.uv != VK_FORMAT_UNDEFINED) {
+        layout.bindings.push_back({1, 0, VK_VERTEX_INPUT_RATE_VERTEX});
+        layout.attributes.push_back({PENUMBRA_LOCATION_UV, 1, formats.uv, 0});
+    }
+    return layout;
+}
+
+VkCullModeFlags cull_mode(CasterCulling culling, bool double_sided) {
+    if (double_sided) return VK_CULL_MODE_NONE;
+    switch (culling) {
+        case CasterCulling::BackFaces:
+            return VK_CULL_MODE_BACK_BIT;
+        case CasterCulling::FrontFaces:
+            return VK_CULL_MODE_FRONT_BIT;
+        case CasterCulling::None:
+            break;
+    }
+    return VK_CULL_MODE_NONE;
+}
+
+VkFrontFace flipped(VkFrontFace face) {
+    return face == VK_FRONT_FACE_COUNTER_CLOCKWISE ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+}
+
+// Binds what changes from one draw to the next, skipping what the previous draw bound.
+struct BoundState {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    int64_t mesh = -1;
+    VkDescriptorSet alpha_mask = VK_NULL_HANDLE;
+    VkCullModeFlags cull = ~0u;
+    VkFrontFace front_face = VK_FRONT_FACE_MAX_ENUM;
+};
+
+void bind_mesh(const gpu::Device& device, VkCommandBuffer cmd, const CasterMesh& mesh, bool masked) {
+    const std::array<VkBuffer, 2> buffers{mesh.positions.buffer, mesh.uvs.buffer};
+    const std::array<VkDeviceSize, 2> offsets{mesh.positions.offset, mesh.uvs.offset};
+    const std::array<VkDeviceSize, 2> strides{mesh.positions.stride, mesh.uvs.stride};
+    device->vkCmdBindVertexBuffers2(cmd, 0, masked ? 2u : 1u, buffers.data(), offsets.data(), nullptr, strides.data());
+    device->vkCmdBindIndexBuffer(cmd, mesh.index_buffer, mesh.index_offset, mesh.index_type);
+}
+
+}  // namespace
+
+VertexFormats vertex_formats(const CasterMesh& mesh, bool masked) {
+    return {mesh.positions.format, masked ? mesh.uvs.format : VK_FORMAT_UNDEFINED};
+}
+
+CasterPipelines::CasterPipelines(const gpu::Device& device, CasterPipelineTemplate pipeline_template)
+    : device_(device), template_(std::move(pipeline_template)) {}
+
+void CasterPipelines::prepare(const VertexFormats& formats) {
+    if (pipelines_.contains(formats)) return;
+    const bool masked = formats.uv != VK_FORMAT_UNDEFINED;
+    gpu::GraphicsPipelineDesc desc;
+    desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, masked ? template_.masked_vertex : template_.opaque_vertex, {}});
+    const std::span<const uint32_t> fragment = masked ? template_.masked_fragment : template_.opaque_fragment;
+    if (!fragment.empty()) {
+        desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, fragment, template_.fragment_specialization});
+    }
+    desc.vertex_layout = caster_vertex_layout(formats);
+    desc.layout = template_.layout;
+    desc.color_formats = template_.color_formats;
+    desc.depth_format = template_.depth_format;
+    desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z: the caster nearest the light wins
+    desc.cull_mode = VK_CULL_MODE_NONE;          // set per draw (CasterFaceCulling)
+    desc.dynamic_culling = true;
+    desc.depth_bias = template_.depth_bias;
+    desc.depth_clamp = template_.depth_clamp;
+    desc.view_mask = template_.view_mask;
+    pipelines_.emplace(formats, gpu::create_graphics_pipeline(device_, desc));
+}
+
+VkPipeline CasterPipelines::get(const VertexFormats& formats) const {
+    const auto found = pipelines_.find(formats);
+    if (found == pipelines_.end()) {
+        throw VulkanError("caster pipeline for vertex format " + std::to_string(formats.position) + "/" +
+                              std::to_string(formats.uv) + " was not prepared",
+                          VK_ERROR_UNKNOWN);
+    }
+    return found->second;
+}
+
+void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
+                         const CasterScene& scene, const DrawList& list, uint32_t layer,
+                         const CasterFaceCulling& culling) {
+    BoundState bound;
+    // Opaque casters first, then masked ones, so that each pipeline is bound about once.
+    for (const bool masked_pass : {false, true}) {
+        for (const uint32_t index : list) {
+            const CasterDraw& draw = scene.draws[index];
+            if (draw.masked != masked_pass) continue;
+            const CasterMesh& mesh = scene.meshes[draw.mesh];
+            const VkPipeline pipeline = pipelines.get(vertex_formats(mesh, draw.masked));
+            if (pipeline != bound.pipeline) {
+                device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+                bound.pipeline = pipeline;
+            }
+            if (static_cast<int64_t>(draw.mesh) != bound.mesh) {
+                bind_mesh(device, cmd, mesh, draw.masked);
+                bound.mesh = draw.mesh;
+            }
+            if (draw.masked && mesh.alpha_mask_set != bound.alpha_mask) {
+                device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
+                                                PENUMBRA_SET_ALPHA_MASK, 1, &mesh.alpha_mask_set, 0, nullptr);
+                bound.alpha_mask = mesh.alpha_mask_set;
+            }
+            const VkCullModeFlags cull = cull_mode(culling.mode, draw.double_sided);
+            if (cull != bound.cull) {
+                device->vkCmdSetCullMode(cmd, cull);
+                bound.cull = cull;
+            }
+            const VkFrontFace front_face = draw.mirrored ? flipped(culling.facing_light) : culling.facing_light;
+            if (front_face != bound.front_face) {
+                device->vkCmdSetFrontFace(cmd, front_face);
+                bound.front_face = front_face;
+            }
+            const shader::CasterPushConstants constants{draw.model, layer, mesh.alpha_cutoff, mesh.alpha_scale, 0.0f};
+            device->vkCmdPushConstants(cmd, pipelines.layout(),
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants),
+                                       &constants);
+            device->vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, mesh.vertex_offset, 0);
+        }
+    }
+}
+
+gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint32_t layers) {
+    gpu::ImageDesc desc;
+    desc.format = kShadowFormat;
+    desc.width = resolution;
+    desc.height = resolution;
+    desc.layers = std::max(layers, 1u);
+    desc.usage =
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    desc.array_view = true;
+    return gpu::create_image(device, desc);
+}
+
+void set_shadow_depth_bias(const gpu::Device& device, VkCommandBuffer cmd, const BiasSettings& bias) {
+    // Reverse-Z: pushing a caster away from the light lowers its depth, so every bias term
+    // is negative (a negative clamp bounds the bias from below). Without the depthBiasClamp
+    // feature the bias is unclamped.
+    const float clamp = device.depth_bias_clamp_supported() ? -bias.clamp : 0.0f;
+    device->vkCmdSetDepthBias(cmd, -bias.constant, clamp, -bias.slope);
+}
+
+void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+    const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    device->vkCmdSetViewport(cmd, 0, 1, &viewport);
+    device->vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+gpu::UniqueDescriptorSetLayout create_alpha_mask_set_layout(const gpu::Device& device) {
+    const VkDescriptorSetLayoutBinding binding{PENUMBRA_BINDING_ALPHA_MASK, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                               1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    return gpu::create_descriptor_set_layout(device, {&binding, 1});
+}
+
+VkPushConstantRange caster_push_constant_range() {
+    return {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(shader::CasterPushConstants)};
+}
+
+}  // namespace penumbra::passes

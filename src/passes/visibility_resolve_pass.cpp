@@ -1,0 +1,76 @@
+#include "passes/visibility_resolve_pass.hpp"
+
+#include <array>
+
+#include "gpu/barriers.hpp"
+#include "passes/shadow_filter_specialization.hpp"
+#include "penumbra_shaders.hpp"
+
+namespace penumbra::passes {
+namespace {
+
+constexpr uint32_t kGroupSize = 8;  // local_size_x and _y of visibility_resolve.comp
+
+gpu::UniqueDescriptorSetLayout create_screen_set_layout(const gpu::Device& device) {
+    const std::array<VkDescriptorSetLayoutBinding, 3> bindings{{
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+    }};
+    return gpu::create_descriptor_set_layout(device, bindings);
+}
+
+}  // namespace
+
+gpu::Image create_visibility_image(const gpu::Device& device, uint32_t width, uint32_t height, uint32_t layers) {
+    gpu::ImageDesc desc;
+    desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    desc.width = width;
+    desc.height = height;
+    desc.layers = layers;
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.array_view = true;
+    return gpu::create_image(device, desc);
+}
+
+VisibilityResolvePass::VisibilityResolvePass(const gpu::Device& device, VkDescriptorSetLayout shadow_set_layout,
+                                             const FilterSettings& filter)
+    : device_(device), screen_set_layout_(create_screen_set_layout(device)) {
+    const std::array<VkDescriptorSetLayout, 2> sets{shadow_set_layout, screen_set_layout_};
+    const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(shader::ResolvePushConstants)};
+    layout_ = gpu::create_pipeline_layout(device, sets, {&range, 1});
+    pipeline_ = gpu::create_compute_pipeline(
+        device, {VK_SHADER_STAGE_COMPUTE_BIT, shaders::visibility_resolve_comp(), shadow_filter_specialization(filter)},
+        layout_);
+    gpu::SamplerDesc sampler;
+    sampler.filter = VK_FILTER_NEAREST;
+    sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    nearest_ = gpu::create_sampler(device, sampler);
+}
+
+void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, VkImageView depth, VkImageLayout depth_layout,
+                                             VkImageView normals, VkImageLayout normals_layout,
+                                             const gpu::Image& target) const {
+    gpu::write_combined_image_sampler(device_, set, 0, depth, nearest_, depth_layout);
+    if (normals != VK_NULL_HANDLE) {
+        gpu::write_combined_image_sampler(device_, set, 1, normals, nearest_, normals_layout);
+    } else {
+        gpu::write_combined_image_sampler(device_, set, 1, depth, nearest_, depth_layout);
+    }
+    gpu::write_storage_image(device_, set, 2, target.view);
+}
+
+void VisibilityResolvePass::record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set,
+                                   const gpu::Image& target, const shader::ResolvePushConstants& constants) const {
+    gpu::transition(device_, cmd, target, gpu::ImageState::DiscardAfterShaderReads,
+                    gpu::ImageState::ComputeStorageWrite);
+    device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    const std::array<VkDescriptorSet, 2> sets{shadow_set, screen_set};
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets.data(), 0, nullptr);
+    device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+    device_->vkCmdDispatch(cmd, (constants.width + kGroupSize - 1) / kGroupSize,
+                           (constants.height + kGroupSize - 1) / kGroupSize, 1);
+    gpu::transition(device_, cmd, target, gpu::ImageState::ComputeStorageWrite, gpu::ImageState::ShaderSampled);
+}
+
+}  // namespace penumbra::passes

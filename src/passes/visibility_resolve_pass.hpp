@@ -1,0 +1,44 @@
+#pragma once
+// The screen-space shadow resolve (shaders/visibility_resolve.comp): a compute pass that,
+// once per pixel of the caller's depth buffer, evaluates the sun's and every shadowed local
+// light's visibility with the configured filter into an RGBA8 array image.
+#include <vulkan/vulkan.h>
+
+#include "gpu/device.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "passes/shader_interface.hpp"
+#include "penumbra/settings.hpp"
+
+namespace penumbra::passes {
+
+class VisibilityResolvePass {
+public:
+    // `shadow_set_layout` is the ShadowSystem's descriptor set (set 0 of the pass); the pass's
+    // own set 1 holds the screen's depth and normals and the target.
+    VisibilityResolvePass(const gpu::Device& device, VkDescriptorSetLayout shadow_set_layout,
+                          const FilterSettings& filter);
+
+    VkDescriptorSetLayout screen_set_layout() const { return screen_set_layout_; }
+    // Writes set 1: the depth and the normals (the depth again when there are none) sampled
+    // with a nearest sampler in the given layouts, and `target` as the storage image.
+    void write_screen_set(VkDescriptorSet set, VkImageView depth, VkImageLayout depth_layout, VkImageView normals,
+                          VkImageLayout normals_layout, const gpu::Image& target) const;
+
+    // Dispatches one thread per pixel of `constants.width` x `constants.height`; takes
+    // `target` from ShaderSampled (or unused) to ComputeStorageWrite and back to ShaderSampled.
+    void record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set, const gpu::Image& target,
+                const shader::ResolvePushConstants& constants) const;
+
+private:
+    const gpu::Device& device_;
+    gpu::UniqueDescriptorSetLayout screen_set_layout_;
+    gpu::UniquePipelineLayout layout_;
+    gpu::UniquePipeline pipeline_;
+    gpu::UniqueSampler nearest_;
+};
+
+// The visibility target: RGBA8 layers of width x height, four slots per layer.
+gpu::Image create_visibility_image(const gpu::Device& device, uint32_t width, uint32_t height, uint32_t layers);
+
+}  // namespace penumbra::passes

@@ -1,0 +1,23 @@
+#include "penumbra/scene/render_settings.hpp"
+
+#include "penumbra/errors.hpp"
+
+namespace penumbra {
+namespace {
+
+void check_image_size(uint32_t value, const char* name, const std::string& origin) {
+    if (value == 0 || value > kMaxImageSize) {
+        throw InputError(origin + ": " + name + ": " + std::to_string(value) + " is out of range (1.." +
+                         std::to_string(kMaxImageSize) + ")");
+    }
+}
+
+}  // namespace
+
+void validate_render_settings(const RenderSettings& settings, const std::string& origin) {
+    check_image_size(settings.width, "width", origin);
+    check_image_size(settings.height, "height", origin);
+    validate_settings({settings.shadow, settings.local_shadows}, origin);
+}
+
+}  // namespace penumbra
