@@ -1,11 +1,18 @@
 #version 460
 // The caster passes' vertex shader: transforms a caster into one shadow-map layer's clip
-// space. Compiled in four variants (shaders/CMakeLists.txt):
+// space. Compiled in variants (shaders/CMakeLists.txt):
 //   PENUMBRA_LOCAL_LAYER: a spot or point light's layer, PenumbraLocalShadows.layer_view_projection;
-//                         otherwise a cascade (with multiview, gl_ViewIndex is added to the layer)
+//                         otherwise a cascade
+//   PENUMBRA_MULTIVIEW:   one pass renders every cascade; gl_ViewIndex is added to the layer
+//                         (only this variant needs the device's multiview feature)
 //   PENUMBRA_MASKED:      also passes the UVs on to the alpha test
-#extension GL_EXT_multiview : require
 #extension GL_GOOGLE_include_directive : require
+#ifdef PENUMBRA_MULTIVIEW
+#extension GL_EXT_multiview : require
+#define PENUMBRA_VIEW_INDEX gl_ViewIndex
+#else
+#define PENUMBRA_VIEW_INDEX 0
+#endif
 #include "penumbra_internal.h"
 
 layout(push_constant) uniform PushBlock { CasterPushConstants caster; };
@@ -20,7 +27,7 @@ mat4 layer_view_projection() { return local_shadows.layer_view_projection[caster
 layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS) uniform ShadowBlock {
     PenumbraShadowUniforms shadow;
 };
-mat4 layer_view_projection() { return shadow.cascades[caster.layer + gl_ViewIndex].view_projection; }
+mat4 layer_view_projection() { return shadow.cascades[caster.layer + PENUMBRA_VIEW_INDEX].view_projection; }
 #endif
 
 layout(location = PENUMBRA_LOCATION_POSITION) in vec3 in_position;

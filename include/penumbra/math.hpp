@@ -3,6 +3,7 @@
 // caller converts from its own (glm::vec3 and glm::mat4 have the same memory layout as
 // Vec3 and Mat4, so std::bit_cast or memcpy works).
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace penumbra {
@@ -27,8 +28,8 @@ struct Mat4 {
     std::array<float, 16> m{1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f,
                             0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f};  // identity
 
-    float operator()(int row, int column) const { return m[static_cast<size_t>(4 * column + row)]; }
-    float& operator()(int row, int column) { return m[static_cast<size_t>(4 * column + row)]; }
+    float operator()(int row, int column) const { return m[static_cast<std::size_t>(4 * column + row)]; }
+    float& operator()(int row, int column) { return m[static_cast<std::size_t>(4 * column + row)]; }
     friend bool operator==(const Mat4&, const Mat4&) = default;
 };
 

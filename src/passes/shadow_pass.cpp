@@ -26,8 +26,10 @@ void require_multiview(const gpu::Device& device, uint32_t cascade_count) {
 
 CasterPipelineTemplate depth_template(const gpu::Device& device, VkPipelineLayout layout, uint32_t view_mask) {
     CasterPipelineTemplate pipelines;
-    pipelines.opaque_vertex = shaders::caster_cascade_vert();
-    pipelines.masked_vertex = shaders::caster_cascade_masked_vert();
+    const bool multiview = view_mask != 0;
+    pipelines.opaque_vertex = multiview ? shaders::caster_multiview_vert() : shaders::caster_cascade_vert();
+    pipelines.masked_vertex =
+        multiview ? shaders::caster_multiview_masked_vert() : shaders::caster_cascade_masked_vert();
     pipelines.masked_fragment = shaders::caster_masked_frag();
     pipelines.layout = layout;
     pipelines.depth_bias = true;

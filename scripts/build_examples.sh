@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Builds Penumbra the way an application gets it, then the examples against that:
+#   1. the library alone (PENUMBRA_BUILD_TOOLS=OFF: no scene component, no tools), into
+#      WORK/library, installed into WORK/prefix;
+#   2. checks the installed headers: exactly the public headers of include/penumbra/ (less
+#      the scene component's) and the generated version.hpp, each compiling on its own;
+#   3. configures and builds examples/minimal and examples/deferred from clean folders
+#      with find_package(Penumbra) on WORK/prefix, into WORK/minimal and WORK/deferred.
+# The example tests (tests/examples) run the binaries; ctest runs this script first.
+#   scripts/build_examples.sh WORK
+set -euo pipefail
+if [[ $# -ne 1 ]]; then
+  echo "usage: scripts/build_examples.sh WORK" >&2
+  exit 2
+fi
+source_dir="$(cd "$(dirname "$0")/.." && pwd)"
+work="$1"
+rm -rf "$work"
+mkdir -p "$work"
+work="$(cd "$work" && pwd)"
+prefix="$work/prefix"
+
+cmake -S "$source_dir" -B "$work/library" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DPENUMBRA_BUILD_TOOLS=OFF -DPENUMBRA_TESTS=OFF >/dev/null
+cmake --build "$work/library"
+cmake --install "$work/library" --prefix "$prefix" >/dev/null
+
+expected="$( (cd "$source_dir/include" && find penumbra -path penumbra/scene -prune -o -type f \
+  \( -name '*.hpp' -o -name '*.h' -o -name '*.glsl' \) -print; echo penumbra/version.hpp) | sort)"
+installed="$(cd "$prefix/include" && find . -type f | sed 's|^\./||' | sort)"
+if [[ "$expected" != "$installed" ]]; then
+  echo "build_examples: the installed headers differ from the public ones:" >&2
+  diff <(echo "$expected") <(echo "$installed") >&2 || true
+  exit 1
+fi
+for header in $(cd "$prefix/include" && find penumbra -name '*.hpp'); do
+  echo "#include <$header>" | c++ -std=c++20 -fsyntax-only -Wall -Wextra -Werror -I "$prefix/include" -x c++ - \
+    || { echo "build_examples: $header does not compile on its own" >&2; exit 1; }
+done
+
+for example in minimal deferred; do
+  cmake -S "$source_dir/examples/$example" -B "$work/$example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_COMPILE_WARNING_AS_ERROR=ON >/dev/null
+  cmake --build "$work/$example"
+done
+echo "build_examples: the library, its installed headers and both examples built in $work"
