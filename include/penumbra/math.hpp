@@ -1,7 +1,7 @@
 #pragma once
 // The small value types of Penumbra's public API. Plain structs, no math library: a
 // caller converts from its own (glm::vec3 and glm::mat4 have the same memory layout as
-// Vec3 and Mat4, so std::bit_cast or memcpy works).
+// Vec3 and Mat4: glm::make_mat4(m.m.data()) one way, memcpy from glm::value_ptr the other).
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -97,7 +97,7 @@ struct MeshData {
 
 enum InstanceFlags : uint32_t {
     kInstanceCastsShadows = 1u << 0,  // drawn into shadow maps; without it the instance only receives
-    // Never face-culled in the shadow passes, whatever Settings::shadow.bias.caster_cull says.
+    // Never face-culled in the shadow passes, whatever Settings::shadow.caster_culling says.
     kInstanceDoubleSided = 1u << 1,
     // Alpha-tested with its mesh's AlphaMaskDesc (ignored for meshes without one); without
     // this flag such a mesh casts as opaque.
@@ -198,7 +198,8 @@ struct ScreenInputs {
 
 // What record_visibility() writes: one visibility value per pixel and light, 1 lit,
 // 0 shadowed or facing away from the light, in a 2D array image of RGBA8 layers. Slot s
-// is layer s / 4, channel s % 4: slot 0 the sun, slot k the local light with
+// is layer s / 4, channel s % 4: slot 0 the sun (0 at every pixel with geometry when there
+// is no directional light: no sunlight arrives), slot k the local light with
 // LocalShadowInfo::slot == k. Left in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, its writes
 // visible to fragment and compute shader reads; valid until the next record_visibility().
 struct VisibilityImage {

@@ -185,7 +185,7 @@ void expect_matches_scene(const fs::path& png, const glm::vec3& box_centre, size
     EXPECT_GT(check.shadowed_ground, 300u) << "the visible part of the shadow";
     EXPECT_GE(check.dark_faces, min_dark_faces);
     EXPECT_EQ(check.wrong, 0u) << png << ": " << check.first_wrong;
-    EXPECT_GE(check.iou, 0.9) << png << ": the shadow differs from the analytic projection";
+    EXPECT_GE(check.iou, 0.97) << png << ": the shadow differs from the analytic projection";
 }
 
 ::testing::AssertionResult built(const std::string& binary) {

@@ -66,14 +66,8 @@ std::optional<float> intersect_ground(const PixelRay& ray, float half_size) {
     return t;
 }
 
-std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_direction) {
-    std::vector<glm::vec2> points;
-    for (const glm::vec3& corner : box.corners()) {
-        const float t = -corner.y / light_direction.y;  // travel along the light down to y = 0
-        const glm::vec3 ground = corner + light_direction * t;
-        points.emplace_back(ground.x, ground.z);
-    }
-    // Andrew's monotone chain convex hull, counter-clockwise.
+std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
+    // Andrew's monotone chain, counter-clockwise.
     std::sort(points.begin(), points.end(),
               [](const glm::vec2& a, const glm::vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
     const auto cross = [](const glm::vec2& o, const glm::vec2& a, const glm::vec2& b) {
@@ -91,6 +85,27 @@ std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_di
     }
     hull.resize(k - 1);
     return hull;
+}
+
+std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_direction) {
+    std::vector<glm::vec2> points;
+    for (const glm::vec3& corner : box.corners()) {
+        const float t = -corner.y / light_direction.y;  // travel along the light down to y = 0
+        const glm::vec3 ground = corner + light_direction * t;
+        points.emplace_back(ground.x, ground.z);
+    }
+    return convex_hull(points);
+}
+
+std::vector<glm::vec2> point_light_shadow_polygon(const Aabb& box, const glm::vec3& light_position) {
+    std::vector<glm::vec2> points;
+    for (const glm::vec3& corner : box.corners()) {
+        // Along the ray from the light through the corner, down to y = 0.
+        const glm::vec3 ground =
+            light_position + (corner - light_position) * (light_position.y / (light_position.y - corner.y));
+        points.emplace_back(ground.x, ground.z);
+    }
+    return convex_hull(points);
 }
 
 bool inside_convex_polygon(const std::vector<glm::vec2>& polygon, const glm::vec2& point) {

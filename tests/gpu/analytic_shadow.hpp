@@ -40,8 +40,14 @@ std::optional<float> intersect_box(const PixelRay& ray, const Aabb& box);
 // Distance along the ray to the plane y = 0 within |x|, |z| <= half_size.
 std::optional<float> intersect_ground(const PixelRay& ray, float half_size);
 
+// The convex hull of points, counter-clockwise.
+std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points);
+
 // The box's shadow on y = 0: corners projected along light_direction, as a convex polygon.
 std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_direction);
+
+// The box's shadow on y = 0 under a point light above it (light_position.y > box.max.y).
+std::vector<glm::vec2> point_light_shadow_polygon(const Aabb& box, const glm::vec3& light_position);
 
 bool inside_convex_polygon(const std::vector<glm::vec2>& polygon, const glm::vec2& point);
 

@@ -1,0 +1,322 @@
+// The library's error contract: a device that lacks something, invalid values and calls
+// out of order each throw one typed error naming the problem, and leave the ShadowSystem
+// usable and unchanged.
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "library_fixture.hpp"
+
+namespace penumbra::library_tests {
+namespace {
+
+// Expects `call` to throw exactly `Expected` with a message containing `needle`.
+template <typename Expected, typename Call>
+void expect_error(Call&& call, const std::string& needle) {
+    try {
+        call();
+        ADD_FAILURE() << "no error; expected one mentioning \"" << needle << "\"";
+    } catch (const Expected& error) {
+        EXPECT_NE(std::string(error.what()).find(needle), std::string::npos) << error.what();
+    } catch (const std::exception& error) {
+        ADD_FAILURE() << "an error of another type: " << error.what();
+    }
+}
+
+using DeviceChecks = LibraryTest;
+
+TEST_F(DeviceChecks, NullFeatureChainIsAnInputError) {
+    ShadowSystemDesc desc = system_desc();
+    desc.device.enabled_features = nullptr;
+    expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "enabled_features");
+}
+
+TEST_F(DeviceChecks, NullHandlesAreInputErrors) {
+    ShadowSystemDesc desc = system_desc();
+    desc.device.queue = VK_NULL_HANDLE;
+    expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "DeviceDesc::queue");
+}
+
+// Penumbra reads what the device was created with from the chain the caller passes: a
+// chain without a required feature must be refused, naming it.
+TEST_F(DeviceChecks, MissingSynchronization2IsNamed) {
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+    ShadowSystemDesc desc = system_desc();
+    desc.device.enabled_features = &features;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "synchronization2");
+}
+
+TEST_F(DeviceChecks, MissingDynamicRenderingIsNamed) {
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+    ShadowSystemDesc desc = system_desc();
+    desc.device.enabled_features = &features;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "dynamicRendering");
+}
+
+// The same two features through the Vulkan 1.3 promoted extension structs are accepted.
+TEST_F(DeviceChecks, ExtensionFeatureStructsAreUnderstood) {
+    VkPhysicalDeviceSynchronization2Features sync2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
+    sync2.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceDynamicRenderingFeatures dynamic{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
+                                                     &sync2};
+    dynamic.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &dynamic};
+    ShadowSystemDesc desc = system_desc();
+    desc.device.enabled_features = &features;
+    EXPECT_NO_THROW(ShadowSystem shadows(desc));
+}
+
+TEST_F(DeviceChecks, OldInstanceVersionIsRefused) {
+    ShadowSystemDesc desc = system_desc();
+    desc.device.instance_api_version = VK_API_VERSION_1_2;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "needs 1.3");
+}
+
+TEST_F(DeviceChecks, UnknownQueueFamilyIsAnInputError) {
+    ShadowSystemDesc desc = system_desc();
+    desc.device.queue_family = 1000;
+    expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "queue_family 1000");
+}
+
+// The multiview strategy needs the optional multiview feature: without it in the chain,
+// asking for the strategy names the feature.
+TEST_F(DeviceChecks, MultiviewStrategyWithoutTheFeatureIsNamed) {
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    features13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+    Settings settings = test_settings();
+    settings.shadow.strategy = ShadowStrategy::Multiview;
+    ShadowSystemDesc desc = system_desc(settings);
+    desc.device.enabled_features = &features;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "multiview");
+}
+
+TEST_F(DeviceChecks, FramesInFlightOutOfRange) {
+    expect_error<InputError>([&] { ShadowSystem shadows(system_desc(test_settings(), 0)); }, "frames_in_flight");
+    expect_error<InputError>([&] { ShadowSystem shadows(system_desc(test_settings(), 9)); }, "frames_in_flight");
+}
+
+TEST_F(DeviceChecks, InvalidSettingsNameTheSetting) {
+    Settings settings = test_settings();
+    settings.shadow.cascades.resolution = 100;
+    expect_error<InputError>([&] { ShadowSystem shadows(system_desc(settings)); }, "shadow_resolution");
+}
+
+// Every Vulkan function Penumbra calls comes through the caller's vkGetInstanceProcAddr.
+std::atomic<int> g_lookups{0};
+std::atomic<bool> g_device_lookup{false};
+VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL counting_lookup(VkInstance instance, const char* name) {
+    ++g_lookups;
+    if (std::string(name) == "vkGetDeviceProcAddr") g_device_lookup = true;
+    return vkGetInstanceProcAddr(instance, name);
+}
+
+TEST_F(DeviceChecks, CallersLoaderEntryPointIsUsed) {
+    ShadowSystemDesc desc = system_desc();
+    desc.device.get_instance_proc_addr = counting_lookup;
+    ShadowSystem shadows(desc);
+    EXPECT_GT(g_lookups.load(), 10);
+    EXPECT_TRUE(g_device_lookup.load());
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    const FootprintCheck check = check_footprint(render_visibility(shadows), kBoxCentre, kSunDirection, 0.3f);
+    EXPECT_GT(check.shadowed, 500u);
+    EXPECT_EQ(check.wrong, 0u);
+}
+
+using ApiMisuse = LibraryTest;
+
+TEST_F(ApiMisuse, RecordingBeforePrepareIsAUsageError) {
+    ShadowSystem shadows(system_desc());
+    submit([&](VkCommandBuffer cmd) {
+        expect_error<UsageError>([&] { shadows.record_shadow_maps(cmd); }, "prepare() first");
+        ScreenInputs screen;
+        screen.depth = depth_->view;
+        screen.width = screen.height = kScreen;
+        expect_error<UsageError>([&] { shadows.record_visibility(cmd, screen); }, "prepare() first");
+    });
+}
+
+TEST_F(ApiMisuse, RecordingTwiceOrOutOfOrderIsAUsageError) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    shadows.prepare(top_down_view());
+    submit([&](VkCommandBuffer cmd) {
+        ScreenInputs screen;
+        screen.depth = depth_->view;
+        screen.width = screen.height = kScreen;
+        expect_error<UsageError>([&] { shadows.record_visibility(cmd, screen); }, "record_shadow_maps()");
+        shadows.record_shadow_maps(cmd);
+        expect_error<UsageError>([&] { shadows.record_shadow_maps(cmd); }, "already recorded");
+        record_ground_visibility(cmd, shadows, nullptr, NormalEncoding::SignedFloat);
+        expect_error<UsageError>([&] { record_ground_visibility(cmd, shadows, nullptr, NormalEncoding::SignedFloat); },
+                                 "once per frame");
+    });
+    // The failed calls changed nothing: the frame's visibility is the box's shadow.
+    const FootprintCheck check = check_footprint(read_visibility(shadows, 0), kBoxCentre, kSunDirection, 0.3f);
+    EXPECT_GT(check.shadowed, 500u);
+    EXPECT_EQ(check.wrong, 0u);
+}
+
+TEST_F(ApiMisuse, BadScreenInputsAreInputErrors) {
+    ShadowSystem shadows(system_desc());
+    shadows.prepare(top_down_view());
+    submit([&](VkCommandBuffer cmd) {
+        shadows.record_shadow_maps(cmd);
+        ScreenInputs screen;
+        screen.width = screen.height = kScreen;
+        expect_error<InputError>([&] { shadows.record_visibility(cmd, screen); }, "ScreenInputs::depth");
+        screen.depth = depth_->view;
+        screen.width = 0;
+        expect_error<InputError>([&] { shadows.record_visibility(cmd, screen); }, "width/height");
+        screen.width = kScreen;
+        screen.view_projection.m.fill(0.0f);
+        expect_error<InputError>([&] { shadows.record_visibility(cmd, screen); }, "not invertible");
+    });
+}
+
+TEST_F(ApiMisuse, UnknownHandlesAreUsageErrors) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshId mesh = shadows.add_mesh(box.data());
+    expect_error<UsageError>([&] { shadows.add_instance({MeshId{mesh.value + 100}, Mat4{}}); }, "mesh");
+    const InstanceId instance = shadows.add_instance({mesh, Mat4{}});
+    expect_error<UsageError>([&] { shadows.set_instance_transform(InstanceId{instance.value + 100}, Mat4{}); },
+                             "instance");
+    expect_error<UsageError>([&] { shadows.set_instance_flags(InstanceId{}, 0); }, "instance");
+    shadows.remove_instance(instance);
+    expect_error<UsageError>([&] { shadows.remove_instance(instance); }, "instance");
+    expect_error<UsageError>([&] { shadows.set_instance_transform(instance, Mat4{}); }, "instance");
+}
+
+TEST_F(ApiMisuse, MeshInUseCannotBeRemoved) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshId mesh = shadows.add_mesh(box.data());
+    const InstanceId instance = shadows.add_instance({mesh, Mat4{}});
+    expect_error<UsageError>([&] { shadows.remove_mesh(mesh); }, "still used");
+    shadows.remove_instance(instance);
+    EXPECT_NO_THROW(shadows.remove_mesh(mesh));
+    expect_error<UsageError>([&] { shadows.remove_mesh(mesh); }, "mesh");
+}
+
+TEST_F(ApiMisuse, InvalidMeshDataIsAnInputError) {
+    ShadowSystem shadows(system_desc());
+    MeshArrays mesh = box_mesh();
+    mesh.indices.pop_back();
+    expect_error<InputError>([&] { shadows.add_mesh(mesh.data()); }, "multiple of 3");
+    mesh = box_mesh();
+    mesh.indices[4] = static_cast<uint32_t>(mesh.positions.size());
+    expect_error<InputError>([&] { shadows.add_mesh(mesh.data()); }, "indices");
+    mesh = box_mesh();
+    mesh.positions[2].y = std::numeric_limits<float>::quiet_NaN();
+    expect_error<InputError>([&] { shadows.add_mesh(mesh.data()); }, "positions");
+    expect_error<InputError>([&] { shadows.add_mesh(MeshData{}); }, "positions: is empty");
+    mesh = box_mesh();
+    const std::vector<Vec2> uvs(3);
+    MeshData with_uvs = mesh.data();
+    with_uvs.uvs = uvs;
+    expect_error<InputError>([&] { shadows.add_mesh(with_uvs); }, "uvs");
+}
+
+TEST_F(ApiMisuse, InvalidMeshDescIsAnInputError) {
+    ShadowSystem shadows(system_desc());
+    HostBuffer vertices(device_, 1024, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    HostBuffer indices(device_, 1024, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    MeshDesc desc;
+    desc.positions = {vertices.buffer, 0, 12, VK_FORMAT_R32G32B32_SFLOAT};
+    desc.index_buffer = indices.buffer;
+    desc.index_count = 36;
+    desc.bounds = {{-1, -1, -1}, {1, 1, 1}};
+    MeshDesc bad = desc;
+    bad.positions.buffer = VK_NULL_HANDLE;
+    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "positions");
+    bad = desc;
+    bad.positions.format = VK_FORMAT_R8G8B8A8_UINT;
+    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "format");
+    bad = desc;
+    bad.index_count = 35;
+    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "index_count");
+    bad = desc;
+    bad.bounds = {{1, 1, 1}, {-1, -1, -1}};
+    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "bounds");
+    bad = desc;
+    bad.alpha_mask = AlphaMaskDesc{};
+    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "alpha_mask.view");
+    EXPECT_NO_THROW(shadows.add_mesh(desc));
+}
+
+TEST_F(ApiMisuse, InvalidLightsAreRefusedAndTheOldOnesKept) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    LightDesc zero{LightType::Directional, {0.0f, 0.0f, 0.0f}};
+    expect_error<InputError>([&] { shadows.set_lights({&zero, 1}); }, "direction");
+    LightDesc spot{LightType::Spot, {0.0f, -1.0f, 0.0f}, {0.0f, 5.0f, 0.0f}};
+    spot.inner_angle_degrees = 40.0f;
+    spot.outer_angle_degrees = 30.0f;
+    expect_error<InputError>([&] { shadows.set_lights({&spot, 1}); }, "angle");
+    spot = LightDesc{LightType::Point, {0.0f, -1.0f, 0.0f}, {0.0f, 5.0f, 0.0f}};
+    spot.range = -1.0f;
+    expect_error<InputError>([&] { shadows.set_lights({&spot, 1}); }, "range");
+    const std::vector<LightDesc> too_many(kMaxLights + 1);
+    expect_error<InputError>([&] { shadows.set_lights(too_many); }, "at most");
+    // Still the sun of add_scene().
+    const FootprintCheck check = check_footprint(render_visibility(shadows), kBoxCentre, kSunDirection, 0.3f);
+    EXPECT_GT(check.shadowed, 500u);
+    EXPECT_EQ(check.wrong, 0u);
+}
+
+TEST_F(ApiMisuse, InvalidViewIsAnInputError) {
+    ShadowSystem shadows(system_desc());
+    ViewDesc view = top_down_view();
+    view.near_plane = 0.0f;
+    expect_error<InputError>([&] { shadows.prepare(view); }, "near_plane");
+    view = top_down_view();
+    view.far_plane = std::numeric_limits<float>::infinity();
+    expect_error<InputError>([&] { shadows.prepare(view); }, "far_plane");
+    view = top_down_view();
+    view.width = 0;
+    expect_error<InputError>([&] { shadows.prepare(view); }, "width/height");
+    view = top_down_view();
+    view.view.m.fill(0.0f);
+    expect_error<InputError>([&] { shadows.prepare(view); }, "not invertible");
+}
+
+// Settings that resize or respecialise something need a new ShadowSystem; the others take
+// effect from the next prepare().
+TEST_F(ApiMisuse, SettingsThatNeedRecreationAreRefusedOthersApply) {
+    ShadowSystem shadows(system_desc());
+    Settings bigger = test_settings();
+    bigger.shadow.cascades.resolution = 4096;
+    expect_error<UsageError>([&] { shadows.update_settings(bigger); }, "create a new ShadowSystem");
+    Settings filtered = test_settings();
+    filtered.shadow.filter.mode = ShadowFilter::Vsm;
+    expect_error<UsageError>([&] { shadows.update_settings(filtered); }, "create a new ShadowSystem");
+    EXPECT_EQ(shadows.settings().shadow.cascades.resolution, 2048u);
+    Settings invalid = test_settings();
+    invalid.shadow.bias.slope = -1.0f;
+    expect_error<InputError>([&] { shadows.update_settings(invalid); }, "slope_bias");
+
+    const float before = shadows.prepare(top_down_view()).shadow_distance;
+    Settings nearer = test_settings();
+    nearer.shadow.cascades.max_distance = 40.0f;
+    shadows.update_settings(nearer);
+    const FrameInfo& info = shadows.prepare(top_down_view());
+    EXPECT_GT(before, 60.0f);
+    EXPECT_LE(info.shadow_distance, 40.0f);
+    EXPECT_FLOAT_EQ(info.cascades.back().split_far, info.shadow_distance);
+}
+
+}  // namespace
+}  // namespace penumbra::library_tests
