@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 
 #include "gpu/check.hpp"
@@ -42,20 +43,47 @@ VkFrontFace flipped(VkFrontFace face) {
 }
 
 // Binds what changes from one draw to the next, skipping what the previous draw bound.
+bool same_stream(const VertexStream& a, const VertexStream& b) {
+    return a.buffer == b.buffer && a.offset == b.offset && a.stride == b.stride;
+}
+
+// What is bound in the command buffer, so that draws of meshes sharing buffers (an engine's
+// one big vertex and index buffer) bind nothing between them.
 struct BoundState {
     VkPipeline pipeline = VK_NULL_HANDLE;
     int64_t mesh = -1;
+    std::optional<VertexStream> positions;
+    std::optional<VertexStream> uvs;
+    VkBuffer index_buffer = VK_NULL_HANDLE;
+    VkIndexType index_type = VK_INDEX_TYPE_MAX_ENUM;
     VkDescriptorSet alpha_mask = VK_NULL_HANDLE;
     VkCullModeFlags cull = ~0u;
     VkFrontFace front_face = VK_FRONT_FACE_MAX_ENUM;
 };
 
-void bind_mesh(const gpu::Device& device, VkCommandBuffer cmd, const CasterMesh& mesh, bool masked) {
-    const std::array<VkBuffer, 2> buffers{mesh.positions.buffer, mesh.uvs.buffer};
-    const std::array<VkDeviceSize, 2> offsets{mesh.positions.offset, mesh.uvs.offset};
-    const std::array<VkDeviceSize, 2> strides{mesh.positions.stride, mesh.uvs.stride};
-    device->vkCmdBindVertexBuffers2(cmd, 0, masked ? 2u : 1u, buffers.data(), offsets.data(), nullptr, strides.data());
-    device->vkCmdBindIndexBuffer(cmd, mesh.index_buffer, mesh.index_offset, mesh.index_type);
+void bind_mesh(const gpu::Device& device, VkCommandBuffer cmd, const CasterMesh& mesh, bool masked, BoundState& bound) {
+    const bool positions_bound = bound.positions && same_stream(*bound.positions, mesh.positions);
+    const bool uvs_bound = !masked || (bound.uvs && same_stream(*bound.uvs, mesh.uvs));
+    if (!positions_bound || !uvs_bound) {
+        const std::array<VkBuffer, 2> buffers{mesh.positions.buffer, mesh.uvs.buffer};
+        const std::array<VkDeviceSize, 2> offsets{mesh.positions.offset, mesh.uvs.offset};
+        const std::array<VkDeviceSize, 2> strides{mesh.positions.stride, mesh.uvs.stride};
+        device->vkCmdBindVertexBuffers2(cmd, 0, masked ? 2u : 1u, buffers.data(), offsets.data(), nullptr,
+                                        strides.data());
+        bound.positions = mesh.positions;
+        bound.uvs = masked ? std::optional<VertexStream>(mesh.uvs) : std::nullopt;
+    }
+    // Bound at offset 0: each draw starts at its mesh's first index (index_offset / size).
+    if (mesh.index_buffer != bound.index_buffer || mesh.index_type != bound.index_type) {
+        device->vkCmdBindIndexBuffer(cmd, mesh.index_buffer, 0, mesh.index_type);
+        bound.index_buffer = mesh.index_buffer;
+        bound.index_type = mesh.index_type;
+    }
+}
+
+uint32_t first_index(const CasterMesh& mesh) {
+    const VkDeviceSize index_size = mesh.index_type == VK_INDEX_TYPE_UINT16 ? 2 : 4;
+    return static_cast<uint32_t>(mesh.index_offset / index_size);
 }
 
 }  // namespace
@@ -105,17 +133,20 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
     BoundState bound;
     // Opaque casters first, then masked ones, so that each pipeline is bound about once.
     for (const bool masked_pass : {false, true}) {
+        bound.mesh = -1;  // a masked draw binds the mesh's UVs too
         for (const uint32_t index : list) {
             const CasterDraw& draw = scene.draws[index];
             if (draw.masked != masked_pass) continue;
             const CasterMesh& mesh = scene.meshes[draw.mesh];
-            const VkPipeline pipeline = pipelines.get(vertex_formats(mesh, draw.masked));
-            if (pipeline != bound.pipeline) {
-                device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-                bound.pipeline = pipeline;
-            }
+            // The pipeline depends on the mesh's vertex formats only: looked up per mesh
+            // change, not per draw (a forest's thousands of draws share a few meshes).
             if (static_cast<int64_t>(draw.mesh) != bound.mesh) {
-                bind_mesh(device, cmd, mesh, draw.masked);
+                const VkPipeline pipeline = pipelines.get(vertex_formats(mesh, draw.masked));
+                if (pipeline != bound.pipeline) {
+                    device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+                    bound.pipeline = pipeline;
+                }
+                bind_mesh(device, cmd, mesh, draw.masked, bound);
                 bound.mesh = draw.mesh;
             }
             if (draw.masked && mesh.alpha_mask_set != bound.alpha_mask) {
@@ -137,7 +168,7 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
             device->vkCmdPushConstants(cmd, pipelines.layout(),
                                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants),
                                        &constants);
-            device->vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, mesh.vertex_offset, 0);
+            device->vkCmdDrawIndexed(cmd, mesh.index_count, 1, first_index(mesh), mesh.vertex_offset, 0);
         }
     }
 }

@@ -381,5 +381,77 @@ TEST_F(ShadowSystemFrames, GpuTimesAndMemory) {
     EXPECT_EQ(memory.total(), memory.cascade_maps + memory.local_maps + memory.visibility + memory.buffers);
 }
 
+// An alpha-masked caster: a 2 x 2 m quad whose texture is transparent on its left half
+// (u < 0.5). Flagged alpha-masked, an instance casts only its right half; the same mesh
+// without the flag casts the whole quad, also when both are drawn in one pass (the masked
+// draw then binds the mesh's UVs although the mesh was just bound for the opaque one).
+TEST_F(ShadowSystemFrames, AlphaMaskedAndOpaqueInstancesOfOneMesh) {
+    TestImage texture(device_, VK_FORMAT_R8G8B8A8_UNORM, 2, 1,
+                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    HostBuffer staging(device_, 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    const uint8_t texels[8] = {255, 255, 255, 0, 255, 255, 255, 255};
+    std::memcpy(staging.mapped, texels, sizeof(texels));
+    submit([&](VkCommandBuffer cmd) {
+        VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        barrier.image = texture.image;
+        barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dependency.imageMemoryBarrierCount = 1;
+        dependency.pImageMemoryBarriers = &barrier;
+        vkCmdPipelineBarrier2(cmd, &dependency);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {2, 1, 1};
+        vkCmdCopyBufferToImage(cmd, staging.buffer, texture.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        // Sampled by the shadow passes' fragment shaders (AlphaMaskDesc's contract).
+        barrier.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        barrier.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+        barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        vkCmdPipelineBarrier2(cmd, &dependency);
+    });
+    VkSamplerCreateInfo sampler_info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_NEAREST;
+    sampler_info.addressModeU = sampler_info.addressModeV = sampler_info.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    TEST_VK(vkCreateSampler(device_.device, &sampler_info, nullptr, &sampler));
+
+    const MeshArrays ground = ground_mesh();
+    const MeshArrays quad = quad_mesh(true);
+    std::vector<Vec2> uvs;
+    for (const Vec3& p : quad.positions) uvs.push_back({(p.x + 1.0f) * 0.5f, (p.z + 1.0f) * 0.5f});
+    const auto shadowed_pixels = [&](bool opaque_instance, bool masked_instance) {
+        ShadowSystem shadows(system_desc());
+        shadows.add_instance({shadows.add_mesh(ground.data()), Mat4{}});
+        MeshData data = quad.data();
+        data.uvs = uvs;
+        data.alpha_mask = AlphaMaskDesc{texture.view, sampler, 0.5f, 1.0f};
+        const MeshId mesh = shadows.add_mesh(data);
+        // Side by side, 3 m apart: their shadows do not overlap.
+        if (opaque_instance) shadows.add_instance({mesh, translation({-2.0f, 3.0f, 0.0f}), kInstanceCastsShadows});
+        if (masked_instance) {
+            shadows.add_instance({mesh, translation({2.0f, 3.0f, 0.0f}), kInstanceCastsShadows | kInstanceAlphaMasked});
+        }
+        const LightDesc sun{LightType::Directional, {0.0f, -1.0f, 0.0f}};
+        shadows.set_lights({&sun, 1});
+        const VisibilityImage2D image = render_visibility(shadows);
+        return std::count_if(image.values.begin(), image.values.end(), [](float v) { return v < 0.5f; });
+    };
+    const long opaque = shadowed_pixels(true, false);
+    const long masked = shadowed_pixels(false, true);
+    // The whole quad: 4 m^2 at (7.2 cm)^2 per pixel, about 770 pixels; the mask keeps half.
+    EXPECT_NEAR(static_cast<double>(opaque), 770.0, 80.0);
+    EXPECT_NEAR(static_cast<double>(masked), 0.5 * static_cast<double>(opaque), 40.0);
+    EXPECT_EQ(shadowed_pixels(true, true), opaque + masked);
+    vkDestroySampler(device_.device, sampler, nullptr);
+}
+
 }  // namespace
 }  // namespace penumbra::library_tests
