@@ -171,7 +171,7 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--light-path", raw.light_path, "Sun path: fixed (default) | rotate");
     bench.add_option("--json", raw.json, "Also write the results (and device, settings, scene) as JSON");
     bench.add_option("--ceiling", raw.ceiling,
-                     "Measure a ceiling instead: triangles (shadow pass at 16x16, no culling) | taps (full-screen "
+                     "Measure a ceiling instead: triangles (shadow pass at 512x512, no culling) | taps (full-screen "
                      "shadow-map taps)");
     bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps (default 16)")
         ->check(CLI::Range(1u, bench::kMaxTaps));
