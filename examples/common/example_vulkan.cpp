@@ -122,6 +122,18 @@ Device::~Device() {
     vkDestroyInstance(instance, nullptr);
 }
 
+penumbra::DeviceDesc Device::penumbra_desc() const {
+    penumbra::DeviceDesc desc;
+    desc.instance = instance;
+    desc.physical_device = physical_device;
+    desc.device = device;
+    desc.queue = queue;
+    desc.queue_family = queue_family;
+    desc.instance_api_version = VK_API_VERSION_1_3;  // what Device() created the instance with
+    desc.enabled_features = &features;
+    return desc;
+}
+
 uint32_t Device::memory_type(uint32_t bits, VkMemoryPropertyFlags properties) const {
     VkPhysicalDeviceMemoryProperties memory{};
     vkGetPhysicalDeviceMemoryProperties(physical_device, &memory);

@@ -5,6 +5,7 @@
 // a 16-bit grayscale PNG writer. Deliberately plain: the interesting part is how little
 // Penumbra asks of it (see minimal/main.cpp and deferred/main.cpp).
 #include <vulkan/vulkan.h>
+#include <penumbra/device.hpp>
 
 #include <cstdint>
 #include <functional>
@@ -37,6 +38,10 @@ struct Device {
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
+
+    // What Penumbra is told about this device: the handles, the instance's API version and
+    // the feature chain vkCreateDevice got (Penumbra checks it for what it requires).
+    penumbra::DeviceDesc penumbra_desc() const;
 
     uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags properties) const;
     // Records, submits and waits.

@@ -82,18 +82,6 @@ struct DepthPipeline {
     }
 };
 
-penumbra::DeviceDesc device_desc(const example::Device& device) {
-    penumbra::DeviceDesc desc;
-    desc.instance = device.instance;
-    desc.physical_device = device.physical_device;
-    desc.device = device.device;
-    desc.queue = device.queue;
-    desc.queue_family = device.queue_family;
-    desc.instance_api_version = VK_API_VERSION_1_3;
-    desc.enabled_features = &device.features;
-    return desc;
-}
-
 // Penumbra's visibility image is in SHADER_READ_ONLY_OPTIMAL after record_visibility, its
 // writes visible to shader reads. To copy it the application moves it to TRANSFER_SRC after
 // the compute writes, and back afterwards (ShadowSystem's contract for its images).
@@ -183,7 +171,7 @@ public:
 private:
     static penumbra::ShadowSystemDesc shadow_system_desc(const example::Device& device) {
         penumbra::ShadowSystemDesc desc;
-        desc.device = device_desc(device);
+        desc.device = device.penumbra_desc();
         desc.frames_in_flight = 2;  // two slots: each frame here waits, which satisfies any count
         return desc;
     }

@@ -82,24 +82,12 @@ struct ForwardPipeline {
     }
 };
 
-penumbra::DeviceDesc device_desc(const example::Device& device) {
-    penumbra::DeviceDesc desc;
-    desc.instance = device.instance;
-    desc.physical_device = device.physical_device;
-    desc.device = device.device;
-    desc.queue = device.queue;
-    desc.queue_family = device.queue_family;
-    desc.instance_api_version = VK_API_VERSION_1_3;
-    desc.enabled_features = &device.features;
-    return desc;
-}
-
 std::vector<uint16_t> render(const example::Device& device) {
     const example::SceneBuffers scene(device);
     std::vector<uint16_t> visibility;
     {
         penumbra::ShadowSystemDesc desc;
-        desc.device = device_desc(device);
+        desc.device = device.penumbra_desc();
         desc.frames_in_flight = 1;  // this example waits for its one frame
         penumbra::ShadowSystem shadows(desc);
 
