@@ -85,6 +85,13 @@ Json filter_json(const FilterSettings& filter) {
                 {"evsm_components", filter.evsm_components}};
 }
 
+std::string caster_culling_name(CasterCulling culling) {
+    for (const auto& [name, value] : caster_culling_names()) {
+        if (value == culling) return name;
+    }
+    return "none";
+}
+
 Json settings_json(const RenderSettings& settings) {
     const ShadowSettings& shadow = settings.shadow;
     return Json{
@@ -94,6 +101,7 @@ Json settings_json(const RenderSettings& settings) {
         {"shadow_resolution", shadow.cascades.resolution},
         {"strategy", strategy_name(shadow.strategy)},
         {"cull_casters", shadow.cull_casters},
+        {"caster_culling", caster_culling_name(shadow.caster_culling)},
         {"split_scheme", split_scheme_name(shadow.cascades.scheme)},
         {"split_lambda", shadow.cascades.split_lambda},
         {"max_distance", shadow.cascades.max_distance},
@@ -167,12 +175,14 @@ std::string format_header(const BenchResult& result) {
     char line[512];
     std::snprintf(line, sizeof(line),
                   "penumbra bench: %s (%llu triangles, %zu instances) on %s (%s)\n"
-                  "%ux%u, %d cascades x %u, %s, culling %s; %u frames after %u warm-up, camera %s, light %s\n",
+                  "%ux%u, %d cascades x %u, %s, culling %s, face culling %s; %u frames after %u warm-up, camera %s, "
+                  "light %s\n",
                   result.scene.spec.c_str(), static_cast<unsigned long long>(result.scene.triangles),
                   result.scene.instances, result.device.name.c_str(), result.device.driver.c_str(), s.width, s.height,
                   s.shadow.cascades.count, s.shadow.cascades.resolution, strategy_name(s.shadow.strategy),
-                  s.shadow.cull_casters ? "on" : "off", result.job.frames, result.job.warmup,
-                  camera_path_name(result.job.camera_path), light_path_name(result.job.light_path));
+                  s.shadow.cull_casters ? "on" : "off", caster_culling_name(s.shadow.caster_culling).c_str(),
+                  result.job.frames, result.job.warmup, camera_path_name(result.job.camera_path),
+                  light_path_name(result.job.light_path));
     return line;
 }
 

@@ -18,6 +18,7 @@ namespace {
 // Raw option values as typed; converted after parsing so errors can name the flag.
 struct RawRenderOptions {
     std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits, local_shadow_sizing;
+    std::string caster_culling;
     std::string config;
     bool no_cull = false;
     RawFilterOptions filter;
@@ -87,6 +88,9 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
         ->check(CLI::Range(16u, 8192u));
     render.add_option("--local-shadow-sizing", raw.local_shadow_sizing,
                       "Spot/point shadow map size: coverage (from the light's size on screen, default) | fixed");
+    render.add_option("--caster-culling", raw.caster_culling,
+                      "Faces the shadow passes skip, seen from the light: none (default) | back | front "
+                      "(front: render back faces, which hides acne on closed meshes)");
     render.add_option("--shadow-resolution", o.shadow_resolution, "Shadow map texels per side (512..8192)")
         ->check(CLI::Range(512u, 8192u));
     render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: uniform|log|practical|manual");
@@ -128,6 +132,9 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     if (!raw.local_shadow_sizing.empty()) {
         o.local_shadow_sizing =
             parse_choice(raw.local_shadow_sizing, "--local-shadow-sizing", local_shadow_sizing_names());
+    }
+    if (!raw.caster_culling.empty()) {
+        o.caster_culling = parse_choice(raw.caster_culling, "--caster-culling", caster_culling_names());
     }
     if (!raw.strategy.empty()) {
         o.strategy = parse_choice<ShadowStrategy>(

@@ -45,6 +45,7 @@ void apply_overrides(const SettingsOverrides& overrides, RenderSettings& setting
     assign_if(overrides.blend_width, settings.shadow.blend_width);
     assign_if(overrides.strategy, settings.shadow.strategy);
     assign_if(overrides.cull_casters, settings.shadow.cull_casters);
+    assign_if(overrides.caster_culling, settings.shadow.caster_culling);
     apply_filter_overrides(overrides.filter, settings.shadow.filter);
 }
 

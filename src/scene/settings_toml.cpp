@@ -60,6 +60,7 @@ void read_shadow_table(TomlTableReader& reader, SettingsOverrides& o) {
     o.strategy = reader.optional_choice<ShadowStrategy>(
         "strategy", {{"per-cascade", ShadowStrategy::PerCascade}, {"multiview", ShadowStrategy::Multiview}});
     o.cull_casters = reader.optional_boolean("cull_casters");
+    o.caster_culling = reader.optional_choice<CasterCulling>("caster_culling", caster_culling_names());
     // Spot and point lights (docs/local-lights.md); the ranges of the flags of the same names.
     o.local_shadow_budget = reader.optional_integer_as<uint32_t>("local_shadow_budget", 0, kMaxLocalShadowBudget);
     o.local_shadow_resolution = reader.optional_integer_as<uint32_t>("local_shadow_resolution", 16, 8192);

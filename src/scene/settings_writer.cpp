@@ -73,6 +73,7 @@ void write_cascades(std::ostream& out, const ShadowSettings& shadow) {
     out << "strategy = " << (shadow.strategy == ShadowStrategy::PerCascade ? "\"per-cascade\"" : "\"multiview\"")
         << "\n";
     out << "cull_casters = " << boolean(shadow.cull_casters) << "\n";
+    out << "caster_culling = " << name_of(shadow.caster_culling, caster_culling_names()) << "\n";
 }
 
 void write_filter(std::ostream& out, const FilterSettings& f) {

@@ -88,11 +88,13 @@ TEST_F(BenchCli, PrintsATableOfMedianP95AndMin) {
     }
 }
 
+// Face culling (--caster-culling) happens in the rasteriser: it changes no draw list.
 TEST_F(BenchCli, WithoutCullingEveryCascadeGetsEveryTriangle) {
     const penumbra::Scene scene = penumbra::load_scene("builtin:forest?count=30");
     const uint64_t triangles = triangles_submitted_by(scene);
-    const json report = run_json(std::string(kForest) + kSmall + " --no-cull");
+    const json report = run_json(std::string(kForest) + kSmall + " --no-cull --caster-culling front");
     ASSERT_FALSE(report.empty());
+    EXPECT_EQ(report["settings"]["caster_culling"], "front");
     EXPECT_EQ(report["scene"]["triangles"].get<uint64_t>(), triangles);
     EXPECT_EQ(report["scene"]["instances"].get<size_t>(), scene.instances.size());
     ASSERT_EQ(report["cascades"].size(), 4u);

@@ -266,6 +266,7 @@ TEST_F(Cli, LocalLightVisibilityAov) {
     expect_failure(run("render scene.toml --aov shadow:x -o out.png"), 2, "--aov");
     expect_failure(run("render scene.toml --local-shadow-budget 33 -o out.png"), 2, "--local-shadow-budget");
     expect_failure(run("render scene.toml --local-shadow-sizing screen -o out.png"), 2, "--local-shadow-sizing");
+    expect_failure(run("render scene.toml --caster-culling sideways -o out.png"), 2, "--caster-culling");
 }
 
 TEST_F(Cli, LocalLightsBeyondTheBudgetWarnOnce) {

@@ -23,6 +23,7 @@ RenderSettings unusual_settings() {
     s.shadow.blend_width = 1.0f / 3.0f;
     s.shadow.strategy = ShadowStrategy::Multiview;
     s.shadow.cull_casters = false;
+    s.shadow.caster_culling = CasterCulling::FrontFaces;
     FilterSettings& f = s.shadow.filter;
     f.mode = ShadowFilter::Evsm;
     f.receiver_plane_bias = false;
@@ -81,6 +82,7 @@ TEST(SettingsWriter, EveryValueRoundTripsExactly) {
     EXPECT_EQ(settings.shadow.blend_width, written.shadow.blend_width);
     EXPECT_EQ(settings.shadow.strategy, ShadowStrategy::Multiview);
     EXPECT_FALSE(settings.shadow.cull_casters);
+    EXPECT_EQ(settings.shadow.caster_culling, CasterCulling::FrontFaces);
     const FilterSettings& a = settings.shadow.filter;
     const FilterSettings& b = written.shadow.filter;
     EXPECT_EQ(a.mode, b.mode);
@@ -118,6 +120,25 @@ TEST(SettingsWriter, DefaultsAreValidAndNoSunMeansNoSunTable) {
     RenderSettings settings;
     apply_overrides(parse_settings_text(text, "saved.toml"), settings);
     EXPECT_NO_THROW(validate_render_settings(settings, "saved.toml"));
+}
+
+// caster_culling takes the names of caster_culling_names(); any other value is one line
+// naming the file, the key and the valid names.
+TEST(SettingsText, CasterCullingNames) {
+    for (const auto& [name, culling] : caster_culling_names()) {
+        RenderSettings settings;
+        apply_overrides(parse_settings_text("[shadow]\ncaster_culling = \"" + name + "\"\n", "c.toml"), settings);
+        EXPECT_EQ(settings.shadow.caster_culling, culling) << name;
+    }
+    try {
+        parse_settings_text("[shadow]\ncaster_culling = \"sideways\"\n", "bad.toml");
+        FAIL() << "an unknown caster culling must be rejected";
+    } catch (const InputError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("bad.toml: shadow.caster_culling"), std::string::npos) << message;
+        EXPECT_NE(message.find("front"), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
 }
 
 TEST(SettingsText, ErrorsNameTheOrigin) {

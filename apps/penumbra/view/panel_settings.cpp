@@ -75,6 +75,7 @@ void bias_section(ShadowSettings& shadow) {
     ImGui::SliderFloat("blend width", &shadow.blend_width, 0.0f, 0.5f);
     combo("strategy", shadow.strategy, std::array<const char*, 2>{"per-cascade", "multiview"});
     ImGui::Checkbox("cull casters", &shadow.cull_casters);
+    combo("caster face culling", shadow.caster_culling, std::array<const char*, 3>{"none", "back", "front"});
 }
 
 void comparison_filter_controls(FilterSettings& filter) {

@@ -51,6 +51,7 @@ struct SettingsOverrides {
     std::optional<float> blend_width;
     std::optional<ShadowStrategy> strategy;
     std::optional<bool> cull_casters;
+    std::optional<CasterCulling> caster_culling;           // --caster-culling
     FilterOverrides filter;                                // [shadow] filter keys (docs/filters.md)
     std::optional<uint32_t> local_shadow_budget;           // --local-shadow-budget
     std::optional<uint32_t> local_shadow_resolution;       // --local-shadow-resolution
