@@ -4,8 +4,10 @@
 // and indices stay inside their buffers, so everything read from a model goes through the
 // checked readers below: a malformed file is an InputError, never an out-of-bounds read.
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -23,6 +25,26 @@ struct GltfSource {
     // "meshes[0].primitives[1].indices".
     [[noreturn]] void fail(const std::string& where, const std::string& problem) const;
 };
+
+// How deep a glTF's JSON may nest arrays and objects (real files nest about ten levels;
+// tinygltf's recursive conversion overflows the stack at a few thousand).
+inline constexpr size_t kMaxGltfJsonDepth = 256;
+// How many instances one model may add to a scene (its placements times the primitives its
+// nodes place): beyond, a file is more likely an attack than a scene.
+inline constexpr size_t kMaxGltfInstances = 1'000'000;
+
+// Parses a .gltf or .glb file (gltf_file.cpp): InputError for an unknown extension, a
+// missing or non-regular file, JSON nested deeper than kMaxGltfJsonDepth, or whatever
+// tinygltf refuses; uris must name regular files.
+tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::string& origin);
+
+// The deepest nesting of arrays and objects in JSON text (strings skipped); the scan stops
+// once it exceeds stop_beyond.
+size_t json_nesting_depth(std::string_view text, size_t stop_beyond);
+
+// The root nodes of the model's default scene (or every parentless node without scenes),
+// after checking that the nodes form disjoint strict trees (gltf_hierarchy.cpp).
+std::vector<int> checked_root_nodes(const GltfSource& source);
 
 // Reads the whole accessor, converting to the requested type. Each throws unless the
 // accessor's component type and element type are among those glTF allows for the use.

@@ -1,7 +1,6 @@
 #include "penumbra/scene/loader.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
@@ -16,66 +15,6 @@
 namespace penumbra {
 namespace {
 
-// tinygltf's messages end in newlines and may hold several lines; an InputError is one line.
-std::string one_line(const std::string& text) {
-    std::string result;
-    for (char c : text) {
-        if (c == '\n' || c == '\r') {
-            if (!result.empty() && result.back() != ' ') result += "; ";
-        } else {
-            result += c;
-        }
-    }
-    while (!result.empty() && (result.back() == ' ' || result.back() == ';')) result.pop_back();
-    return result.empty() ? "unknown error" : result;
-}
-
-// tinygltf hands an image's buffer view to the decoder without checking that the view lies
-// inside its buffer; check first, then decode with tinygltf's stb_image loader (as RGBA8).
-bool load_image_checked(tinygltf::Image* image, const int image_index, std::string* err, std::string* warn,
-                        int required_width, int required_height, const unsigned char* bytes, int size,
-                        void* model_being_loaded) {
-    const auto* model = static_cast<const tinygltf::Model*>(model_being_loaded);
-    if (image->bufferView >= 0) {
-        // tinygltf has checked the view and buffer indices, not the byte range.
-        const tinygltf::BufferView& view = model->bufferViews[static_cast<size_t>(image->bufferView)];
-        const size_t buffer_size = model->buffers[static_cast<size_t>(view.buffer)].data.size();
-        if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
-            *err += "images[" + std::to_string(image_index) + "]: bufferView " + std::to_string(image->bufferView) +
-                    " lies outside its buffer of " + std::to_string(buffer_size) + " bytes\n";
-            return false;
-        }
-    }
-    return tinygltf::LoadImageData(image, image_index, err, warn, required_width, required_height, bytes, size,
-                                   nullptr);
-}
-
-std::string lowercase_extension(const std::filesystem::path& file) {
-    std::string extension = file.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return extension;
-}
-
-tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::string& origin) {
-    const std::string extension = lowercase_extension(file);
-    if (extension != ".gltf" && extension != ".glb") {
-        throw InputError(origin + ": unsupported model extension \"" + extension + "\" (expected .gltf or .glb)");
-    }
-    std::error_code error;
-    if (!std::filesystem::exists(file, error)) throw InputError(origin + ": file not found");
-    if (!std::filesystem::is_regular_file(file, error)) throw InputError(origin + ": not a regular file");
-    tinygltf::TinyGLTF loader;
-    tinygltf::Model model;
-    loader.SetImageLoader(load_image_checked, &model);
-    std::string errors;
-    std::string warnings;
-    const bool loaded = extension == ".glb" ? loader.LoadBinaryFromFile(&model, &errors, &warnings, file.string())
-                                            : loader.LoadASCIIFromFile(&model, &errors, &warnings, file.string());
-    if (!loaded) throw InputError(origin + ": cannot load glTF: " + one_line(errors.empty() ? warnings : errors));
-    return model;
-}
-
 bool all_finite(const std::vector<double>& values) {
     return std::all_of(values.begin(), values.end(), [](double value) { return std::isfinite(value); });
 }
@@ -86,8 +25,8 @@ public:
     GltfImporter(Scene& scene, const GltfSource& source) : scene_(scene), source_(source) {}
 
     void place_model(const std::vector<glm::mat4>& placements) {
-        std::vector<int> ancestors;
-        for (int root : root_nodes()) collect_node(root, glm::mat4{1.0f}, ancestors);
+        collect_nodes(checked_root_nodes(source_));
+        refuse_too_many_instances(placements.size());
         for (const glm::mat4& placement : placements) {
             for (const auto& [mesh, model_transform] : placed_meshes_) place_mesh(mesh, placement * model_transform);
         }
@@ -96,45 +35,38 @@ public:
 private:
     const tinygltf::Model& model() const { return source_.model; }
 
-    // The default scene's roots; without scenes, every node that is nobody's child.
-    std::vector<int> root_nodes() const {
-        if (!model().scenes.empty()) {
-            const int scene = model().defaultScene >= 0 ? model().defaultScene : 0;
-            if (static_cast<size_t>(scene) >= model().scenes.size()) {
-                source_.fail("scene", "scene " + std::to_string(scene) + " does not exist");
+    // Every node under the roots with its model-space transform, depth first, without
+    // recursion (a chain of nodes can be as deep as the file is long). The hierarchy was
+    // checked to be a forest, so each node is reached once.
+    void collect_nodes(const std::vector<int>& roots) {
+        std::vector<std::pair<int, glm::mat4>> pending;
+        for (auto root = roots.rbegin(); root != roots.rend(); ++root) pending.emplace_back(*root, glm::mat4{1.0f});
+        while (!pending.empty()) {
+            const auto [index, parent_transform] = pending.back();
+            pending.pop_back();
+            const tinygltf::Node& node = model().nodes[static_cast<size_t>(index)];
+            const glm::mat4 transform =
+                parent_transform * local_transform(node, "nodes[" + std::to_string(index) + "]");
+            if (node.mesh >= 0) placed_meshes_.emplace_back(node.mesh, transform);
+            for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+                pending.emplace_back(*child, transform);
             }
-            return model().scenes[static_cast<size_t>(scene)].nodes;
         }
-        std::vector<bool> is_child(model().nodes.size(), false);
-        for (const tinygltf::Node& node : model().nodes) {
-            for (int child : node.children) {
-                if (child >= 0 && static_cast<size_t>(child) < is_child.size()) {
-                    is_child[static_cast<size_t>(child)] = true;
-                }
-            }
-        }
-        std::vector<int> roots;
-        for (size_t i = 0; i < is_child.size(); ++i) {
-            if (!is_child[i]) roots.push_back(static_cast<int>(i));
-        }
-        return roots;
     }
 
-    void collect_node(int index, const glm::mat4& parent_transform, std::vector<int>& ancestors) {
-        const std::string where = "nodes[" + std::to_string(index) + "]";
-        if (index < 0 || static_cast<size_t>(index) >= model().nodes.size()) {
-            source_.fail(where,
-                         "node does not exist (the file has " + std::to_string(model().nodes.size()) + " nodes)");
+    // Placements times the primitives the nodes place, before any is converted.
+    void refuse_too_many_instances(size_t placement_count) const {
+        size_t primitives = 0;
+        for (const auto& [mesh, transform] : placed_meshes_) {
+            if (mesh >= 0 && static_cast<size_t>(mesh) < model().meshes.size()) {
+                primitives += model().meshes[static_cast<size_t>(mesh)].primitives.size();
+            }
         }
-        if (std::find(ancestors.begin(), ancestors.end(), index) != ancestors.end()) {
-            source_.fail(where, "node is its own ancestor (the node hierarchy has a cycle)");
+        if (primitives > 0 && placement_count > kMaxGltfInstances / primitives) {
+            source_.fail("nodes", std::to_string(placement_count) + " placement(s) of " + std::to_string(primitives) +
+                                      " placed primitive(s) exceed " + std::to_string(kMaxGltfInstances) +
+                                      " instances");
         }
-        const tinygltf::Node& node = model().nodes[static_cast<size_t>(index)];
-        const glm::mat4 transform = parent_transform * local_transform(node, where);
-        if (node.mesh >= 0) placed_meshes_.emplace_back(node.mesh, transform);
-        ancestors.push_back(index);
-        for (int child : node.children) collect_node(child, transform, ancestors);
-        ancestors.pop_back();
     }
 
     // glTF: a column-major matrix, or translation * rotation * scale.

@@ -1,0 +1,169 @@
+// Reading a .gltf or .glb file for tinygltf, safely: the file and every file its uris name
+// must be regular files (a FIFO or a device would block the read forever), and the JSON may
+// not nest deeper than kMaxGltfJsonDepth (tinygltf converts it recursively, and a few
+// thousand levels of `extras` overflow the stack).
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string_view>
+
+#include "penumbra/errors.hpp"
+#include "scene/gltf_internal.hpp"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+// tinygltf's messages end in newlines and may hold several lines; an InputError is one line.
+std::string one_line(const std::string& text) {
+    std::string result;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            if (!result.empty() && result.back() != ' ') result += "; ";
+        } else {
+            result += c;
+        }
+    }
+    while (!result.empty() && (result.back() == ' ' || result.back() == ';')) result.pop_back();
+    return result.empty() ? "unknown error" : result;
+}
+
+// tinygltf hands an image's buffer view to the decoder without checking that the view lies
+// inside its buffer; check first, then decode with tinygltf's stb_image loader (as RGBA8).
+bool load_image_checked(tinygltf::Image* image, const int image_index, std::string* err, std::string* warn,
+                        int required_width, int required_height, const unsigned char* bytes, int size,
+                        void* model_being_loaded) {
+    const auto* model = static_cast<const tinygltf::Model*>(model_being_loaded);
+    if (image->bufferView >= 0) {
+        // tinygltf has checked the view and buffer indices, not the byte range.
+        const tinygltf::BufferView& view = model->bufferViews[static_cast<size_t>(image->bufferView)];
+        const size_t buffer_size = model->buffers[static_cast<size_t>(view.buffer)].data.size();
+        if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
+            *err += "images[" + std::to_string(image_index) + "]: bufferView " + std::to_string(image->bufferView) +
+                    " lies outside its buffer of " + std::to_string(buffer_size) + " bytes\n";
+            return false;
+        }
+    }
+    return tinygltf::LoadImageData(image, image_index, err, warn, required_width, required_height, bytes, size,
+                                   nullptr);
+}
+
+// tinygltf's file callbacks open the file to see whether it exists and then read it: on a
+// FIFO or a character device either blocks. Only regular files are files here.
+bool regular_file_exists(const std::string& path, void*) {
+    std::error_code error;
+    return fs::is_regular_file(path, error);
+}
+
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    if (!regular_file_exists(path, user)) {
+        *err += "\"" + path + "\" is not a regular file\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, user);
+}
+
+std::string lowercase_extension(const fs::path& file) {
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension;
+}
+
+std::vector<unsigned char> read_bytes(const fs::path& file, const std::string& origin) {
+    std::ifstream stream(file, std::ios::binary);
+    if (!stream) throw InputError(origin + ": cannot open the file");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+    if (stream.bad()) throw InputError(origin + ": cannot read the file");
+    return bytes;
+}
+
+uint32_t read_u32(const std::vector<unsigned char>& bytes, size_t offset) {
+    uint32_t value = 0;
+    std::memcpy(&value, bytes.data() + offset, sizeof(value));  // GLB is little-endian, like every target here
+    return value;
+}
+
+// The JSON chunk of a GLB (12-byte header, then the JSON chunk's length and type); empty
+// when the header is too damaged to find it (tinygltf then reports what is wrong).
+std::string_view glb_json_chunk(const std::vector<unsigned char>& bytes) {
+    constexpr size_t kHeader = 12;
+    constexpr size_t kChunkHeader = 8;
+    if (bytes.size() < kHeader + kChunkHeader) return {};
+    const uint32_t chunk_length = read_u32(bytes, kHeader);
+    if (chunk_length > bytes.size() - kHeader - kChunkHeader) return {};
+    return {reinterpret_cast<const char*>(bytes.data()) + kHeader + kChunkHeader, chunk_length};
+}
+
+}  // namespace
+
+size_t json_nesting_depth(std::string_view text, size_t stop_beyond) {
+    size_t depth = 0;
+    size_t deepest = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (const char c : text) {
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+            if (deepest > stop_beyond) return deepest;
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin) {
+    const std::string extension = lowercase_extension(file);
+    if (extension != ".gltf" && extension != ".glb") {
+        throw InputError(origin + ": unsupported model extension \"" + extension + "\" (expected .gltf or .glb)");
+    }
+    std::error_code error;
+    if (!fs::exists(file, error)) throw InputError(origin + ": file not found");
+    if (!fs::is_regular_file(file, error)) throw InputError(origin + ": not a regular file");
+    const std::vector<unsigned char> bytes = read_bytes(file, origin);
+    if (bytes.empty()) throw InputError(origin + ": the file is empty");
+    if (bytes.size() > std::numeric_limits<uint32_t>::max()) {
+        throw InputError(origin + ": larger than 4 GiB, which glTF cannot address");
+    }
+    const bool binary = extension == ".glb";
+    const std::string_view json =
+        binary ? glb_json_chunk(bytes) : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (json_nesting_depth(json, kMaxGltfJsonDepth) > kMaxGltfJsonDepth) {
+        throw InputError(origin + ": its JSON nests arrays and objects more than " + std::to_string(kMaxGltfJsonDepth) +
+                         " levels deep");
+    }
+
+    tinygltf::TinyGLTF loader;
+    tinygltf::FsCallbacks callbacks{regular_file_exists, tinygltf::ExpandFilePath, read_regular_file,
+                                    tinygltf::WriteWholeFile, nullptr};
+    loader.SetFsCallbacks(callbacks);
+    tinygltf::Model model;
+    loader.SetImageLoader(load_image_checked, &model);
+    std::string errors;
+    std::string warnings;
+    const std::string base_dir = file.parent_path().string();
+    const bool loaded =
+        binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, bytes.data(),
+                                             static_cast<unsigned int>(bytes.size()), base_dir)
+               : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(bytes.data()),
+                                            static_cast<unsigned int>(bytes.size()), base_dir);
+    if (!loaded) throw InputError(origin + ": cannot load glTF: " + one_line(errors.empty() ? warnings : errors));
+    return model;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,121 @@
+// Hostile glTF files made to exhaust the loader (issue 17): a node chain as deep as the file
+// is long, JSON nested thousands of levels deep (.gltf and .glb), a buffer uri naming a
+// FIFO, a model placed more often than a scene can hold. Each must be one InputError, in
+// well under a second, with no crash, hang or memory blow-up.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "scene_test_support.hpp"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::input_error_message;
+using testing::test_data;
+
+class GltfHostile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("penumbra_gltf_hostile_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(dir_ / name, std::ios::binary) << bytes;
+        return dir_ / name;
+    }
+
+    static std::string load_error(const fs::path& file, size_t placements = 1) {
+        return input_error_message([&] {
+            Scene scene;
+            append_gltf(scene, file, std::vector<glm::mat4>(placements, glm::mat4{1.0f}));
+        });
+    }
+
+    fs::path dir_;
+};
+
+// The quad fixture's text with its "nodes" array replaced.
+std::string quad_with_nodes(const std::string& nodes_json) {
+    std::ifstream file(test_data("gltf/quad.gltf"));
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const size_t start = text.find("\"nodes\": [\n  {");
+    const size_t end = text.find("\n ],", start);
+    EXPECT_NE(start, std::string::npos);
+    EXPECT_NE(end, std::string::npos);
+    return text.substr(0, start) + "\"nodes\": " + nodes_json + text.substr(end + 3);
+}
+
+// 100,000 nodes, each the only child of the one before: a recursive walk overflows the stack
+// (it did at ~20 k). Loaded iteratively, the chain's one mesh at its end is placed once.
+TEST_F(GltfHostile, DeepNodeChainLoads) {
+    constexpr int kDepth = 100000;
+    std::string nodes = "[";
+    for (int i = 0; i < kDepth - 1; ++i) nodes += "{\"children\":[" + std::to_string(i + 1) + "]},";
+    nodes += "{\"mesh\":0,\"translation\":[0,1,0]}]";
+    Scene scene;
+    append_gltf(scene, write("chain.gltf", quad_with_nodes(nodes)), {glm::mat4{1.0f}});
+    ASSERT_EQ(scene.instances.size(), 1u);
+    EXPECT_EQ(scene.instances[0].world[3][1], 1.0f);
+}
+
+std::string nested_extras(int depth) {
+    return "{\"asset\":{\"version\":\"2.0\",\"extras\":" + std::string(static_cast<size_t>(depth), '[') +
+           std::string(static_cast<size_t>(depth), ']') + "}}";
+}
+
+TEST_F(GltfHostile, DeeplyNestedJsonIsRefused) {
+    EXPECT_THAT(load_error(write("deep.gltf", nested_extras(20000))),
+                HasSubstr("its JSON nests arrays and objects more than 256 levels deep"));
+    // Brackets inside strings are not nesting.
+    const std::string in_string = "{\"asset\":{\"version\":\"2.0\",\"extras\":\"" + std::string(20000, '[') + "\"}}";
+    Scene scene;
+    EXPECT_NO_THROW(append_gltf(scene, write("string.gltf", in_string), {glm::mat4{1.0f}}));
+}
+
+TEST_F(GltfHostile, DeeplyNestedJsonInAGlbIsRefused) {
+    std::string json = nested_extras(20000);
+    json.resize((json.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned
+    std::string glb(20, '\0');
+    const auto put = [&glb](size_t offset, uint32_t value) { std::memcpy(glb.data() + offset, &value, 4); };
+    std::memcpy(glb.data(), "glTF", 4);
+    put(4, 2);
+    put(8, static_cast<uint32_t>(20 + json.size()));
+    put(12, static_cast<uint32_t>(json.size()));
+    put(16, 0x4E4F534Au);  // "JSON"
+    glb += json;
+    EXPECT_THAT(load_error(write("deep.glb", glb)), HasSubstr("more than 256 levels deep"));
+}
+
+// Opening a FIFO for reading waits for a writer: a uri naming one must be refused, not read.
+TEST_F(GltfHostile, BufferUriNamingAFifoIsRefused) {
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.bin").c_str(), 0600), 0);
+    std::ifstream file(test_data("gltf/truncated_buffer.gltf"));
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    text.replace(text.find("truncated.bin"), std::strlen("truncated.bin"), "fifo.bin");
+    EXPECT_THAT(load_error(write("fifo.gltf", text)), HasSubstr("fifo.bin"));
+}
+
+// A model placed more than a million times over (placements times placed primitives) is
+// refused before any instance is made.
+TEST_F(GltfHostile, TooManyInstancesAreRefused) {
+    EXPECT_THAT(load_error(test_data("gltf/quad.gltf"), 1'000'001),
+                HasSubstr("1000001 placement(s) of 1 placed primitive(s) exceed 1000000 instances"));
+    Scene scene;
+    EXPECT_NO_THROW(append_gltf(scene, test_data("gltf/quad.gltf"), std::vector<glm::mat4>(1000, glm::mat4{1.0f})));
+    EXPECT_EQ(scene.instances.size(), 1000u);
+}
+
+}  // namespace
+}  // namespace penumbra
