@@ -283,7 +283,7 @@ Command parse_command_line(int argc, char** argv) {
     } catch (const CLI::ParseError& error) {
         // --help and --version arrive as "errors" with exit code 0; CLI11 prints them.
         if (error.get_exit_code() == 0) return ExitNow{app.exit(error)};
-        std::fprintf(stderr, "penumbra: %s\n", error.what());
+        std::fprintf(stderr, "penumbra: %s\n", escape_control_characters(error.what()).c_str());
         return ExitNow{2};
     } catch (const InputError& error) {
         std::fprintf(stderr, "penumbra: %s\n", error.what());

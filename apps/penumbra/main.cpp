@@ -56,8 +56,9 @@ int view(const penumbra::view::ViewJob& job) {
     return 0;
 }
 
+// One line whatever the message holds (penumbra::Error escapes its own; others may not).
 int fail(int code, const char* message) {
-    std::fprintf(stderr, "penumbra: %s\n", message);
+    std::fprintf(stderr, "penumbra: %s\n", penumbra::escape_control_characters(message).c_str());
     return code;
 }
 

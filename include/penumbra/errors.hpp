@@ -10,10 +10,34 @@
 
 namespace penumbra {
 
+// Text made printable on one line: control characters (a newline in a file name, a NUL in
+// a glTF string) become escapes (\n, \r, \t, \xHH). Every Error's message goes through
+// it, so that text from a caller or a file cannot split a message into several lines.
+inline std::string escape_control_characters(const std::string& text) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string result;
+    result.reserve(text.size());
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '\n') {
+            result += "\\n";
+        } else if (c == '\r') {
+            result += "\\r";
+        } else if (c == '\t') {
+            result += "\\t";
+        } else if (byte < 0x20 || byte == 0x7f) {
+            result += {'\\', 'x', kHex[byte >> 4], kHex[byte & 0xf]};
+        } else {
+            result += c;
+        }
+    }
+    return result;
+}
+
 // The base of every error Penumbra throws.
 class Error : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    explicit Error(const std::string& message) : std::runtime_error(escape_control_characters(message)) {}
 };
 
 // A value, description or file the caller passed is invalid: out of range, malformed,

@@ -290,3 +290,17 @@ TEST_F(Cli, BadLocalLightValues) {
         expect_failure(run("render scene.toml -o out.png"), 2, std::string("scene.toml: ") + keys[i]);
     }
 }
+
+// Control characters in what the user typed or wrote (a scene's strings, a flag's value, a
+// path, a builtin name or query) are escaped in the message: it stays one line (issue 17).
+TEST_F(Cli, ControlCharactersInUserTextStayOnOneLine) {
+    write_file("type.toml", replace(kValidScene, "type = \"box\"", "type = \"bo\\nx\""));
+    expect_failure(run("render type.toml -o out.png"), 2, "bo\\nx");
+    write_file("light.toml", replace(kValidScene, "type = \"directional\"", "type = \"sun\\u0000\\r\""));
+    expect_failure(run("render light.toml -o out.png"), 2, "sun\\x00\\r");
+    write_file("scene.toml", kValidScene);
+    expect_failure(run("render scene.toml --filter \"$(printf 'pc\\nf')\" -o out.png"), 2, "pc\\nf");
+    expect_failure(run("render \"$(printf 'sce\\nne.toml')\" -o out.png"), 2, "sce\\nne.toml");
+    expect_failure(run("render \"$(printf 'builtin:de\\tfault')\" -o out.png"), 2, "builtin:de\\tfault");
+    expect_failure(run("render \"$(printf 'builtin:forest?count=1\\n0')\" -o out.png"), 2, "1\\n0");
+}
