@@ -9,6 +9,7 @@
 
 #include "compare_options.hpp"
 #include "filter_options.hpp"
+#include "number_checks.hpp"
 #include "penumbra/errors.hpp"
 #include "view_options.hpp"
 
@@ -36,6 +37,11 @@ glm::vec3 parse_vec3(const std::string& text, const std::string& flag) {
         separator != ',' || !(stream >> value.z) || !(stream >> std::ws).eof()) {
         throw InputError(flag + ": expected three comma-separated numbers x,y,z, got \"" + text + "\"");
     }
+    for (int i = 0; i < 3; ++i) {
+        if (!sane_number(value[i])) {
+            throw InputError(flag + ": expected finite numbers within +-1e9, got \"" + text + "\"");
+        }
+    }
     return value;
 }
 
@@ -47,7 +53,7 @@ std::vector<float> parse_float_list(const std::string& text, const std::string& 
         try {
             size_t used = 0;
             values.push_back(std::stof(item, &used));
-            if (used != item.size()) throw std::invalid_argument(item);
+            if (used != item.size() || !sane_number(values.back())) throw std::invalid_argument(item);
         } catch (const std::exception&) {
             throw InputError(flag + ": expected comma-separated numbers, got \"" + text + "\"");
         }
@@ -109,6 +115,10 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
         ->check(CLI::Range(0.0f, 0.5f));
     render.add_option("--shadow-strategy", raw.strategy, "Shadow rendering: per-cascade|multiview");
     add_filter_options(render, o, raw.filter);
+    // Every floating-point option, whatever its own range: finite and within +-1e9.
+    for (CLI::Option* option : render.get_options()) {
+        if (option->get_type_name().starts_with("FLOAT")) option->check(finite_number());
+    }
 }
 
 void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
@@ -119,6 +129,10 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     if (!raw.up.empty()) o.up = parse_vec3(raw.up, "--up");
     if (!raw.light_dir.empty()) o.light_direction = parse_vec3(raw.light_dir, "--light-dir");
     if (!raw.splits.empty()) o.splits = parse_float_list(raw.splits, "--splits");
+    if (!raw.splits.empty() && !raw.split_scheme.empty() && raw.split_scheme != "manual") {
+        throw InputError("--splits: manual split distances need --split-scheme manual, not \"" + raw.split_scheme +
+                         "\"");
+    }
     if (!raw.split_scheme.empty()) {
         o.split_scheme = parse_choice<SplitScheme>(raw.split_scheme, "--split-scheme",
                                                    {{"uniform", SplitScheme::Uniform},
@@ -147,6 +161,9 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     } else if (!raw.aov.empty()) {
         job.aov = parse_choice<Aov>(raw.aov, "--aov", {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}});
     }
+    if (!raw.debug.empty() && !raw.aov.empty()) {
+        throw InputError("--aov and --debug: choose one (an AOV replaces the image that --debug tints)");
+    }
     if (!raw.debug.empty()) {
         job.debug = parse_choice<DebugView>(raw.debug, "--debug",
                                             {{"cascades", DebugView::Cascades}, {"shadowmap", DebugView::ShadowMap}});
@@ -155,7 +172,9 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
 
 // Options shared by `render` and `bench`: the scene, its settings and the device.
 void add_render_job_options(CLI::App& command, RenderJob& job, RawRenderOptions& raw) {
-    command.add_option("scene", job.scene, "Scene file (.toml) or builtin:NAME (default builtin:default)");
+    command.add_option("scene", job.scene, "Scene file (.toml) or builtin:NAME (default builtin:default)")
+        ->check(CLI::Validator(
+            [](const std::string& path) { return path.empty() ? std::string("the scene path is empty") : ""; }, ""));
     command.add_option("--config", raw.config, "Config file (.toml) with [output], [shadow], [camera], [sun] settings");
     command.add_flag("--validate", job.device.validation,
                      "Enable the Khronos validation layer (with synchronization validation); any message fails");

@@ -141,12 +141,19 @@ tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin)
         throw InputError(origin + ": larger than 4 GiB, which glTF cannot address");
     }
     const bool binary = extension == ".glb";
+    // tinygltf reads a GLB of any version as if it were 2 (glTF 1.0's binary extension differs).
+    if (binary && bytes.size() >= 12 && std::memcmp(bytes.data(), "glTF", 4) == 0 && read_u32(bytes, 4) != 2) {
+        throw InputError(origin + ": GLB container version " + std::to_string(read_u32(bytes, 4)) +
+                         " (glTF 2.0 files are version 2)");
+    }
     const std::string_view json =
         binary ? glb_json_chunk(bytes) : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     if (json_nesting_depth(json, kMaxGltfJsonDepth) > kMaxGltfJsonDepth) {
         throw InputError(origin + ": its JSON nests arrays and objects more than " + std::to_string(kMaxGltfJsonDepth) +
                          " levels deep");
     }
+
+    check_gltf_json_types(json, origin);
 
     tinygltf::TinyGLTF loader;
     tinygltf::FsCallbacks callbacks{regular_file_exists, tinygltf::ExpandFilePath, read_regular_file,

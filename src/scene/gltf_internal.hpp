@@ -42,6 +42,11 @@ tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::st
 // once it exceeds stop_beyond.
 size_t json_nesting_depth(std::string_view text, size_t stop_beyond);
 
+// Refuses indices, counts, offsets and strides of the wrong JSON type or sign, which
+// tinygltf would skip or misread silently (gltf_json_checks.cpp); JSON it cannot parse is
+// left for tinygltf to report.
+void check_gltf_json_types(std::string_view json, const std::string& origin);
+
 // The root nodes of the model's default scene (or every parentless node without scenes),
 // after checking that the nodes form disjoint strict trees (gltf_hierarchy.cpp).
 std::vector<int> checked_root_nodes(const GltfSource& source);

@@ -15,8 +15,10 @@
 namespace penumbra {
 namespace {
 
+// Finite, and within what the float math downstream carries (kMaxNumberMagnitude).
 bool all_finite(const std::vector<double>& values) {
-    return std::all_of(values.begin(), values.end(), [](double value) { return std::isfinite(value); });
+    return std::all_of(values.begin(), values.end(),
+                       [](double value) { return std::isfinite(value) && std::abs(value) <= kMaxNumberMagnitude; });
 }
 
 // Turns the node tree into instances: one per (mesh primitive, node, placement).
@@ -73,7 +75,7 @@ private:
     glm::mat4 local_transform(const tinygltf::Node& node, const std::string& where) const {
         if (!all_finite(node.matrix) || !all_finite(node.translation) || !all_finite(node.rotation) ||
             !all_finite(node.scale)) {
-            source_.fail(where, "transform holds a non-finite number");
+            source_.fail(where, "transform holds a number that is not finite or beyond 1e9 in magnitude");
         }
         if (node.matrix.size() == 16) {
             glm::mat4 matrix{1.0f};

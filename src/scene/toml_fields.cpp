@@ -6,11 +6,13 @@
 #include <utility>
 
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
 namespace {
 
 constexpr size_t kAnySize = std::numeric_limits<size_t>::max();
+constexpr const char* kMagnitudeLimitText = "1e9 in magnitude, the largest Penumbra's 32-bit float math carries";
 
 std::string quote(std::string_view text) {
     std::string result = "\"";
@@ -152,6 +154,7 @@ std::optional<double> TomlTableReader::optional_number(std::string_view key) {
     if (!node->is_number()) fail(key, "expected a number, got " + describe_toml_value(*node));
     const double value = *node->value<double>();
     if (!std::isfinite(value)) fail(key, "expected a finite number, got " + value_text(*node));
+    if (std::abs(value) > kMaxNumberMagnitude) fail(key, value_text(*node) + " is beyond " + kMagnitudeLimitText);
     return value;
 }
 
@@ -209,6 +212,9 @@ std::vector<double> TomlTableReader::number_array(std::string_view key, const to
     for (const toml::node& element : array) {
         const std::optional<double> value = element.is_number() ? element.value<double>() : std::nullopt;
         if (!value || !std::isfinite(*value)) fail(key, "expected " + expected + ", got " + describe_toml_value(array));
+        if (std::abs(*value) > kMaxNumberMagnitude) {
+            fail(key, value_text(element) + " is beyond " + kMagnitudeLimitText);
+        }
         values.push_back(*value);
     }
     return values;

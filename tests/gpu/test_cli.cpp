@@ -304,3 +304,31 @@ TEST_F(Cli, ControlCharactersInUserTextStayOnOneLine) {
     expect_failure(run("render \"$(printf 'builtin:de\\tfault')\" -o out.png"), 2, "builtin:de\\tfault");
     expect_failure(run("render \"$(printf 'builtin:forest?count=1\\n0')\" -o out.png"), 2, "1\\n0");
 }
+
+// Numbers that fit a double but not the renderer's float math (infinite after conversion,
+// or overflowing when squared) are refused where they were written, naming the flag or
+// the file and key, instead of rendering a wrong image with exit 0 (issue 17).
+TEST_F(Cli, NumbersBeyondTheFloatMathAreRefusedWhereTheyWereWritten) {
+    write_file("scene.toml", kValidScene);
+    expect_failure(run("render scene.toml --far 1e39 -o out.png"), 2, "--far: expected a finite number");
+    expect_failure(run("render scene.toml --far inf -o out.png"), 2, "--far");
+    expect_failure(run("render scene.toml --fov nan -o out.png"), 2, "--fov");
+    expect_failure(run("render scene.toml --up 0,1e20,0 -o out.png"), 2, "--up: expected finite numbers");
+    expect_failure(run("render scene.toml --light-dir 1e30,-1e30,1e30 -o out.png"), 2, "--light-dir");
+    write_file("far.toml", replace(kValidScene, "far = 200.0", "far = 1e308"));
+    expect_failure(run("render far.toml -o out.png"), 2, "far.toml: camera.far: 1e+308 is beyond 1e9");
+    write_file("big.toml", replace(kValidScene, "translation = [0.0, 3.0, 0.0]", "translation = [1e308, 3.0, 0.0]"));
+    expect_failure(run("render big.toml -o out.png"), 2, "big.toml: objects[1].translation");
+    write_file("sun.toml", "[sun]\ndirection = [1e30, -1e30, 1e30]\n");
+    expect_failure(run("render scene.toml --config sun.toml -o out.png"), 2, "sun.toml: sun.direction");
+}
+
+// Flags that contradict each other, and an empty scene path, are errors rather than one of
+// them silently winning (issue 17).
+TEST_F(Cli, ContradictionsAreErrorsNotSilentChoices) {
+    write_file("scene.toml", kValidScene);
+    expect_failure(run("render scene.toml --aov shadow --debug cascades -o out.png"), 2, "--aov and --debug");
+    expect_failure(run("render scene.toml --split-scheme uniform --splits 10,20,40 -o out.png"), 2,
+                   "--splits: manual split distances need --split-scheme manual");
+    expect_failure(run("render \"\" -o out.png"), 2, "the scene path is empty");
+}

@@ -117,5 +117,22 @@ TEST_F(GltfHostile, TooManyInstancesAreRefused) {
     EXPECT_EQ(scene.instances.size(), 1000u);
 }
 
+// A node translation a double holds but the float math cannot (issue 17): refused, naming
+// the node, rather than placing the mesh at infinity.
+TEST_F(GltfHostile, NodeTranslationBeyondTheFloatMathIsRefused) {
+    EXPECT_THAT(load_error(write("far.gltf", quad_with_nodes("[{\"mesh\":0,\"translation\":[1e308,0,0]}]"))),
+                HasSubstr("nodes[0]: transform holds a number that is not finite or beyond 1e9 in magnitude"));
+}
+
+// tinygltf reads a GLB of any container version as version 2.
+TEST_F(GltfHostile, GlbOfAnotherVersionIsRefused) {
+    std::ifstream file(test_data("gltf/quad.glb"), std::ios::binary);
+    std::string glb((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    ASSERT_GT(glb.size(), 12u);
+    const uint32_t version = 1;
+    std::memcpy(glb.data() + 4, &version, sizeof(version));
+    EXPECT_THAT(load_error(write("v1.glb", glb)), HasSubstr("GLB container version 1 (glTF 2.0 files are version 2)"));
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -97,6 +97,22 @@ TEST(SceneErrors, UnknownKeyInEveryTable) {
                 StartsWith("scene.toml: objects[0].instances[0].scal: unknown key"));
 }
 
+// Numbers a double holds but the float math cannot carry are refused at the key that holds
+// them (issue 17): the image would otherwise be silently wrong (a sky-only or black frame).
+TEST(SceneErrors, NumbersBeyondTheFloatMath) {
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"directional\"\nintensity = 1e308\n"),
+                StartsWith("scene.toml: lights[0].intensity: 1e+308 is beyond 1e9 in magnitude"));
+    EXPECT_THAT(scene_error("[[objects]]\ntype = \"sphere\"\nradius = 1e308\n"),
+                StartsWith("scene.toml: objects[0].radius: 1e+308 is beyond 1e9"));
+    EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\nscale = 1e300\n"),
+                StartsWith("scene.toml: objects[0].scale: 1e+300 is beyond 1e9"));
+    EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\nrotation = [0, 1e308, 0]\n"),
+                StartsWith("scene.toml: objects[0].rotation: 1e+308 is beyond 1e9"));
+    EXPECT_THAT(scene_error("[camera]\nfar = 1e39\n"), StartsWith("scene.toml: camera.far: 1e+39 is beyond 1e9"));
+    // The limit itself is fine.
+    EXPECT_NO_THROW(testing::parse_scene_text("[camera]\nfar = 1e9\n"));
+}
+
 TEST(SceneErrors, UnknownKeyListsTheValidOnes) {
     EXPECT_THAT(scene_error("[camera]\nfovy = 60\n"), HasSubstr("(expected eye, target, up, fov, near, far)"));
 }

@@ -15,6 +15,12 @@
 
 namespace penumbra {
 
+// The largest magnitude of any number read from a scene, config file, flag or glTF node:
+// Penumbra's math is 32-bit float, which still carries squares (lengths, dot products) of
+// numbers up to 1e9 (1e18 < 3.4e38); beyond, a normalisation or a projection overflows and
+// the image is silently wrong.
+inline constexpr double kMaxNumberMagnitude = 1e9;
+
 struct Aabb {
     glm::vec3 min{std::numeric_limits<float>::max()};
     glm::vec3 max{std::numeric_limits<float>::lowest()};

@@ -219,6 +219,10 @@ def write_malformed_fixtures():
     variant("root_listed_twice.gltf", lambda d: d["scenes"][0].update(nodes=[0, 0]))
     variant("root_with_parent.gltf", lambda d: d["nodes"].append({"mesh": 0})
             or d["nodes"][0].update(children=[1]) or d["scenes"][0].update(nodes=[0, 1]))
+    # Values of the wrong JSON type or sign, which tinygltf would skip or misread.
+    variant("byte_stride_negative.gltf", lambda d: d["bufferViews"][0].update(byteStride=-4))
+    variant("mesh_not_an_index.gltf", lambda d: d["nodes"][0].update(mesh="zero"))
+    variant("scene_not_an_index.gltf", lambda d: d.update(scene="hello"))
     variant("missing_material.gltf", lambda d: d["meshes"][0]["primitives"][0].update(material=5))
     variant("bad_alpha_mode.gltf", lambda d: d["materials"][0].update(alphaMode="CUTOUT"))
     variant("partial_triangle.gltf", lambda d: d["accessors"][3].update(count=5))
