@@ -1,5 +1,7 @@
 #include "bench/bench_report.hpp"
 
+#include "image/output_files.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -291,24 +293,9 @@ std::string bench_json(const BenchResult& result) {
 }
 
 void write_bench_json(const BenchResult& result, const std::filesystem::path& path) {
-    const std::string text = bench_json(result);
-    std::filesystem::path temporary = path;
-    temporary += ".tmp";
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        file << text;
-        if (!file.flush()) {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw InputError(path.string() + ": cannot write the JSON report");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw InputError(path.string() + ": cannot write the JSON report");
-    }
+    OutputFiles output({path});
+    output.write(path, bench_json(result));
+    output.commit();
 }
 
 }  // namespace penumbra::bench

@@ -8,6 +8,7 @@
 #include "bench/tap_ceiling_pass.hpp"
 #include "gpu/frame_commands.hpp"
 #include "gpu/timestamps.hpp"
+#include "image/output_files.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "renderer/renderer.hpp"
@@ -273,6 +274,7 @@ void finish_ceiling(const BenchJob& job, const Scene& scene, const RenderSetting
 
 BenchResult run_bench_job(const BenchJob& job) {
     validate_job(job);
+    if (job.json) checked_output_path(*job.json);  // before the frames are measured
     PreparedJob prepared = prepare_render_job(job.render);
     if (job.ceiling == Ceiling::Triangles) apply_triangle_ceiling(prepared.settings);
 

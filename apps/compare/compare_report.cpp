@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "image/output_files.hpp"
 #include "image/png_io.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/settings.hpp"
@@ -121,16 +122,6 @@ Json reference_json(const CompareResult& result) {
     return reference;
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-    const std::filesystem::path temporary = path.string() + ".tmp";
-    {
-        std::ofstream file(temporary, std::ios::binary);
-        file << text;
-        if (!file) throw InputError(path.string() + ": cannot write the file");
-    }
-    std::filesystem::rename(temporary, path);
-}
-
 std::filesystem::path json_path(const CompareJob& job) { return job.json ? *job.json : job.out_dir / "compare.json"; }
 
 }  // namespace
@@ -182,11 +173,28 @@ std::string compare_json(const CompareResult& result) {
     return report.dump(2) + "\n";
 }
 
+std::vector<std::filesystem::path> compare_output_paths(const CompareJob& job) {
+    std::vector<std::filesystem::path> paths;
+    for (const char* name : {kRenderFile, kHardFile, kSoftFile, kErrorFile, kSoftErrorFile, kSideBySideFile}) {
+        paths.push_back(job.out_dir / name);
+    }
+    paths.push_back(json_path(job));
+    return paths;
+}
+
+// --out-dir may be created; the folder of a --json path, like -o's, must exist.
+void check_compare_outputs(const CompareJob& job) {
+    for (const std::filesystem::path& path : compare_output_paths(job)) {
+        checked_output_path(path, OutputFolders::MayBeCreated);
+    }
+    if (job.json) checked_output_path(*job.json, OutputFolders::MustExist);
+}
+
+// All seven files or none: written to temporaries, renamed together at the end.
 std::vector<std::filesystem::path> write_compare_outputs(const CompareResult& result) {
     const std::filesystem::path& dir = result.job.out_dir;
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);
-    if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
+    const std::vector<std::filesystem::path> paths = compare_output_paths(result.job);
+    OutputFiles output(paths, OutputFolders::MayBeCreated);
 
     const quality::VisibilityComparison& frame = result.images.frame;
     const uint32_t width = frame.width;
@@ -197,19 +205,15 @@ std::vector<std::filesystem::path> write_compare_outputs(const CompareResult& re
                                          quality::gray_to_rgba(width, height, frame.soft), error_image};
     const quality::RgbaImage side_by_side = quality::side_by_side(panels);
 
-    write_png_gray16(dir / kRenderFile, width, height, quality::to_gray16(frame.rendered));
-    write_png_gray8(dir / kHardFile, width, height, quality::to_gray8(hard));
-    write_png_gray16(dir / kSoftFile, width, height, quality::to_gray16(frame.soft));
-    write_png_rgba8(dir / kErrorFile, width, height, error_image.pixels);
-    write_png_gray8(dir / kSoftErrorFile, width, height, quality::soft_error_image(frame));
-    write_png_rgba8(dir / kSideBySideFile, side_by_side.width, side_by_side.height, side_by_side.pixels);
-    write_text(json_path(result.job), compare_json(result));
-    std::vector<std::filesystem::path> written;
-    for (const char* name : {kRenderFile, kHardFile, kSoftFile, kErrorFile, kSoftErrorFile, kSideBySideFile}) {
-        written.push_back(dir / name);
-    }
-    written.push_back(json_path(result.job));
-    return written;
+    output.write(dir / kRenderFile, encode_png_gray16(width, height, quality::to_gray16(frame.rendered)));
+    output.write(dir / kHardFile, encode_png_gray8(width, height, quality::to_gray8(hard)));
+    output.write(dir / kSoftFile, encode_png_gray16(width, height, quality::to_gray16(frame.soft)));
+    output.write(dir / kErrorFile, encode_png_rgba8(width, height, error_image.pixels));
+    output.write(dir / kSoftErrorFile, encode_png_gray8(width, height, quality::soft_error_image(frame)));
+    output.write(dir / kSideBySideFile, encode_png_rgba8(side_by_side.width, side_by_side.height, side_by_side.pixels));
+    output.write(json_path(result.job), compare_json(result));
+    output.commit();
+    return paths;
 }
 
 }  // namespace penumbra::compare

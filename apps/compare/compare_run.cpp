@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "compare/compare_job.hpp"
+#include "compare/compare_report.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "penumbra/shadow_system.hpp"
@@ -312,6 +313,7 @@ void validate_compare_job(const CompareJob& job) {
 
 CompareResult run_compare_job(const CompareJob& job) {
     validate_compare_job(job);
+    check_compare_outputs(job);  // before minutes of rendering and tracing
     const std::string scene_name = job.render.scene.empty() ? std::string(kDefaultSceneName) : job.render.scene;
     return compare_prepared(job, prepare_render_job(job.render), scene_name);
 }

@@ -1,9 +1,11 @@
 #pragma once
-// PNG output and input (libpng). Writes are atomic: the image goes to a temporary
-// file in the destination folder that is renamed over the destination only once it
-// is complete, so a failure never leaves a half-written file behind.
+// PNG output and input (libpng). Writes go through OutputFiles (output_files.hpp): checked
+// first, atomic, through symbolic links, never over a non-regular file, nothing left
+// behind on failure or interruption. encode_png_* give the file's bytes for a set of
+// outputs written together.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace penumbra {
@@ -15,6 +17,10 @@ struct PngImage {
     uint32_t bit_depth = 0;         // 8 or 16
     std::vector<uint16_t> samples;  // row-major, row 0 at the top, channels interleaved
 };
+
+std::string encode_png_rgba8(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba);
+std::string encode_png_gray8(uint32_t width, uint32_t height, const std::vector<uint8_t>& gray);
+std::string encode_png_gray16(uint32_t width, uint32_t height, const std::vector<uint16_t>& gray);
 
 void write_png_rgba8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                      const std::vector<uint8_t>& rgba);

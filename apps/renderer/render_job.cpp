@@ -1,5 +1,6 @@
 #include "renderer/render_job.hpp"
 
+#include "image/output_files.hpp"
 #include "image/png_io.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/loader.hpp"
@@ -82,6 +83,7 @@ void check_validation(const ValidationLog& log) {
 }
 
 RenderSummary run_render_job(const RenderJob& job) {
+    checked_output_path(job.output);  // before loading and rendering
     const PreparedJob prepared = prepare_render_job(job);
     VulkanContextOptions device_options = job.device;
     device_options.validation_log = std::make_shared<ValidationLog>();

@@ -50,7 +50,7 @@ void CliTest::expect_failure(const RunResult& result, int code, const std::strin
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "stderr: " << result.err;
     EXPECT_FALSE(fs::exists(dir_ / "out.png"));
     for (const auto& entry : fs::directory_iterator(dir_)) {
-        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "left " << entry.path();
+        EXPECT_EQ(entry.path().filename().string().find("tmp"), std::string::npos) << "left " << entry.path();
     }
 }
 

@@ -34,7 +34,7 @@ protected:
     std::filesystem::path write_file(const std::string& name, const std::string& text) const;
 
     // The failure contract: exit code `code`, exactly one stderr line containing `needle`,
-    // no `out.png` and no temporary (`.tmp`) file left in `dir_`.
+    // no `out.png` and no temporary (`.<name>.penumbra-tmp`) file left in `dir_`.
     void expect_failure(const RunResult& result, int code, const std::string& needle) const;
 
     std::filesystem::path dir_;
