@@ -293,9 +293,7 @@ std::string bench_json(const BenchResult& result) {
 }
 
 void write_bench_json(const BenchResult& result, const std::filesystem::path& path) {
-    OutputFiles output({path});
-    output.write(path, bench_json(result));
-    output.commit();
+    write_output_file(path, bench_json(result));
 }
 
 }  // namespace penumbra::bench

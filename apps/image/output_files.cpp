@@ -99,6 +99,12 @@ void write_all(int descriptor, std::string_view bytes, const fs::path& requested
 
 }  // namespace
 
+void write_output_file(const fs::path& path, std::string_view bytes) {
+    OutputFiles output({path});
+    output.write(path, bytes);
+    output.commit();
+}
+
 fs::path temporary_output_path(const fs::path& target) {
     return target.parent_path() / ("." + target.filename().string() + ".penumbra-tmp");
 }

@@ -57,6 +57,9 @@ private:
     bool committed_ = false;
 };
 
+// One output file, written like a set of one.
+void write_output_file(const std::filesystem::path& path, std::string_view bytes);
+
 // The temporary sibling of an output file.
 std::filesystem::path temporary_output_path(const std::filesystem::path& target);
 

@@ -46,12 +46,6 @@ std::string encode_png(uint32_t width, uint32_t height, int color_type, int bit_
     return bytes;
 }
 
-void write_one(const std::filesystem::path& path, const std::string& bytes) {
-    OutputFiles output({path});
-    output.write(path, bytes);
-    output.commit();
-}
-
 }  // namespace
 
 std::string encode_png_rgba8(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba) {
@@ -69,17 +63,17 @@ std::string encode_png_gray16(uint32_t width, uint32_t height, const std::vector
 
 void write_png_rgba8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                      const std::vector<uint8_t>& rgba) {
-    write_one(path, encode_png_rgba8(width, height, rgba));
+    write_output_file(path, encode_png_rgba8(width, height, rgba));
 }
 
 void write_png_gray8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                      const std::vector<uint8_t>& gray) {
-    write_one(path, encode_png_gray8(width, height, gray));
+    write_output_file(path, encode_png_gray8(width, height, gray));
 }
 
 void write_png_gray16(const std::filesystem::path& path, uint32_t width, uint32_t height,
                       const std::vector<uint16_t>& gray) {
-    write_one(path, encode_png_gray16(width, height, gray));
+    write_output_file(path, encode_png_gray16(width, height, gray));
 }
 
 PngImage read_png(const std::filesystem::path& path) {

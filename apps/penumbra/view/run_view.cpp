@@ -2,6 +2,7 @@
 // written once the run has passed validation.
 #include <cstdio>
 
+#include "image/output_files.hpp"
 #include "penumbra/scene/settings_files.hpp"
 #include "view_job.hpp"
 #include "viewer.hpp"
@@ -60,7 +61,8 @@ ViewSummary run_view(const ViewJob& job) {
         summary.screenshot = result.final_capture->file;
     }
     if (job.save_settings_on_exit) {
-        write_settings_file(job.settings_file, result.settings, result.camera, result.sun ? &*result.sun : nullptr);
+        write_output_file(job.settings_file,
+                          format_settings_file(result.settings, result.camera, result.sun ? &*result.sun : nullptr));
     }
     return summary;
 }

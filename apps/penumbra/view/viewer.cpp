@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "image/output_files.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/settings_files.hpp"
 #include "view_actions.hpp"
@@ -187,7 +188,7 @@ void Viewer::finish_capture(const std::filesystem::path& file, const renderer::F
 void Viewer::save_settings() {
     const std::filesystem::path file = *state_.requests.save_settings;
     state_.requests.save_settings.reset();
-    write_settings_file(file, state_.settings, state_.camera.camera(), state_.sun());
+    write_output_file(file, format_settings_file(state_.settings, state_.camera.camera(), state_.sun()));
     state_.status = "saved settings to " + file.string();
     std::printf("penumbra: saved settings to %s\n", file.string().c_str());
 }
