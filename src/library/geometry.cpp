@@ -254,6 +254,12 @@ void Geometry::remove_mesh(MeshId id, uint64_t frame) {
         throw UsageError("ShadowSystem::remove_mesh: mesh " + std::to_string(id.value) + " is still used by " +
                          std::to_string(mesh.instances) + " instance(s); remove them first");
     }
+    // Uploads not yet recorded would copy into the buffers retired below: they go too
+    // (their staging buffers were never used by a submission).
+    std::erase_if(uploads_, [&](const Upload& upload) {
+        return std::any_of(mesh.owned.begin(), mesh.owned.end(),
+                           [&](const gpu::Buffer& buffer) { return buffer.get() == upload.destination; });
+    });
     for (gpu::Buffer& buffer : mesh.owned) retired_.retire(std::move(buffer), frame);
     if (mesh.alpha_mask_set != VK_NULL_HANDLE) {
         retired_.retire(FreedDescriptorSet(device_, mesh.alpha_mask_pool, mesh.alpha_mask_set), frame);

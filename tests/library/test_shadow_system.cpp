@@ -453,5 +453,19 @@ TEST_F(ShadowSystemFrames, AlphaMaskedAndOpaqueInstancesOfOneMesh) {
     vkDestroySampler(device_.device, sampler, nullptr);
 }
 
+// A mesh given as arrays and removed before any frame recorded its upload: the upload must
+// not be recorded into the retired buffer (with one frame in flight the buffer is destroyed
+// by the next prepare(); validation would report the copy into a destroyed buffer).
+TEST_F(ShadowSystemFrames, MeshRemovedBeforeItsUploadIsNeverCopied) {
+    ShadowSystem shadows(system_desc(test_settings(), 1));
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    const MeshId removed = shadows.add_mesh(box.data());
+    shadows.remove_mesh(removed);
+    expect_box_shadow(check_footprint(render_visibility(shadows), kBoxCentre, kSunDirection, kEdgeBand));
+    EXPECT_GT(shadows.memory().buffers, 0u);
+}
+
 }  // namespace
 }  // namespace penumbra::library_tests
