@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   # toolchain
   g++ cmake ninja-build pkg-config clang-format
+  # fuzzing: clang with libFuzzer and the sanitizers' runtimes (tests/fuzz)
+  clang libclang-rt-14-dev
   # Vulkan: headers + loader, the GLSL compiler, Mesa's lavapipe CPU driver (used when no
   # GPU is present, and by CI), the Khronos validation layer (every test runs with it)
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers

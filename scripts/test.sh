@@ -8,3 +8,5 @@ bash scripts/setup.sh
 bash scripts/build.sh
 bash scripts/check-format.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
+# Every fuzz harness for 30 s (clang, ASan + UBSan) from its seed corpus: tests/fuzz/README.md.
+bash tests/fuzz/run.sh 30

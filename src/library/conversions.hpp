@@ -2,6 +2,7 @@
 // Between the public API's plain value types (penumbra/math.hpp, lights.hpp) and the glm
 // types of the internal layers. Vec3 and Mat4 share glm's memory layout (checked here).
 #include <algorithm>
+#include <cmath>
 
 #include "core/glm_config.hpp"
 #include "penumbra/lights.hpp"
@@ -28,10 +29,21 @@ inline Mat4 to_public(const glm::mat4& m) {
 inline Aabb to_aabb(const Bounds& bounds) { return {to_glm(bounds.min), to_glm(bounds.max)}; }
 
 // The internal light of the local-light and cascade math (colour and intensity unused).
+// A direction normalised in double precision: any finite non-zero vector set_lights()
+// accepts (components of 1e30 or 1e-30 alike) becomes a unit vector, where float arithmetic
+// on the raw vector would overflow or underflow its length to infinity or zero.
+inline glm::vec3 unit_direction(const Vec3& v) {
+    const double x = v.x;
+    const double y = v.y;
+    const double z = v.z;
+    const double length = std::sqrt(x * x + y * y + z * z);
+    return {static_cast<float>(x / length), static_cast<float>(y / length), static_cast<float>(z / length)};
+}
+
 inline Light to_light(const LightDesc& desc) {
     Light light;
     light.type = desc.type;
-    light.direction = to_glm(desc.direction);
+    light.direction = unit_direction(desc.direction);
     light.position = to_glm(desc.position);
     light.angular_diameter_degrees = desc.angular_diameter_degrees;
     light.cast_shadows = desc.cast_shadows;

@@ -24,7 +24,7 @@ public:
     void require_direction(const Vec3& v, const char* field) const {
         const bool finite = std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
         const double length = std::sqrt(double{v.x} * v.x + double{v.y} * v.y + double{v.z} * v.z);
-        if (!finite || !(length > 1e-12) || !std::isfinite(length)) {
+        if (!finite || !(length > 0.0) || !std::isfinite(length)) {  // normalised in double: any length works
             throw InputError(prefix_ + field + ": must be a finite, non-zero vector");
         }
     }

@@ -467,5 +467,22 @@ TEST_F(ShadowSystemFrames, MeshRemovedBeforeItsUploadIsNeverCopied) {
     EXPECT_GT(shadows.memory().buffers, 0u);
 }
 
+// A direction is a direction whatever its length: components of 1e30 or 1e-30 (finite,
+// non-zero) cast the shadow of the unit vector (found by fuzz_shadow_system: the float
+// length overflowed and prepare() threw a std::invalid_argument).
+TEST_F(ShadowSystemFrames, HugeAndTinyDirectionsAreTheSameLight) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    const std::vector<float> unit = render_visibility(shadows).values;
+    for (const float scale : {1e30f, 1e-30f}) {
+        const LightDesc sun{LightType::Directional,
+                            {kSunDirection.x * scale, kSunDirection.y * scale, kSunDirection.z * scale}};
+        shadows.set_lights({&sun, 1});
+        EXPECT_EQ(render_visibility(shadows).values, unit) << scale;
+    }
+}
+
 }  // namespace
 }  // namespace penumbra::library_tests
