@@ -78,11 +78,13 @@ void run(Input& in, penumbra::ShadowSystem& system, std::vector<penumbra::MeshId
     std::vector<penumbra::Vec3> positions;
     std::vector<uint32_t> indices;
     switch (in.small(5)) {
-        case 0: meshes.push_back(system.add_mesh(mesh_data(in, positions, indices))); break;
+        case 0:
+            meshes.push_back(system.add_mesh(mesh_data(in, positions, indices)));
+            break;
         case 1:
             if (!meshes.empty()) {
-                instances.push_back(system.add_instance({meshes[in.small(static_cast<uint32_t>(meshes.size()))],
-                                                         matrix(in), in.byte()}));
+                instances.push_back(system.add_instance(
+                    {meshes[in.small(static_cast<uint32_t>(meshes.size()))], matrix(in), in.byte()}));
             }
             break;
         case 2: {
