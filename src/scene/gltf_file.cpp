@@ -53,8 +53,13 @@ bool load_image_checked(tinygltf::Image* image, const int image_index, std::stri
 }
 
 // tinygltf's file callbacks open the file to see whether it exists and then read it: on a
-// FIFO or a character device either blocks. Only regular files are files here.
-bool regular_file_exists(const std::string& path, void*) {
+// FIFO or a character device either blocks. Only regular files are files here, and only
+// those named relative to the model's folder (`user` points to it): tinygltf would also look
+// in the current directory for a file that is not there.
+bool regular_file_exists(const std::string& path, void* user) {
+    const std::string& folder = *static_cast<const std::string*>(user);
+    const std::string prefix = !folder.empty() && folder.back() == '/' ? folder : folder + "/";
+    if (path.rfind(prefix, 0) != 0) return false;
     std::error_code error;
     return fs::is_regular_file(path, error);
 }
@@ -153,17 +158,18 @@ tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin)
                          " levels deep");
     }
 
-    check_gltf_json_types(json, origin);
+    const std::string folder = fs::absolute(file, error).parent_path().string();
+    check_gltf_json(json, origin, folder);
 
     tinygltf::TinyGLTF loader;
+    std::string base_dir = folder;
     tinygltf::FsCallbacks callbacks{regular_file_exists, tinygltf::ExpandFilePath, read_regular_file,
-                                    tinygltf::WriteWholeFile, nullptr};
+                                    tinygltf::WriteWholeFile, &base_dir};
     loader.SetFsCallbacks(callbacks);
     tinygltf::Model model;
     loader.SetImageLoader(load_image_checked, &model);
     std::string errors;
     std::string warnings;
-    const std::string base_dir = file.parent_path().string();
     const bool loaded =
         binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, bytes.data(),
                                              static_cast<unsigned int>(bytes.size()), base_dir)

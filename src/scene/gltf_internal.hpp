@@ -43,9 +43,28 @@ tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::st
 size_t json_nesting_depth(std::string_view text, size_t stop_beyond);
 
 // Refuses indices, counts, offsets and strides of the wrong JSON type or sign, which
-// tinygltf would skip or misread silently (gltf_json_checks.cpp); JSON it cannot parse is
-// left for tinygltf to report.
-void check_gltf_json_types(std::string_view json, const std::string& origin);
+// tinygltf would skip or misread silently, and checks every buffer and image uri with
+// check_gltf_uri (gltf_json_checks.cpp); JSON it cannot parse is left for tinygltf to report.
+// `folder` is the model's folder, absolute.
+void check_gltf_json(std::string_view json, const std::string& origin, const std::filesystem::path& folder);
+
+// A buffer's or an image's uri, where it was written ("buffers[0].uri") and, for a buffer,
+// the byteLength its file must have.
+struct GltfUri {
+    std::string text;
+    std::string where;
+    std::filesystem::path folder;
+    std::optional<uint64_t> byte_length;
+};
+
+// Refuses (InputError, naming the uri and the reason) a uri with a scheme other than data:,
+// an absolute path, malformed percent-encoding or a control character; for a buffer, also a
+// file that is missing from the model's folder, not a regular file, or not byteLength long
+// (without saying the size it has: the path may reach outside the model's folder).
+void check_gltf_uri(const GltfUri& uri, const std::string& origin);
+bool is_data_uri(const std::string& uri);
+// Percent-decodes a uri the way tinygltf does before opening the file.
+std::string decode_gltf_uri(const std::string& uri, const std::string& origin, const std::string& where);
 
 // The root nodes of the model's default scene (or every parentless node without scenes),
 // after checking that the nodes form disjoint strict trees (gltf_hierarchy.cpp).

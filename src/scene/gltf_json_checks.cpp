@@ -43,6 +43,14 @@ public:
         }
     }
 
+    // An optional string property; nullptr when absent.
+    const std::string* string(const Json& object, const char* key, const std::string& where) const {
+        if (!object.is_object() || !object.contains(key)) return nullptr;
+        const Json& value = object[key];
+        if (!value.is_string()) fail(where + "." + key, "expected a string, got " + value.dump());
+        return value.get_ptr<const std::string*>();
+    }
+
     // Calls check(element, "name[i]") for every element of the top-level array `name`.
     template <typename Check>
     void each(const Json& document, const char* name, Check&& check) const {
@@ -86,7 +94,7 @@ void check_primitives(const JsonChecker& checker, const Json& mesh, const std::s
 
 }  // namespace
 
-void check_gltf_json_types(std::string_view json, const std::string& origin) {
+void check_gltf_json(std::string_view json, const std::string& origin, const std::filesystem::path& folder) {
     const Json document = Json::parse(json.begin(), json.end(), nullptr, false);
     if (document.is_discarded() || !document.is_object()) return;  // tinygltf reports the syntax error
     const JsonChecker checker(origin);
@@ -111,8 +119,18 @@ void check_gltf_json_types(std::string_view json, const std::string& origin) {
     checker.each(document, "textures", [&](const Json& texture, const std::string& where) {
         for (const char* key : {"source", "sampler"}) checker.integer(texture, key, where);
     });
-    checker.each(document, "images",
-                 [&](const Json& image, const std::string& where) { checker.integer(image, "bufferView", where); });
+    checker.each(document, "images", [&](const Json& image, const std::string& where) {
+        checker.integer(image, "bufferView", where);
+        if (const std::string* uri = checker.string(image, "uri", where))
+            check_gltf_uri({*uri, where + ".uri", folder, {}}, origin);
+    });
+    checker.each(document, "buffers", [&](const Json& buffer, const std::string& where) {
+        checker.integer(buffer, "byteLength", where, 1);
+        const std::string* uri = checker.string(buffer, "uri", where);
+        if (uri && buffer.contains("byteLength")) {
+            check_gltf_uri({*uri, where + ".uri", folder, buffer["byteLength"].get<uint64_t>()}, origin);
+        }
+    });
 }
 
 }  // namespace penumbra

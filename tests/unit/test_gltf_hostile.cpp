@@ -117,6 +117,65 @@ TEST_F(GltfHostile, TooManyInstancesAreRefused) {
     EXPECT_EQ(scene.instances.size(), 1000u);
 }
 
+// The quad fixture that reads its buffer from a file, with that file's uri replaced.
+std::string quad_with_buffer_uri(const std::string& uri) {
+    std::ifstream file(test_data("gltf/quad_external.gltf"));
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    text.replace(text.find("\"quad.bin\""), std::strlen("\"quad.bin\""), "\"" + uri + "\"");
+    return text;
+}
+
+// Restores the current directory when it goes out of scope.
+struct CurrentDirectory {
+    explicit CurrentDirectory(const fs::path& dir) : saved(fs::current_path()) { fs::current_path(dir); }
+    ~CurrentDirectory() { fs::current_path(saved); }
+    fs::path saved;
+};
+
+// glTF uris are data: URIs or paths relative to the model (issue 17): an absolute path or a
+// scheme is refused saying so, even where the file exists (tinygltf said "File not found");
+// a `../` path to an unrelated file is refused without that file's size; a file missing
+// beside the model is not looked for in the current directory.
+TEST_F(GltfHostile, UrisSayPlainlyWhatIsRefused) {
+    fs::copy_file(test_data("gltf/quad.bin"), dir_ / "quad.bin");
+    const std::string absolute = (dir_ / "quad.bin").string();
+    EXPECT_THAT(load_error(write("abs.gltf", quad_with_buffer_uri(absolute))),
+                HasSubstr("buffers[0].uri \"" + absolute +
+                          "\": an absolute path; glTF uris name files relative to the model's folder"));
+    EXPECT_THAT(load_error(write("encoded.gltf", quad_with_buffer_uri("%2F" + absolute.substr(1)))),
+                HasSubstr("an absolute path"));
+    for (const std::string& uri : {"file://" + absolute, std::string("http://example.com/quad.bin")}) {
+        EXPECT_THAT(load_error(write("scheme.gltf", quad_with_buffer_uri(uri))),
+                    HasSubstr("a URI with a scheme; Penumbra reads data: URIs and files named relative to the model"));
+    }
+    EXPECT_THAT(load_error(write("bad.gltf", quad_with_buffer_uri("quad%zz.bin"))),
+                HasSubstr("malformed percent-encoding in \"quad%zz.bin\""));
+    EXPECT_THAT(load_error(write("nul.gltf", quad_with_buffer_uri("quad.bin%00.txt"))),
+                HasSubstr("the path holds a control character"));
+
+    fs::create_directories(dir_ / "model");
+    write("unrelated.txt", std::string(1221, 'x'));
+    const std::string escaped = load_error(write("model/up.gltf", quad_with_buffer_uri("../unrelated.txt")));
+    EXPECT_THAT(escaped, HasSubstr("\"../unrelated.txt\": the file is not the buffer's byteLength (140 bytes) long"));
+    EXPECT_THAT(escaped, ::testing::Not(HasSubstr("1221")));
+    Scene scene;  // the right file reached through ../ is read
+    EXPECT_NO_THROW(
+        append_gltf(scene, write("model/good.gltf", quad_with_buffer_uri("../quad.bin")), {glm::mat4{1.0f}}));
+
+    const CurrentDirectory in_dir(dir_);  // quad.bin is in the current directory, not beside the model
+    EXPECT_THAT(load_error(write("model/cwd.gltf", quad_with_buffer_uri("quad.bin"))),
+                HasSubstr("\"quad.bin\": no such file relative to the model's folder"));
+}
+
+// An image uri gets the same checks as a buffer's.
+TEST_F(GltfHostile, AbsoluteImageUriIsRefused) {
+    std::string text = quad_with_buffer_uri("quad.bin");
+    text.replace(text.find("\"buffers\""), std::strlen("\"buffers\""),
+                 "\"images\": [{\"uri\": \"/etc/hostname\"}], \"buffers\"");
+    fs::copy_file(test_data("gltf/quad.bin"), dir_ / "quad.bin");
+    EXPECT_THAT(load_error(write("image.gltf", text)), HasSubstr("images[0].uri \"/etc/hostname\": an absolute path"));
+}
+
 // A node translation a double holds but the float math cannot (issue 17): refused, naming
 // the node, rather than placing the mesh at infinity.
 TEST_F(GltfHostile, NodeTranslationBeyondTheFloatMathIsRefused) {
