@@ -332,3 +332,14 @@ TEST_F(Cli, ContradictionsAreErrorsNotSilentChoices) {
                    "--splits: manual split distances need --split-scheme manual");
     expect_failure(run("render \"\" -o out.png"), 2, "the scene path is empty");
 }
+
+// Debian's toml++ 3.3.0 reaches an assertion on `a¡= 1` (marzer/tomlplusplus#190), which
+// only a debug build of toml++ stops at: the release penumbra answers with exit 2 and one
+// line, in a scene file and in a config file (issue 17; the fuzz corpus keeps the input).
+TEST_F(Cli, TomlParserAssertionInputIsAnError) {
+    write_file("bad.toml", "a\xC2\xA1= 1\n");
+    expect_failure(run("render bad.toml -o out.png"), 2, "bad.toml");
+    write_file("scene.toml", kValidScene);
+    expect_failure(run("render scene.toml --config bad.toml -o out.png"), 2, "bad.toml");
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+}
