@@ -1,22 +1,13 @@
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "penumbra/errors.hpp"
 #include "scene/gltf_internal.hpp"
 
 namespace penumbra {
 namespace {
-
-// A validated accessor: `count` elements of `element_size` bytes, `stride` apart, the last
-// one ending inside its buffer.
-struct AccessorBytes {
-    const unsigned char* first = nullptr;
-    size_t count = 0;
-    size_t stride = 0;
-    int component_type = 0;
-    int component_count = 0;
-    bool normalized = false;
-};
 
 std::string component_type_name(int component_type) {
     switch (component_type) {
@@ -39,67 +30,62 @@ std::string component_type_name(int component_type) {
     }
 }
 
-const tinygltf::BufferView& checked_buffer_view(const GltfSource& source, const tinygltf::Accessor& accessor,
-                                                const std::string& where) {
+// `length` bytes at `offset` in buffer view `view_index`, checked against the view and its
+// buffer (sizes from a malformed file may say anything: every sum is checked for overflow).
+const unsigned char* checked_view_range(const GltfSource& source, int view_index, size_t offset, size_t length,
+                                        const std::string& where) {
     const tinygltf::Model& model = source.model;
-    if (accessor.bufferView < 0 || static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
-        source.fail(where, "accessor has bufferView " + std::to_string(accessor.bufferView) + " but the file has " +
-                               std::to_string(model.bufferViews.size()) + " buffer views");
+    if (view_index < 0 || static_cast<size_t>(view_index) >= model.bufferViews.size()) {
+        source.fail(where, "bufferView " + std::to_string(view_index) + " does not exist (the file has " +
+                               std::to_string(model.bufferViews.size()) + " buffer views)");
     }
-    const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(accessor.bufferView)];
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(view_index)];
     if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
-        source.fail(where, "bufferViews[" + std::to_string(accessor.bufferView) + "] refers to buffer " +
+        source.fail(where, "bufferViews[" + std::to_string(view_index) + "] refers to buffer " +
                                std::to_string(view.buffer) + " but the file has " +
                                std::to_string(model.buffers.size()) + " buffers");
     }
     const size_t buffer_size = model.buffers[static_cast<size_t>(view.buffer)].data.size();
     if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
-        source.fail(where, "bufferViews[" + std::to_string(accessor.bufferView) + "] spans bytes " +
+        source.fail(where, "bufferViews[" + std::to_string(view_index) + "] spans bytes " +
                                std::to_string(view.byteOffset) + ".." +
                                std::to_string(view.byteOffset + view.byteLength) + " of a buffer of " +
                                std::to_string(buffer_size) + " bytes");
     }
-    return view;
+    if (offset > view.byteLength || length > view.byteLength - offset) {
+        source.fail(where, std::to_string(length) + " bytes at offset " + std::to_string(offset) +
+                               " overrun bufferViews[" + std::to_string(view_index) + "] of " +
+                               std::to_string(view.byteLength) + " bytes");
+    }
+    return model.buffers[static_cast<size_t>(view.buffer)].data.data() + view.byteOffset + offset;
 }
 
-AccessorBytes checked_accessor(const GltfSource& source, int index, const std::string& where) {
+struct AccessorLayout {
+    const tinygltf::Accessor* accessor = nullptr;
+    std::string where;  // "<use> (accessors[i])"
+    size_t component_size = 0;
+    size_t component_count = 0;
+    size_t element_size() const { return component_size * component_count; }
+};
+
+AccessorLayout checked_layout(const GltfSource& source, int index, const std::string& where) {
     const tinygltf::Model& model = source.model;
     if (index < 0 || static_cast<size_t>(index) >= model.accessors.size()) {
         source.fail(where, "accessor " + std::to_string(index) + " does not exist (the file has " +
                                std::to_string(model.accessors.size()) + " accessors)");
     }
-    const tinygltf::Accessor& accessor = model.accessors[static_cast<size_t>(index)];
-    const std::string accessor_where = where + " (accessors[" + std::to_string(index) + "])";
-    if (accessor.sparse.isSparse) source.fail(accessor_where, "sparse accessors are not supported");
-    const int component_size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
-    const int component_count = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
+    AccessorLayout layout;
+    layout.accessor = &model.accessors[static_cast<size_t>(index)];
+    layout.where = where + " (accessors[" + std::to_string(index) + "])";
+    const int component_size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(layout.accessor->componentType));
+    const int component_count = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(layout.accessor->type));
     if (component_size <= 0 || component_count <= 0) {
-        source.fail(accessor_where, "invalid componentType " + std::to_string(accessor.componentType) + " or type " +
-                                        std::to_string(accessor.type));
+        source.fail(layout.where, "invalid componentType " + std::to_string(layout.accessor->componentType) +
+                                      " or type " + std::to_string(layout.accessor->type));
     }
-    const tinygltf::BufferView& view = checked_buffer_view(source, accessor, accessor_where);
-    const size_t element_size = static_cast<size_t>(component_size) * static_cast<size_t>(component_count);
-    const size_t stride = view.byteStride != 0 ? view.byteStride : element_size;
-    if (stride < element_size) {
-        source.fail(accessor_where, "byteStride " + std::to_string(stride) + " is smaller than the element size " +
-                                        std::to_string(element_size));
-    }
-    AccessorBytes bytes{nullptr, accessor.count, stride, accessor.componentType, component_count, accessor.normalized};
-    if (accessor.count == 0) return bytes;
-    // count <= byteLength keeps (count - 1) * stride from overflowing (stride <= 255 in valid
-    // files, but a malformed one may say anything, hence the division).
-    const bool fits = accessor.byteOffset <= view.byteLength &&
-                      accessor.count - 1 <= (view.byteLength - accessor.byteOffset) / stride &&
-                      (accessor.count - 1) * stride + element_size <= view.byteLength - accessor.byteOffset;
-    if (!fits) {
-        source.fail(accessor_where, std::to_string(accessor.count) + " elements of " + std::to_string(element_size) +
-                                        " bytes at offset " + std::to_string(accessor.byteOffset) + " (stride " +
-                                        std::to_string(stride) + ") overrun bufferViews[" +
-                                        std::to_string(accessor.bufferView) + "] of " +
-                                        std::to_string(view.byteLength) + " bytes");
-    }
-    bytes.first = model.buffers[static_cast<size_t>(view.buffer)].data.data() + view.byteOffset + accessor.byteOffset;
-    return bytes;
+    layout.component_size = static_cast<size_t>(component_size);
+    layout.component_count = static_cast<size_t>(component_count);
+    return layout;
 }
 
 template <typename T>
@@ -109,78 +95,264 @@ T read_unaligned(const unsigned char* bytes) {
     return value;
 }
 
-// One component as a float, applying the glTF normalisation rule for unsigned types.
-float read_normalized_component(const AccessorBytes& bytes, size_t element, int component) {
-    const unsigned char* at = bytes.first + element * bytes.stride;
-    switch (bytes.component_type) {
+// One component; integers normalised where the accessor says so (glTF 2.0, 3.11: signed
+// types map to [-1, 1] with the most negative value clamped, unsigned ones to [0, 1]).
+double read_component(const unsigned char* at, int component_type, bool normalized) {
+    switch (component_type) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT:
-            return read_unaligned<float>(at + 4 * component);
+            return read_unaligned<float>(at);
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const double value = static_cast<int8_t>(at[0]);
+            return normalized ? std::max(value / 127.0, -1.0) : value;
+        }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return static_cast<float>(at[component]) / 255.0f;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return static_cast<float>(read_unaligned<uint16_t>(at + 2 * component)) / 65535.0f;
+            return normalized ? at[0] / 255.0 : at[0];
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const double value = read_unaligned<int16_t>(at);
+            return normalized ? std::max(value / 32767.0, -1.0) : value;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const double value = read_unaligned<uint16_t>(at);
+            return normalized ? value / 65535.0 : value;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return read_unaligned<uint32_t>(at);
         default:
-            return 0.0f;  // excluded by the callers' type checks
+            return 0.0;  // excluded by checked_layout and the callers' type checks
     }
 }
 
-void require_layout(const GltfSource& source, const AccessorBytes& bytes, int component_count, bool type_ok,
-                    const std::string& expected, const std::string& where) {
-    if (bytes.component_count != component_count || !type_ok) {
-        source.fail(where, "expected " + expected + ", got " + std::to_string(bytes.component_count) +
-                               " components of " + component_type_name(bytes.component_type));
+// The dense part: `count` elements from the buffer view, or zeros without one (glTF 2.0,
+// 3.6.2.3: how a sparse accessor without a bufferView starts).
+void read_dense(const GltfSource& source, const AccessorLayout& layout, std::vector<double>& values) {
+    const tinygltf::Accessor& accessor = *layout.accessor;
+    if (accessor.bufferView < 0) {
+        if (accessor.count > kMaxGltfElementsWithoutData) {
+            source.fail(layout.where, std::to_string(accessor.count) + " elements without a bufferView exceed " +
+                                          std::to_string(kMaxGltfElementsWithoutData));
+        }
+        values.assign(accessor.count * layout.component_count, 0.0);
+        return;
     }
+    const unsigned char* view_start = checked_view_range(source, accessor.bufferView, 0, 0, layout.where);
+    const tinygltf::BufferView& view = source.model.bufferViews[static_cast<size_t>(accessor.bufferView)];
+    const size_t element_size = layout.element_size();
+    const size_t stride = view.byteStride != 0 ? view.byteStride : element_size;
+    if (stride < element_size) {
+        source.fail(layout.where, "byteStride " + std::to_string(stride) + " is smaller than the element size " +
+                                      std::to_string(element_size));
+    }
+    // count - 1 <= (byteLength - byteOffset) / stride keeps (count - 1) * stride from overflowing.
+    const bool fits =
+        accessor.count == 0 || (accessor.byteOffset <= view.byteLength &&
+                                accessor.count - 1 <= (view.byteLength - accessor.byteOffset) / stride &&
+                                (accessor.count - 1) * stride + element_size <= view.byteLength - accessor.byteOffset);
+    if (!fits) {
+        source.fail(layout.where, std::to_string(accessor.count) + " elements of " + std::to_string(element_size) +
+                                      " bytes at offset " + std::to_string(accessor.byteOffset) + " (stride " +
+                                      std::to_string(stride) + ") overrun bufferViews[" +
+                                      std::to_string(accessor.bufferView) + "] of " + std::to_string(view.byteLength) +
+                                      " bytes");
+    }
+    const unsigned char* first = view_start + accessor.byteOffset;
+    values.resize(accessor.count * layout.component_count);
+    for (size_t i = 0; i < accessor.count; ++i) {
+        for (size_t c = 0; c < layout.component_count; ++c) {
+            values[i * layout.component_count + c] = read_component(first + i * stride + c * layout.component_size,
+                                                                    accessor.componentType, accessor.normalized);
+        }
+    }
+}
+
+// glTF 2.0, 3.6.2.3: `sparse.count` strictly increasing element indices, each replaced by
+// the tightly packed element of the values' view.
+void apply_sparse(const GltfSource& source, const AccessorLayout& layout, std::vector<double>& values) {
+    const tinygltf::Accessor& accessor = *layout.accessor;
+    const auto& sparse = accessor.sparse;
+    const std::string where = layout.where + ".sparse";
+    if (sparse.count < 1 || static_cast<size_t>(sparse.count) > accessor.count) {
+        source.fail(where + ".count",
+                    "expected 1.." + std::to_string(accessor.count) + ", got " + std::to_string(sparse.count));
+    }
+    const auto count = static_cast<size_t>(sparse.count);
+    const int index_type = sparse.indices.componentType;
+    if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+        source.fail(where + ".indices.componentType",
+                    "expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " + component_type_name(index_type));
+    }
+    if (sparse.indices.byteOffset < 0 || sparse.values.byteOffset < 0) {
+        source.fail(where, "a byteOffset is negative");
+    }
+    const auto index_size = static_cast<size_t>(tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(index_type)));
+    const unsigned char* indices =
+        checked_view_range(source, sparse.indices.bufferView, static_cast<size_t>(sparse.indices.byteOffset),
+                           count * index_size, where + ".indices");
+    const size_t element_size = layout.element_size();
+    const unsigned char* replacements =
+        checked_view_range(source, sparse.values.bufferView, static_cast<size_t>(sparse.values.byteOffset),
+                           count * element_size, where + ".values");
+    size_t previous = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const auto element = static_cast<size_t>(read_component(indices + i * index_size, index_type, false));
+        if (element >= accessor.count) {
+            source.fail(where + ".indices", "index " + std::to_string(element) + " at position " + std::to_string(i) +
+                                                " is out of range (the accessor has " + std::to_string(accessor.count) +
+                                                " elements)");
+        }
+        if (i > 0 && element <= previous) {
+            source.fail(where + ".indices", "index " + std::to_string(element) + " at position " + std::to_string(i) +
+                                                " does not increase (glTF requires strictly increasing indices)");
+        }
+        previous = element;
+        for (size_t c = 0; c < layout.component_count; ++c) {
+            values[element * layout.component_count + c] =
+                read_component(replacements + i * element_size + c * layout.component_size, accessor.componentType,
+                               accessor.normalized);
+        }
+    }
+}
+
+// The component types a use accepts: glTF 2.0 core (3.7.2.1) and, where the file uses
+// KHR_mesh_quantization, the integer types that extension adds.
+struct Accepted {
+    const char* core;                                   // described for the error message
+    std::vector<std::pair<int, bool>> core_types;       // (componentType, normalized)
+    std::vector<std::pair<int, bool>> quantized_types;  // with KHR_mesh_quantization
+};
+
+constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kUbyte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
+constexpr int kUshort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+
+const Accepted& accepted(GltfAttribute use) {
+    static const Accepted position{"VEC3 of FLOAT",
+                                   {{kFloat, false}},
+                                   {{kByte, false},
+                                    {kByte, true},
+                                    {kUbyte, false},
+                                    {kUbyte, true},
+                                    {kShort, false},
+                                    {kShort, true},
+                                    {kUshort, false},
+                                    {kUshort, true}}};
+    static const Accepted normal{"VEC3 of FLOAT", {{kFloat, false}}, {{kByte, true}, {kShort, true}}};
+    static const Accepted texcoord{
+        "VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+        {{kFloat, false}, {kUbyte, true}, {kUshort, true}},
+        {{kByte, false}, {kByte, true}, {kUbyte, false}, {kShort, false}, {kShort, true}, {kUshort, false}}};
+    static const Accepted position_delta{
+        "VEC3 of FLOAT", {{kFloat, false}}, {{kByte, false}, {kByte, true}, {kShort, false}, {kShort, true}}};
+    switch (use) {
+        case GltfAttribute::Position:
+            return position;
+        case GltfAttribute::Normal:
+        case GltfAttribute::NormalDelta:
+            return normal;
+        case GltfAttribute::Texcoord:
+            return texcoord;
+        case GltfAttribute::PositionDelta:
+            return position_delta;
+    }
+    return position;
+}
+
+bool listed(const std::vector<std::pair<int, bool>>& types, int component_type, bool normalized) {
+    return std::find(types.begin(), types.end(), std::make_pair(component_type, normalized)) != types.end();
+}
+
+std::string describe_type(const tinygltf::Accessor& accessor, size_t component_count) {
+    return std::to_string(component_count) + " components of " + (accessor.normalized ? "normalized " : "") +
+           component_type_name(accessor.componentType);
+}
+
+// Every element's components, dense data then the sparse substitution.
+std::vector<double> read_values(const GltfSource& source, const AccessorLayout& layout) {
+    std::vector<double> values;
+    read_dense(source, layout, values);
+    if (layout.accessor->sparse.isSparse) apply_sparse(source, layout, values);
+    return values;
 }
 
 }  // namespace
+
+bool GltfSource::uses_extension(const std::string& name) const {
+    return std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) != model.extensionsUsed.end() ||
+           std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), name) !=
+               model.extensionsRequired.end();
+}
 
 void GltfSource::fail(const std::string& where, const std::string& problem) const {
     throw InputError(origin + ": " + where + ": " + problem);
 }
 
 size_t accessor_count(const GltfSource& source, int accessor, const std::string& where) {
-    return checked_accessor(source, accessor, where).count;
+    return checked_layout(source, accessor, where).accessor->count;
 }
 
-std::vector<glm::vec3> read_float_vec3_accessor(const GltfSource& source, int accessor, const std::string& where) {
-    const AccessorBytes bytes = checked_accessor(source, accessor, where);
-    require_layout(source, bytes, 3, bytes.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT, "VEC3 of FLOAT", where);
-    std::vector<glm::vec3> values(bytes.count);
-    for (size_t i = 0; i < bytes.count; ++i) {
-        std::memcpy(&values[i], bytes.first + i * bytes.stride, sizeof(glm::vec3));
-        if (!std::isfinite(values[i].x) || !std::isfinite(values[i].y) || !std::isfinite(values[i].z)) {
-            source.fail(where, "element " + std::to_string(i) + " is not a finite number");
+namespace {
+
+// VEC2 or VEC3 of a type `use` accepts, as floats (finite and within kMaxNumberMagnitude).
+template <typename Vector>
+std::vector<Vector> read_vector_accessor(const GltfSource& source, int index, GltfAttribute use,
+                                         const std::string& where) {
+    constexpr auto kComponents = static_cast<size_t>(Vector::length());
+    const AccessorLayout layout = checked_layout(source, index, where);
+    const tinygltf::Accessor& accessor = *layout.accessor;
+    const Accepted& types = accepted(use);
+    const bool core = listed(types.core_types, accessor.componentType, accessor.normalized);
+    const bool quantized = listed(types.quantized_types, accessor.componentType, accessor.normalized);
+    if (layout.component_count != kComponents || !(core || quantized)) {
+        source.fail(where,
+                    "expected " + std::string(types.core) + ", got " + describe_type(accessor, layout.component_count));
+    }
+    if (!core && !source.uses_extension("KHR_mesh_quantization")) {
+        source.fail(where, describe_type(accessor, layout.component_count) +
+                               " needs the KHR_mesh_quantization extension, which the file does not declare");
+    }
+    const std::vector<double> values = read_values(source, layout);
+    std::vector<Vector> vectors(accessor.count);
+    for (size_t i = 0; i < accessor.count; ++i) {
+        for (size_t c = 0; c < kComponents; ++c) {
+            const double value = values[i * kComponents + c];
+            if (!std::isfinite(value) || std::abs(value) > kMaxNumberMagnitude) {
+                source.fail(where, "element " + std::to_string(i) + " is not a finite number within 1e9");
+            }
+            vectors[i][static_cast<glm::length_t>(c)] = static_cast<float>(value);
         }
     }
-    return values;
+    return vectors;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> read_vec3_accessor(const GltfSource& source, int accessor, GltfAttribute use,
+                                          const std::string& where) {
+    return read_vector_accessor<glm::vec3>(source, accessor, use, where);
 }
 
 std::vector<glm::vec2> read_texcoord_accessor(const GltfSource& source, int accessor, const std::string& where) {
-    const AccessorBytes bytes = checked_accessor(source, accessor, where);
-    const bool type_ok = bytes.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                         (bytes.normalized && (bytes.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                               bytes.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-    require_layout(source, bytes, 2, type_ok, "VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT", where);
-    std::vector<glm::vec2> values(bytes.count);
-    for (size_t i = 0; i < bytes.count; ++i) {
-        values[i] = {read_normalized_component(bytes, i, 0), read_normalized_component(bytes, i, 1)};
-    }
-    return values;
+    return read_vector_accessor<glm::vec2>(source, accessor, GltfAttribute::Texcoord, where);
 }
 
-std::vector<uint32_t> read_index_accessor(const GltfSource& source, int accessor, const std::string& where) {
-    const AccessorBytes bytes = checked_accessor(source, accessor, where);
-    const int type = bytes.component_type;
+std::vector<uint32_t> read_index_accessor(const GltfSource& source, int index, const std::string& where) {
+    const AccessorLayout layout = checked_layout(source, index, where);
+    const int type = layout.accessor->componentType;
     const bool type_ok = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                          type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    require_layout(source, bytes, 1, type_ok, "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT", where);
-    std::vector<uint32_t> indices(bytes.count);
-    for (size_t i = 0; i < bytes.count; ++i) {
-        const unsigned char* at = bytes.first + i * bytes.stride;
-        if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) indices[i] = at[0];
-        if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) indices[i] = read_unaligned<uint16_t>(at);
-        if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) indices[i] = read_unaligned<uint32_t>(at);
+    if (layout.component_count != 1 || !type_ok) {
+        source.fail(where, "expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " +
+                               describe_type(*layout.accessor, layout.component_count));
     }
+    AccessorLayout plain = layout;  // indices are never normalised
+    tinygltf::Accessor copy = *layout.accessor;
+    copy.normalized = false;
+    plain.accessor = &copy;
+    const std::vector<double> values = read_values(source, plain);
+    std::vector<uint32_t> indices(values.size());
+    for (size_t i = 0; i < values.size(); ++i) indices[i] = static_cast<uint32_t>(values[i]);
     return indices;
 }
 

@@ -24,6 +24,8 @@ struct GltfSource {
     // Throws InputError("<origin>: <where>: <problem>"); `where` is a JSON path such as
     // "meshes[0].primitives[1].indices".
     [[noreturn]] void fail(const std::string& where, const std::string& problem) const;
+    // Whether extensionsUsed or extensionsRequired lists `name`.
+    bool uses_extension(const std::string& name) const;
 };
 
 // How deep a glTF's JSON may nest arrays and objects (real files nest about ten levels;
@@ -70,21 +72,37 @@ std::string decode_gltf_uri(const std::string& uri, const std::string& origin, c
 // after checking that the nodes form disjoint strict trees (gltf_hierarchy.cpp).
 std::vector<int> checked_root_nodes(const GltfSource& source);
 
-// Reads the whole accessor, converting to the requested type. Each throws unless the
-// accessor's component type and element type are among those glTF allows for the use.
-std::vector<glm::vec3> read_float_vec3_accessor(const GltfSource& source, int accessor, const std::string& where);
-// TEXCOORD: float, or normalized unsigned byte/short.
+// How many elements an accessor without a bufferView (all zeros, or sparse over zeros) may
+// have: its data is not in the file, so its count is not bounded by the file's size.
+inline constexpr size_t kMaxGltfElementsWithoutData = size_t{1} << 24;
+
+// What an accessor is read for; each accepts the component types glTF 2.0 allows for it,
+// plus KHR_mesh_quantization's integer types when the file declares that extension.
+enum class GltfAttribute { Position, Normal, Texcoord, PositionDelta, NormalDelta };
+
+// Reads the whole accessor (sparse substitution applied, integer components normalised
+// where the accessor says so), converting to floats. Each throws unless the accessor's
+// component and element types are among those allowed for the use, or a value is not
+// finite or beyond kMaxNumberMagnitude.
+std::vector<glm::vec3> read_vec3_accessor(const GltfSource& source, int accessor, GltfAttribute use,
+                                          const std::string& where);
 std::vector<glm::vec2> read_texcoord_accessor(const GltfSource& source, int accessor, const std::string& where);
 // Indices: unsigned byte, short or int scalars.
 std::vector<uint32_t> read_index_accessor(const GltfSource& source, int accessor, const std::string& where);
 // Number of elements of a checked accessor (throws like the readers when malformed).
 size_t accessor_count(const GltfSource& source, int accessor, const std::string& where);
 
-// Converts one glTF primitive to a triangle-list Mesh (material left 0 for the caller).
-// Returns nullopt for points and lines, which cast no shadow, and for primitives without
-// triangles; strips and fans become lists.
+// How a node places a primitive.
+struct GltfPrimitiveOptions {
+    int uv_set = 0;                     // the TEXCOORD_n its material's base colour texture reads
+    std::vector<double> morph_weights;  // node.weights, else mesh.weights; missing ones are 0
+};
+
+// Converts one glTF primitive to a triangle-list Mesh (material left 0 for the caller), in
+// the pose of `options.morph_weights`. Returns nullopt for points and lines, which cast no
+// shadow, and for primitives without triangles; strips and fans become lists.
 std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinygltf::Primitive& primitive,
-                                           const std::string& where);
+                                           const GltfPrimitiveOptions& options, const std::string& where);
 
 // Converts a decoded image (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
 // image holds no pixels (it failed to decode) or its size does not match its header.

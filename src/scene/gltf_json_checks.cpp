@@ -110,6 +110,16 @@ void check_gltf_json(std::string_view json, const std::string& origin, const std
     checker.each(document, "accessors", [&](const Json& accessor, const std::string& where) {
         for (const char* key : {"bufferView", "byteOffset", "componentType"}) checker.integer(accessor, key, where);
         checker.integer(accessor, "count", where, 1);
+        if (accessor.is_object() && accessor.contains("sparse")) {
+            const Json& sparse = accessor["sparse"];
+            checker.integer(sparse, "count", where + ".sparse", 1);
+            for (const char* part : {"indices", "values"}) {
+                if (!sparse.is_object() || !sparse.contains(part)) continue;
+                for (const char* key : {"bufferView", "byteOffset", "componentType"}) {
+                    checker.integer(sparse[part], key, where + ".sparse." + part);
+                }
+            }
+        }
     });
     checker.each(document, "bufferViews", [&](const Json& view, const std::string& where) {
         for (const char* key : {"buffer", "byteOffset"}) checker.integer(view, key, where);

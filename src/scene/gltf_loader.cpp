@@ -21,6 +21,13 @@ bool all_finite(const std::vector<double>& values) {
                        [](double value) { return std::isfinite(value) && std::abs(value) <= kMaxNumberMagnitude; });
 }
 
+// A node that places a mesh, with its model-space transform.
+struct PlacedMesh {
+    int mesh = -1;
+    int node = -1;
+    glm::mat4 transform{1.0f};
+};
+
 // Turns the node tree into instances: one per (mesh primitive, node, placement).
 class GltfImporter {
 public:
@@ -30,7 +37,7 @@ public:
         collect_nodes(checked_root_nodes(source_));
         refuse_too_many_instances(placements.size());
         for (const glm::mat4& placement : placements) {
-            for (const auto& [mesh, model_transform] : placed_meshes_) place_mesh(mesh, placement * model_transform);
+            for (const PlacedMesh& placed : placed_meshes_) place_mesh(placed, placement * placed.transform);
         }
     }
 
@@ -49,7 +56,7 @@ private:
             const tinygltf::Node& node = model().nodes[static_cast<size_t>(index)];
             const glm::mat4 transform =
                 parent_transform * local_transform(node, "nodes[" + std::to_string(index) + "]");
-            if (node.mesh >= 0) placed_meshes_.emplace_back(node.mesh, transform);
+            if (node.mesh >= 0) placed_meshes_.push_back({node.mesh, index, transform});
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
                 pending.emplace_back(*child, transform);
             }
@@ -59,9 +66,9 @@ private:
     // Placements times the primitives the nodes place, before any is converted.
     void refuse_too_many_instances(size_t placement_count) const {
         size_t primitives = 0;
-        for (const auto& [mesh, transform] : placed_meshes_) {
-            if (mesh >= 0 && static_cast<size_t>(mesh) < model().meshes.size()) {
-                primitives += model().meshes[static_cast<size_t>(mesh)].primitives.size();
+        for (const PlacedMesh& placed : placed_meshes_) {
+            if (placed.mesh >= 0 && static_cast<size_t>(placed.mesh) < model().meshes.size()) {
+                primitives += model().meshes[static_cast<size_t>(placed.mesh)].primitives.size();
             }
         }
         if (primitives > 0 && placement_count > kMaxGltfInstances / primitives) {
@@ -103,7 +110,8 @@ private:
         return transform;
     }
 
-    void place_mesh(int mesh, const glm::mat4& world) {
+    void place_mesh(const PlacedMesh& placed, const glm::mat4& world) {
+        const int mesh = placed.mesh;
         if (mesh < 0 || static_cast<size_t>(mesh) >= model().meshes.size()) {
             source_.fail("meshes[" + std::to_string(mesh) + "]",
                          "mesh does not exist (the file has " + std::to_string(model().meshes.size()) + " meshes)");
@@ -111,21 +119,33 @@ private:
         // A mirroring transform turns counter-clockwise triangles clockwise; such placements
         // get a copy of the mesh with reversed winding so front faces stay CCW in the world.
         const bool mirrored = glm::determinant(glm::mat3{world}) < 0.0f;
-        const size_t primitive_count = model().meshes[static_cast<size_t>(mesh)].primitives.size();
-        for (size_t primitive = 0; primitive < primitive_count; ++primitive) {
-            const std::optional<uint32_t> scene_mesh = convert_mesh(mesh, static_cast<int>(primitive), mirrored);
+        const tinygltf::Mesh& gltf_mesh = model().meshes[static_cast<size_t>(mesh)];
+        // glTF 2.0, 3.7.2.2: the node's weights, else the mesh's, pose the morph targets.
+        const tinygltf::Node& node = model().nodes[static_cast<size_t>(placed.node)];
+        const std::vector<double>& weights = node.weights.empty() ? gltf_mesh.weights : node.weights;
+        if (!all_finite(weights)) {
+            source_.fail("nodes[" + std::to_string(placed.node) + "]",
+                         "morph target weights hold a number that is not finite or beyond 1e9 in magnitude");
+        }
+        for (size_t primitive = 0; primitive < gltf_mesh.primitives.size(); ++primitive) {
+            const std::optional<uint32_t> scene_mesh =
+                convert_mesh(mesh, static_cast<int>(primitive), mirrored, weights);
             if (scene_mesh) scene_.instances.push_back({*scene_mesh, world});
         }
     }
 
-    std::optional<uint32_t> convert_mesh(int mesh, int primitive_index, bool mirrored) {
-        const auto key = std::make_tuple(mesh, primitive_index, mirrored);
-        if (const auto found = converted_meshes_.find(key); found != converted_meshes_.end()) return found->second;
+    std::optional<uint32_t> convert_mesh(int mesh, int primitive_index, bool mirrored,
+                                         const std::vector<double>& weights) {
         const tinygltf::Primitive& primitive =
             model().meshes[static_cast<size_t>(mesh)].primitives[static_cast<size_t>(primitive_index)];
+        // Nodes with different weights share a mesh without morph targets.
+        const std::vector<double> pose = primitive.targets.empty() ? std::vector<double>{} : weights;
+        const auto key = std::make_tuple(mesh, primitive_index, mirrored, pose);
+        if (const auto found = converted_meshes_.find(key); found != converted_meshes_.end()) return found->second;
         const std::string where =
             "meshes[" + std::to_string(mesh) + "].primitives[" + std::to_string(primitive_index) + "]";
-        std::optional<Mesh> converted = convert_gltf_primitive(source_, primitive, where);
+        const GltfPrimitiveOptions options{uv_set(primitive.material), pose};
+        std::optional<Mesh> converted = convert_gltf_primitive(source_, primitive, options, where);
         std::optional<uint32_t> scene_index;
         if (converted) {
             if (mirrored) reverse_winding(converted->indices);
@@ -135,6 +155,14 @@ private:
         }
         converted_meshes_.emplace(key, scene_index);
         return scene_index;
+    }
+
+    // The TEXCOORD set a material's base colour texture reads (its textureInfo.texCoord).
+    int uv_set(int material) const {
+        if (material < 0 || static_cast<size_t>(material) >= model().materials.size()) return 0;
+        const tinygltf::TextureInfo& texture =
+            model().materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture;
+        return texture.index >= 0 ? std::max(texture.texCoord, 0) : 0;
     }
 
     uint32_t convert_material(int index, const std::string& where) {
@@ -199,8 +227,9 @@ private:
 
     Scene& scene_;
     const GltfSource& source_;
-    std::vector<std::pair<int, glm::mat4>> placed_meshes_;  // (mesh, model-space transform)
-    std::map<std::tuple<int, int, bool>, std::optional<uint32_t>> converted_meshes_;
+    std::vector<PlacedMesh> placed_meshes_;
+    // (mesh, primitive, mirrored, morph weights) -> scene mesh
+    std::map<std::tuple<int, int, bool, std::vector<double>>, std::optional<uint32_t>> converted_meshes_;
     std::map<int, uint32_t> converted_materials_;
     std::map<int, int32_t> converted_images_;
 };

@@ -1,3 +1,4 @@
+#include <glm/geometric.hpp>
 #include <numeric>
 
 #include "scene/gltf_internal.hpp"
@@ -67,8 +68,39 @@ void require_same_count(const GltfSource& source, size_t count, size_t vertex_co
 
 }  // namespace
 
+namespace {
+
+// glTF 2.0, 3.7.2.2: the static pose is the base plus each target's deltas times its weight.
+void apply_morph_targets(const GltfSource& source, const tinygltf::Primitive& primitive,
+                         const std::vector<double>& weights, std::vector<glm::vec3>& positions,
+                         std::optional<std::vector<glm::vec3>>& normals, const std::string& where) {
+    for (size_t t = 0; t < primitive.targets.size() && t < weights.size(); ++t) {
+        const auto weight = static_cast<float>(weights[t]);
+        if (weight == 0.0f) continue;
+        const std::string target = where + ".targets[" + std::to_string(t) + "]";
+        for (const auto& [name, accessor] : primitive.targets[t]) {
+            const bool is_position = name == "POSITION";
+            if (!is_position && (name != "NORMAL" || !normals)) continue;  // tangents and the rest shape no shadow
+            std::vector<glm::vec3>& base = is_position ? positions : *normals;
+            const std::vector<glm::vec3> deltas = read_vec3_accessor(
+                source, accessor, is_position ? GltfAttribute::PositionDelta : GltfAttribute::NormalDelta,
+                target + "." + name);
+            require_same_count(source, deltas.size(), base.size(), target + "." + name);
+            for (size_t i = 0; i < base.size(); ++i) base[i] += weight * deltas[i];
+        }
+    }
+    if (normals) {
+        for (glm::vec3& normal : *normals) {
+            const float length = glm::length(normal);
+            if (length > 0.0f) normal /= length;
+        }
+    }
+}
+
+}  // namespace
+
 std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinygltf::Primitive& primitive,
-                                           const std::string& where) {
+                                           const GltfPrimitiveOptions& options, const std::string& where) {
     if (is_point_or_line_mode(primitive.mode)) return std::nullopt;
     const bool triangles = primitive.mode == -1 || primitive.mode == TINYGLTF_MODE_TRIANGLES ||
                            primitive.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
@@ -77,8 +109,14 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
 
     const int position_accessor = find_attribute(primitive, "POSITION");
     if (position_accessor < 0) source.fail(where + ".attributes", "no POSITION attribute");
-    const std::vector<glm::vec3> positions =
-        read_float_vec3_accessor(source, position_accessor, where + ".attributes.POSITION");
+    std::vector<glm::vec3> positions =
+        read_vec3_accessor(source, position_accessor, GltfAttribute::Position, where + ".attributes.POSITION");
+    std::optional<std::vector<glm::vec3>> normals;
+    if (const int normal_accessor = find_attribute(primitive, "NORMAL"); normal_accessor >= 0) {
+        normals = read_vec3_accessor(source, normal_accessor, GltfAttribute::Normal, where + ".attributes.NORMAL");
+        require_same_count(source, normals->size(), positions.size(), where + ".attributes.NORMAL");
+    }
+    apply_morph_targets(source, primitive, options.morph_weights, positions, normals, where);
 
     Mesh mesh;
     mesh.vertices.resize(positions.size());
@@ -86,21 +124,24 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
     mesh.indices = read_triangle_list(source, primitive, positions.size(), where);
     if (mesh.indices.empty()) return std::nullopt;  // nothing to draw; spare the renderer empty buffers
 
-    if (const int normal_accessor = find_attribute(primitive, "NORMAL"); normal_accessor >= 0) {
-        const std::vector<glm::vec3> normals =
-            read_float_vec3_accessor(source, normal_accessor, where + ".attributes.NORMAL");
-        require_same_count(source, normals.size(), positions.size(), where + ".attributes.NORMAL");
-        for (size_t i = 0; i < normals.size(); ++i) mesh.vertices[i].normal = normals[i];
+    if (normals) {
+        for (size_t i = 0; i < normals->size(); ++i) mesh.vertices[i].normal = (*normals)[i];
     } else {
         // glTF says flat normals when NORMAL is absent; smooth ones look better on the
         // organic models we load and make no difference to shadows.
         compute_smooth_normals(mesh.vertices, mesh.indices);
     }
-    if (const int uv_accessor = find_attribute(primitive, "TEXCOORD_0"); uv_accessor >= 0) {
+    // The one set of texture coordinates Penumbra keeps is the one the material's base
+    // colour (alpha) texture reads: textureInfo.texCoord.
+    const std::string uv_name = "TEXCOORD_" + std::to_string(options.uv_set);
+    if (const int uv_accessor = find_attribute(primitive, uv_name); uv_accessor >= 0) {
         const std::vector<glm::vec2> uvs =
-            read_texcoord_accessor(source, uv_accessor, where + ".attributes.TEXCOORD_0");
-        require_same_count(source, uvs.size(), positions.size(), where + ".attributes.TEXCOORD_0");
+            read_texcoord_accessor(source, uv_accessor, where + ".attributes." + uv_name);
+        require_same_count(source, uvs.size(), positions.size(), where + ".attributes." + uv_name);
         for (size_t i = 0; i < uvs.size(); ++i) mesh.vertices[i].uv = uvs[i];
+    } else if (options.uv_set != 0) {
+        source.fail(where + ".attributes",
+                    "the material's base colour texture reads " + uv_name + ", which the primitive does not have");
     }
     mesh.bounds = compute_mesh_bounds(mesh.vertices);
     return mesh;

@@ -14,7 +14,7 @@ import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
+BYTE, UBYTE, SHORT, USHORT, UINT, FLOAT = 5120, 5121, 5122, 5123, 5125, 5126
 
 # Quad corners: counter-clockwise seen from +Y.
 POSITIONS = [(-0.5, 0.0, 0.5), (0.5, 0.0, 0.5), (0.5, 0.0, -0.5), (-0.5, 0.0, -0.5)]
@@ -181,6 +181,119 @@ def write_valid_fixtures():
     write_json("textured_grey_alpha16.gltf", textured(embed(document, data), png(2, 2, 2, grey_alpha_16, 16)))
 
 
+def write_conformance_fixtures():
+    """glTF features each equivalent to a plain fixture (issue 19): loaded, they give the
+    same world-space quad, normals, texture coordinates and indices as quad.gltf or
+    textured.gltf."""
+    # Sparse positions: the dense data has vertices 1 and 2 wrong; the sparse part restores them.
+    document, data = quad_document()
+    builder = Builder()
+    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    wrong = [POSITIONS[0], (9.0, 9.0, 9.0), (9.0, 9.0, 9.0), POSITIONS[3]]
+    dense = builder.add(pack("<3f", wrong), FLOAT, "VEC3", 4)
+    sparse_indices = builder.add(pack("<H", [(1,), (2,)]), USHORT, "SCALAR", 2)
+    sparse_values = builder.add(pack("<3f", POSITIONS[1:3]), FLOAT, "VEC3", 2)
+    accessor = document["accessors"][dense]
+    accessor["sparse"] = {"count": 2,
+                          "indices": {"bufferView": document["accessors"][sparse_indices]["bufferView"],
+                                      "componentType": USHORT},
+                          "values": {"bufferView": document["accessors"][sparse_values]["bufferView"]}}
+    document["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = dense
+    # Sparse indices too: the dense triangle list reads 0,1,2,0,0,0; the sparse part sets 2,3.
+    index_dense = builder.add(index_bytes([0, 1, 2, 0, 0, 0], USHORT), USHORT, "SCALAR", 6)
+    index_positions = builder.add(pack("<B", [(4,), (5,)]), UBYTE, "SCALAR", 2)
+    index_values = builder.add(pack("<H", [(2,), (3,)]), USHORT, "SCALAR", 2)
+    document["accessors"][index_dense]["sparse"] = {
+        "count": 2,
+        "indices": {"bufferView": document["accessors"][index_positions]["bufferView"], "componentType": UBYTE},
+        "values": {"bufferView": document["accessors"][index_values]["bufferView"]}}
+    document["meshes"][0]["primitives"][0]["indices"] = index_dense
+    document["buffers"][0]["byteLength"] = len(builder.data)
+    write_json("sparse.gltf", embed(document, builder.data))
+
+    # A sparse accessor without a bufferView starts as zeros: every vertex substituted.
+    document, data = quad_document()
+    builder = Builder()
+    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    all_indices = builder.add(pack("<B", [(0,), (1,), (2,), (3,)]), UBYTE, "SCALAR", 4)
+    all_values = builder.add(pack("<3f", POSITIONS), FLOAT, "VEC3", 4)
+    document["accessors"].append({"componentType": FLOAT, "count": 4, "type": "VEC3", "sparse": {
+        "count": 4,
+        "indices": {"bufferView": document["accessors"][all_indices]["bufferView"], "componentType": UBYTE},
+        "values": {"bufferView": document["accessors"][all_values]["bufferView"]}}})
+    document["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = len(document["accessors"]) - 1
+    document["buffers"][0]["byteLength"] = len(builder.data)
+    write_json("sparse_without_buffer_view.gltf", embed(document, builder.data))
+
+    # The alpha texture reads TEXCOORD_1; TEXCOORD_0 is all zeros.
+    document, data = quad_document()
+    builder = Builder()
+    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    attributes = document["meshes"][0]["primitives"][0]["attributes"]
+    attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"]
+    attributes["TEXCOORD_0"] = builder.add(pack("<2f", [(0.0, 0.0)] * 4), FLOAT, "VEC2", 4)
+    document["buffers"][0]["byteLength"] = len(builder.data)
+    rgba = [[255, 0, 0, 255, 0, 255, 0, 128], [0, 0, 255, 0, 255, 255, 255, 255]]
+    second_set = textured(embed(document, builder.data), png(2, 2, 4, rgba))
+    second_set["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1
+    write_json("texcoord1.gltf", second_set)
+
+    # Morph targets: the base quad sits 1 m higher; one target moves it down by 1 m and tilts
+    # its normals, weighted 1 by the mesh (morph_mesh_weights) or by the node over a mesh
+    # weight of 0 (morph_node_weights). A second target with weight 0 would move it away.
+    for name, mesh_weights, node_weights in (("morph_mesh_weights.gltf", [1.0, 0.0], None),
+                                             ("morph_node_weights.gltf", [0.0, 0.0], [1.0, 0.0])):
+        document, data = quad_document()
+        builder = Builder()
+        builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+        raised = [(x, y + 1.0, z) for x, y, z in POSITIONS]
+        primitive = document["meshes"][0]["primitives"][0]
+        primitive["attributes"]["POSITION"] = builder.add(pack("<3f", raised), FLOAT, "VEC3", 4)
+        primitive["attributes"]["NORMAL"] = builder.add(pack("<3f", [(1.0, 1.0, 0.0)] * 4), FLOAT, "VEC3", 4)
+        down = builder.add(pack("<3f", [(0.0, -1.0, 0.0)] * 4), FLOAT, "VEC3", 4)
+        untilt = builder.add(pack("<3f", [(-1.0, 0.0, 0.0)] * 4), FLOAT, "VEC3", 4)
+        away = builder.add(pack("<3f", [(50.0, 0.0, 0.0)] * 4), FLOAT, "VEC3", 4)
+        primitive["targets"] = [{"POSITION": down, "NORMAL": untilt}, {"POSITION": away}]
+        document["meshes"][0]["weights"] = mesh_weights
+        if node_weights is not None:
+            document["nodes"][0]["weights"] = node_weights
+        document["buffers"][0]["byteLength"] = len(builder.data)
+        write_json(name, embed(document, builder.data))
+
+    # KHR_mesh_quantization: positions as SHORT twice the size, halved by the node's scale;
+    # normals as normalized BYTE; texture coordinates as UNSIGNED_BYTE (not normalized).
+    document, data = quad_document()
+    builder = Builder()
+    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    attributes = document["meshes"][0]["primitives"][0]["attributes"]
+    doubled = [tuple(int(2 * c) for c in p) for p in POSITIONS]
+    attributes["POSITION"] = builder.add(pad4(pack("<3h", doubled)), SHORT, "VEC3", 4)
+    builder.views[-1]["byteStride"] = 8  # vertex attributes are 4-byte aligned
+    builder.views[-1]["byteLength"] = 32
+    builder.data = builder.data[:builder.views[-1]["byteOffset"]] + b"".join(
+        struct.pack("<3hxx", *p) for p in doubled)
+    attributes["NORMAL"] = builder.add(pack("<3bx", [(0, 127, 0)] * 4), BYTE, "VEC3", 4, normalized=True)
+    builder.views[-1]["byteStride"] = 4
+    attributes["TEXCOORD_0"] = builder.add(pack("<2Bxx", [(int(u), int(v)) for u, v in UVS]), UBYTE, "VEC2", 4)
+    builder.views[-1]["byteStride"] = 4
+    document["nodes"][0]["scale"] = [0.5, 0.5, 0.5]
+    document["extensionsUsed"] = ["KHR_mesh_quantization"]
+    document["extensionsRequired"] = ["KHR_mesh_quantization"]
+    document["buffers"][0]["byteLength"] = len(builder.data)
+    write_json("quantized.gltf", embed(document, builder.data))
+    undeclared = embed(document, builder.data)
+    del undeclared["extensionsUsed"], undeclared["extensionsRequired"]
+    write_json("quantized_undeclared.gltf", undeclared)
+
+    # Broken sparse accessors: an index past the end, indices that do not increase.
+    sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
+    position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
+    past_end = copy.deepcopy(sparse)
+    past_end["accessors"][position]["count"] = 2
+    past_end["accessors"][position]["sparse"]["count"] = 2
+    write_json("sparse_index_out_of_range.gltf", past_end)
+
+
 def write_malformed_fixtures():
     document, data = quad_document()
     write_bytes("malformed.gltf", b'{"asset": {"version": "2.0"}, "meshes": [ {"primitives": ')
@@ -247,4 +360,5 @@ def write_malformed_fixtures():
 
 if __name__ == "__main__":
     write_valid_fixtures()
+    write_conformance_fixtures()
     write_malformed_fixtures()
