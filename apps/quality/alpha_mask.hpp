@@ -1,7 +1,7 @@
 #pragma once
 // The alpha test of shadow casters, on the CPU, as the shadow pass does it on the GPU
 // (shaders/shadow_masked.frag): alpha = base colour alpha * texture alpha, the texture
-// sampled bilinearly with repeat addressing; MASK materials cut at their cutoff, BLEND
+// sampled with its own wrap modes and filter (the glTF sampler); MASK materials cut at their cutoff, BLEND
 // materials cast as MASK at 0.5 (docs/techniques.md).
 #include <optional>
 
@@ -9,8 +9,9 @@
 
 namespace penumbra::quality {
 
-// The texture's alpha at `uv`, bilinear with repeat wrapping (texel centres at (i + 0.5) / size).
-float sample_alpha_bilinear_repeat(const Texture& texture, glm::vec2 uv);
+// The texture's alpha at `uv` as a Vulkan sampler of the texture's wrap modes and filter
+// reads it: bilinear (texel centres at (i + 0.5) / size) or nearest.
+float sample_alpha(const Texture& texture, glm::vec2 uv);
 
 // The cutoff below which a material's surface lets light through, or nullopt when opaque.
 std::optional<float> alpha_cutoff(const Material& material);

@@ -13,6 +13,7 @@ namespace penumbra::renderer {
 struct MaterialBinding {
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;  // set RENDERER_SET_MATERIAL
     VkImageView texture_view = VK_NULL_HANDLE;        // the base colour texture (or a white texel)
+    VkSampler texture_sampler = VK_NULL_HANDLE;       // with the texture's wrap modes and filter
     glm::vec4 base_color{1.0f};
     float alpha_cutoff = 0.5f;
     float roughness = 0.6f;

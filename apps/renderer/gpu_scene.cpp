@@ -65,14 +65,41 @@ void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& range
     }
 }
 
+namespace {
+
+VkSamplerAddressMode address_mode(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::ClampToEdge:
+            return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        case TextureWrap::MirroredRepeat:
+            return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+        case TextureWrap::Repeat:
+            break;
+    }
+    return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+// The texture's own sampler (glTF wrapS/wrapT and filter): the lighting pass, the shadow
+// passes and the ray-traced reference all read the alpha the same way.
+gpu::SamplerDesc sampler_desc(const Texture& texture) {
+    gpu::SamplerDesc desc;
+    desc.filter = texture.nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+    desc.address = address_mode(texture.wrap_u);
+    desc.address_v = address_mode(texture.wrap_v);
+    return desc;
+}
+
+}  // namespace
+
 void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
     for (const Texture& texture : scene.textures) {
         textures_.push_back(
             gpu::create_texture_rgba8(context.one_time(), texture.width, texture.height, texture.rgba8));
+        texture_samplers_.push_back(gpu::create_sampler(context, sampler_desc(texture)));
     }
     const std::array<uint8_t, 4> white{255, 255, 255, 255};
     textures_.push_back(gpu::create_texture_rgba8(context.one_time(), 1, 1, white));
-    texture_sampler_ = gpu::create_sampler(context, {});
+    texture_samplers_.push_back(gpu::create_sampler(context, {}));
 
     const VkDescriptorSetLayoutBinding binding{RENDERER_BINDING_BASE_COLOR_TEXTURE,
                                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
@@ -91,10 +118,14 @@ void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
         binding_data.descriptor_set = gpu::allocate_descriptor_set(context, descriptor_pool_, material_set_layout_);
         const bool has_texture = material.base_color_texture >= 0 &&
                                  material.base_color_texture < static_cast<int32_t>(scene.textures.size());
-        const gpu::Image& texture = has_texture ? textures_[material.base_color_texture] : textures_.back();
+        const size_t texture_index =
+            has_texture ? static_cast<size_t>(material.base_color_texture) : textures_.size() - 1;
+        const gpu::Image& texture = textures_[texture_index];
+        const VkSampler sampler = texture_samplers_[texture_index];
         gpu::write_combined_image_sampler(context, binding_data.descriptor_set, RENDERER_BINDING_BASE_COLOR_TEXTURE,
-                                          texture.view, texture_sampler_);
+                                          texture.view, sampler);
         binding_data.texture_view = texture.view;
+        binding_data.texture_sampler = sampler;
         binding_data.base_color = material.base_color;
         binding_data.has_texture = has_texture;
         // BLEND materials are drawn and cast alpha-tested at 0.5 (docs/techniques.md):
@@ -129,7 +160,7 @@ void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRang
         desc.bounds = {to_vec3(scene.meshes[m].bounds.min), to_vec3(scene.meshes[m].bounds.max)};
         if (material.alpha_masked && material.has_texture) {
             desc.uvs = VertexStream{vertices_.get(), offsetof(Vertex, uv), sizeof(Vertex), VK_FORMAT_R32G32_SFLOAT};
-            desc.alpha_mask = AlphaMaskDesc{material.texture_view, texture_sampler_, material.alpha_cutoff,
+            desc.alpha_mask = AlphaMaskDesc{material.texture_view, material.texture_sampler, material.alpha_cutoff,
                                             std::clamp(material.base_color.a, 0.0f, 1.0f)};
         }
         casts[m] = !material.alpha_masked || material.has_texture || material.base_color.a >= material.alpha_cutoff;

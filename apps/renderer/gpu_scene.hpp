@@ -35,8 +35,8 @@ private:
 
     gpu::Buffer vertices_;
     gpu::Buffer indices_;
-    std::vector<gpu::Image> textures_;  // scene textures, then the white fallback last
-    gpu::UniqueSampler texture_sampler_;
+    std::vector<gpu::Image> textures_;                  // scene textures, then the white fallback last
+    std::vector<gpu::UniqueSampler> texture_samplers_;  // one per texture (its glTF sampler), then the white texel's
     gpu::UniqueDescriptorSetLayout material_set_layout_;
     gpu::UniqueDescriptorPool descriptor_pool_;
     DrawData draw_data_;

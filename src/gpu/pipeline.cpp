@@ -246,7 +246,7 @@ UniqueSampler create_sampler(const Device& device, const SamplerDesc& desc) {
     info.minFilter = desc.filter;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     info.addressModeU = desc.address;
-    info.addressModeV = desc.address;
+    info.addressModeV = desc.address_v.value_or(desc.address);
     info.addressModeW = desc.address;
     info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
     info.compareOp = desc.compare_op;

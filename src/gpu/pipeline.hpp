@@ -3,6 +3,8 @@
 // descriptor-set layouts, pools and samplers.
 #include <vulkan/vulkan.h>
 
+#include <optional>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -77,7 +79,8 @@ void write_storage_image(const Device& device, VkDescriptorSet set, uint32_t bin
 
 struct SamplerDesc {
     VkFilter filter = VK_FILTER_LINEAR;
-    VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT;  // U, and V and W unless set below
+    std::optional<VkSamplerAddressMode> address_v;
     bool compare = false;  // depth comparison sampler (sampler2DArrayShadow)
     VkCompareOp compare_op = VK_COMPARE_OP_GREATER_OR_EQUAL;
     VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;

@@ -217,12 +217,59 @@ private:
             source_.fail(where, "texture " + std::to_string(texture) + " has no PNG or JPEG image (source " +
                                     std::to_string(image) + ")");
         }
-        if (const auto found = converted_images_.find(image); found != converted_images_.end()) return found->second;
+        const TextureSampling sampling = read_sampler(model().textures[static_cast<size_t>(texture)].sampler,
+                                                      "textures[" + std::to_string(texture) + "].sampler");
+        const auto key = std::make_tuple(image, sampling.wrap_u, sampling.wrap_v, sampling.nearest);
+        if (const auto found = converted_images_.find(key); found != converted_images_.end()) return found->second;
         const auto scene_index = static_cast<int32_t>(scene_.textures.size());
-        scene_.textures.push_back(convert_gltf_image(source_, model().images[static_cast<size_t>(image)],
-                                                     "images[" + std::to_string(image) + "]"));
-        converted_images_.emplace(image, scene_index);
+        Texture converted = convert_gltf_image(source_, model().images[static_cast<size_t>(image)],
+                                               "images[" + std::to_string(image) + "]");
+        converted.wrap_u = sampling.wrap_u;
+        converted.wrap_v = sampling.wrap_v;
+        converted.nearest = sampling.nearest;
+        scene_.textures.push_back(std::move(converted));
+        converted_images_.emplace(key, scene_index);
         return scene_index;
+    }
+
+    struct TextureSampling {
+        TextureWrap wrap_u = TextureWrap::Repeat;
+        TextureWrap wrap_v = TextureWrap::Repeat;
+        bool nearest = false;
+    };
+
+    // glTF 2.0, 5.26: no sampler means repeat and a filter of the implementation's choice
+    // (bilinear here).
+    TextureSampling read_sampler(int index, const std::string& where) const {
+        TextureSampling sampling;
+        if (index < 0) return sampling;
+        if (static_cast<size_t>(index) >= model().samplers.size()) {
+            source_.fail(where, "sampler " + std::to_string(index) + " does not exist (the file has " +
+                                    std::to_string(model().samplers.size()) + " samplers)");
+        }
+        const tinygltf::Sampler& sampler = model().samplers[static_cast<size_t>(index)];
+        const std::string at = "samplers[" + std::to_string(index) + "]";
+        sampling.wrap_u = read_wrap(sampler.wrapS, at + ".wrapS");
+        sampling.wrap_v = read_wrap(sampler.wrapT, at + ".wrapT");
+        const int filter = sampler.magFilter >= 0 ? sampler.magFilter : sampler.minFilter;
+        sampling.nearest = filter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+                           filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                           filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+        return sampling;
+    }
+
+    TextureWrap read_wrap(int wrap, const std::string& where) const {
+        switch (wrap) {
+            case TINYGLTF_TEXTURE_WRAP_REPEAT:
+                return TextureWrap::Repeat;
+            case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+                return TextureWrap::ClampToEdge;
+            case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+                return TextureWrap::MirroredRepeat;
+            default:
+                source_.fail(where, "unknown wrap mode " + std::to_string(wrap) +
+                                        " (expected 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT or 10497 REPEAT)");
+        }
     }
 
     Scene& scene_;
@@ -231,7 +278,7 @@ private:
     // (mesh, primitive, mirrored, morph weights) -> scene mesh
     std::map<std::tuple<int, int, bool, std::vector<double>>, std::optional<uint32_t>> converted_meshes_;
     std::map<int, uint32_t> converted_materials_;
-    std::map<int, int32_t> converted_images_;
+    std::map<std::tuple<int, TextureWrap, TextureWrap, bool>, int32_t> converted_images_;  // (image, sampling)
 };
 
 }  // namespace

@@ -115,6 +115,47 @@ TEST(CompareReference, SphereShadowIsTheProjectedEllipse) {
     EXPECT_EQ(agreement.disagreements, 0u);
 }
 
+// glTF samplers on alpha masks (issue 19): a nearest-filtered mask read past u = 1 with
+// clamp-to-edge or mirrored repeat casts the shadow of the repeat-wrapped mask it amounts
+// to (tests/data/gltf/make_fixtures.py), and the ray-traced reference, which samples the
+// mask with the same rules, agrees with the render.
+std::string masked_quad_scene(const std::string& fixture) {
+    // The fixture's quad (node at (1, 2, 3)) scaled 4x and brought to 2 m above the origin.
+    return ground_scene_toml({0.0f, -1.0f, 0.0f},
+                             "\n[[objects]]\ntype = \"gltf\"\nfile = \"" PENUMBRA_TEST_DATA_DIR "/gltf/" + fixture +
+                                 ".gltf\"\nscale = 4.0\ntranslation = [-4.0, -6.0, -12.0]\n");
+}
+
+double shadowed_fraction(const quality::VisibilityComparison& frame) {
+    size_t shadowed = 0;
+    for (const float value : frame.rendered) shadowed += value < quality::kShadowedBelow;
+    return static_cast<double>(shadowed) / static_cast<double>(frame.rendered.size());
+}
+
+TEST(CompareReference, AlphaMaskSamplersCastTheirEquivalentShadowAndTheReferenceAgrees) {
+    double fractions[2] = {};
+    const char* fixtures[2] = {"alpha_clamped", "alpha_mirrored"};
+    for (int f = 0; f < 2; ++f) {
+        SCOPED_TRACE(fixtures[f]);
+        const compare::CompareResult wrapped =
+            compare_scene(masked_quad_scene(fixtures[f]), small_settings(240, 180), 4);
+        const compare::CompareResult expanded =
+            compare_scene(masked_quad_scene(std::string(fixtures[f]) + "_expanded"), small_settings(240, 180), 4);
+        const auto& a = wrapped.images.frame.rendered;
+        const auto& b = expanded.images.frame.rendered;
+        ASSERT_EQ(a.size(), b.size());
+        size_t differing = 0;
+        for (size_t i = 0; i < a.size(); ++i) differing += std::abs(a[i] - b[i]) > 1e-3f;
+        // Texel boundaries computed from u in 0..2 and from u in 0..1 may round apart.
+        EXPECT_LE(differing, a.size() / 500) << "the sampler's wrap mode was not applied";
+        EXPECT_LT(wrapped.hard.false_lit_outside_edges.percent(), 0.5);
+        EXPECT_LT(wrapped.hard.false_shadow_outside_edges.percent(), 0.5);
+        fractions[f] = shadowed_fraction(wrapped.images.frame);
+        EXPECT_GT(fractions[f], 0.005);
+    }
+    EXPECT_GT(fractions[1], 1.5 * fractions[0]) << "mirrored repeat casts two strips, clamp one";
+}
+
 const glm::vec3 kSlantedLight{-0.6f, -1.0f, 0.35f};
 
 TEST(CompareMetrics, ZeroBiasRaisesFalseShadow) {

@@ -109,11 +109,29 @@ TEST(ShadowRayTracer, InstancesUseTheirWorldTransforms) {
 
 TEST(AlphaMask, BilinearRepeatMatchesTheSampler) {
     const Texture texture{2, 1, {0, 0, 0, 0, 0, 0, 0, 255}};
-    EXPECT_NEAR(sample_alpha_bilinear_repeat(texture, {0.25f, 0.5f}), 0.0f, 1e-6f);
-    EXPECT_NEAR(sample_alpha_bilinear_repeat(texture, {0.75f, 0.5f}), 1.0f, 1e-6f);
-    EXPECT_NEAR(sample_alpha_bilinear_repeat(texture, {0.5f, 0.5f}), 0.5f, 1e-6f);
-    EXPECT_NEAR(sample_alpha_bilinear_repeat(texture, {1.0f, 0.5f}), 0.5f, 1e-6f);  // wraps to texel 0
-    EXPECT_NEAR(sample_alpha_bilinear_repeat(texture, {1.75f, 0.5f}), 1.0f, 1e-6f);
+    EXPECT_NEAR(sample_alpha(texture, {0.25f, 0.5f}), 0.0f, 1e-6f);
+    EXPECT_NEAR(sample_alpha(texture, {0.75f, 0.5f}), 1.0f, 1e-6f);
+    EXPECT_NEAR(sample_alpha(texture, {0.5f, 0.5f}), 0.5f, 1e-6f);
+    EXPECT_NEAR(sample_alpha(texture, {1.0f, 0.5f}), 0.5f, 1e-6f);  // wraps to texel 0
+    EXPECT_NEAR(sample_alpha(texture, {1.75f, 0.5f}), 1.0f, 1e-6f);
+}
+
+// The glTF sampler's wrap modes and filter, as Vulkan's texel wrapping defines them: a
+// 2-texel row [0, 1] read past its right edge.
+TEST(AlphaMask, ClampMirrorAndNearestMatchTheSampler) {
+    Texture texture{2, 1, {0, 0, 0, 0, 0, 0, 0, 255}};
+    texture.wrap_u = TextureWrap::ClampToEdge;
+    EXPECT_NEAR(sample_alpha(texture, {1.0f, 0.5f}), 1.0f, 1e-6f);   // clamped to texel 1
+    EXPECT_NEAR(sample_alpha(texture, {-0.5f, 0.5f}), 0.0f, 1e-6f);  // clamped to texel 0
+    texture.wrap_u = TextureWrap::MirroredRepeat;
+    EXPECT_NEAR(sample_alpha(texture, {1.25f, 0.5f}), 1.0f, 1e-6f);   // texel 2 mirrors to 1
+    EXPECT_NEAR(sample_alpha(texture, {1.75f, 0.5f}), 0.0f, 1e-6f);   // texel 3 mirrors to 0
+    EXPECT_NEAR(sample_alpha(texture, {-0.25f, 0.5f}), 0.0f, 1e-6f);  // texel -1 mirrors to 0
+    texture.nearest = true;
+    texture.wrap_u = TextureWrap::Repeat;
+    EXPECT_EQ(sample_alpha(texture, {0.49f, 0.5f}), 0.0f);
+    EXPECT_EQ(sample_alpha(texture, {0.51f, 0.5f}), 1.0f);
+    EXPECT_EQ(sample_alpha(texture, {1.51f, 0.5f}), 1.0f);
 }
 
 TEST(ReferenceVisibility, SoftReferenceHasAPenumbraOfTheSunsWidth) {

@@ -94,10 +94,18 @@ struct Light {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// How texture coordinates outside [0, 1] map to texels (glTF sampler wrapS / wrapT).
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
 struct Texture {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba8;  // width * height * 4, sRGB-encoded colour, linear alpha
+    // The sampler every pass (and the ray-traced reference) reads it with: textures have
+    // one level, so glTF's magFilter (or minFilter's base filter) picks nearest or bilinear.
+    TextureWrap wrap_u = TextureWrap::Repeat;
+    TextureWrap wrap_v = TextureWrap::Repeat;
+    bool nearest = false;
 };
 
 struct Material {

@@ -285,6 +285,28 @@ def write_conformance_fixtures():
     del undeclared["extensionsUsed"], undeclared["extensionsRequired"]
     write_json("quantized_undeclared.gltf", undeclared)
 
+    # Samplers on alpha masks: a quad whose u runs 0..2 over a 2x1 nearest-filtered mask
+    # [opaque, clear] reads, past u = 1, the clear texel again (clamp) or the row mirrored
+    # (mirrored repeat); each equals a quad with u in 0..1 over the 4x1 mask it amounts to,
+    # read with repeat: [opaque, clear, clear, clear] and [opaque, clear, clear, opaque].
+    wide_uvs = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)]
+    for name, wrap, expanded in (("alpha_clamped", 33071, [255, 0, 0, 0]),
+                                 ("alpha_mirrored", 33648, [255, 0, 0, 255])):
+        for suffix, uvs, alphas, wrap_s in (("", wide_uvs, [255, 0], wrap), ("_expanded", UVS, expanded, 10497)):
+            document, data = quad_document()
+            builder = Builder()
+            builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+            document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = builder.add(
+                pack("<2f", uvs), FLOAT, "VEC2", 4)
+            document["buffers"][0]["byteLength"] = len(builder.data)
+            row = [channel for alpha in alphas for channel in (255, 255, 255, alpha)]
+            masked = textured(embed(document, builder.data), png(len(alphas), 1, 4, [row]))
+            masked["samplers"] = [{"magFilter": 9728, "minFilter": 9728, "wrapS": wrap_s, "wrapT": 33071}]
+            masked["textures"][0]["sampler"] = 0
+            masked["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
+            masked["materials"][0]["alphaCutoff"] = 0.5
+            write_json(name + suffix + ".gltf", masked)
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
