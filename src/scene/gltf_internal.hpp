@@ -104,6 +104,24 @@ struct GltfPrimitiveOptions {
 std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinygltf::Primitive& primitive,
                                            const GltfPrimitiveOptions& options, const std::string& where);
 
+// A node that places a KHR_lights_punctual light, with its model-space transform.
+struct GltfPlacedLight {
+    int light = -1;
+    int node = -1;
+    glm::mat4 transform{1.0f};
+};
+
+// The light a node places (its KHR_lights_punctual extension), checked to exist
+// (gltf_lights.cpp).
+std::optional<int> punctual_light_of(const GltfSource& source, const tinygltf::Node& node, int node_index);
+
+// Appends one Light per (placed light, placement) to `lights`: glTF lights shine along the
+// node's -Z; intensities (lux, candela) are taken as Penumbra's intensities; a spot or point
+// light without a range gets the distance where its irradiance falls to 1/100 of its value
+// at 1 m (docs/scene-format.md).
+void append_gltf_lights(const GltfSource& source, const std::vector<GltfPlacedLight>& placed,
+                        const std::vector<glm::mat4>& placements, std::vector<Light>& lights);
+
 // Converts a decoded image (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
 // image holds no pixels (it failed to decode) or its size does not match its header.
 Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, const std::string& where);

@@ -33,12 +33,13 @@ class GltfImporter {
 public:
     GltfImporter(Scene& scene, const GltfSource& source) : scene_(scene), source_(source) {}
 
-    void place_model(const std::vector<glm::mat4>& placements) {
+    void place_model(const std::vector<glm::mat4>& placements, const GltfImportOptions& options) {
         collect_nodes(checked_root_nodes(source_));
         refuse_too_many_instances(placements.size());
         for (const glm::mat4& placement : placements) {
             for (const PlacedMesh& placed : placed_meshes_) place_mesh(placed, placement * placed.transform);
         }
+        if (options.import_lights) append_gltf_lights(source_, placed_lights_, placements, scene_.lights);
     }
 
 private:
@@ -57,6 +58,9 @@ private:
             const glm::mat4 transform =
                 parent_transform * local_transform(node, "nodes[" + std::to_string(index) + "]");
             if (node.mesh >= 0) placed_meshes_.push_back({node.mesh, index, transform});
+            if (const std::optional<int> light = punctual_light_of(source_, node, index)) {
+                placed_lights_.push_back({*light, index, transform});
+            }
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
                 pending.emplace_back(*child, transform);
             }
@@ -275,6 +279,7 @@ private:
     Scene& scene_;
     const GltfSource& source_;
     std::vector<PlacedMesh> placed_meshes_;
+    std::vector<GltfPlacedLight> placed_lights_;
     // (mesh, primitive, mirrored, morph weights) -> scene mesh
     std::map<std::tuple<int, int, bool, std::vector<double>>, std::optional<uint32_t>> converted_meshes_;
     std::map<int, uint32_t> converted_materials_;
@@ -283,7 +288,8 @@ private:
 
 }  // namespace
 
-void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements) {
+void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
+                 const GltfImportOptions& options) {
     const std::string origin = file.string();
     const tinygltf::Model model = read_gltf_model(file, origin);
     const GltfSource source{model, origin};
@@ -292,13 +298,15 @@ void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vec
     const size_t material_count = scene.materials.size();
     const size_t mesh_count = scene.meshes.size();
     const size_t instance_count = scene.instances.size();
+    const size_t light_count = scene.lights.size();
     try {
-        GltfImporter(scene, source).place_model(placements);
+        GltfImporter(scene, source).place_model(placements, options);
     } catch (...) {
         scene.textures.resize(texture_count);
         scene.materials.resize(material_count);
         scene.meshes.resize(mesh_count);
         scene.instances.resize(instance_count);
+        scene.lights.resize(light_count);
         throw;
     }
 }

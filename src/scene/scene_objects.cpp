@@ -165,9 +165,11 @@ private:
             reader.fail("instances", "empty array (leave the key out for one instance at the object's transform)");
         }
         if (!has_instances) placements.push_back(object_transform);
+        GltfImportOptions options;
+        options.import_lights = reader.boolean_or("import_lights", false);
         reader.reject_unknown_keys();
         try {
-            append_gltf(scene_, file, placements);
+            append_gltf(scene_, file, placements, options);
         } catch (const InputError& error) {
             reader.fail("file", error.what());
         }

@@ -752,3 +752,66 @@ TEST(LocalLights, CoverageSizingShrinksTheMapWithDistanceAndKeepsTheShadow) {
 
 }  // namespace
 }  // namespace penumbra::testing
+
+namespace penumbra::testing {
+namespace {
+
+// KHR_lights_punctual (issue 19): the spot, point and directional lights of
+// tests/data/gltf/lights.gltf, imported with `import_lights = true`, render the very image
+// of the same lights written in the scene file (the mapping of docs/scene-format.md:
+// -Z of the node, radians to degrees, range 20 m for 4 cd without a range, radius 0).
+TEST(LocalLights, PunctualLightsFromGltfRenderAsTheSameSceneFileLights) {
+    const std::string base = R"(
+[camera]
+eye = [6.0, 9.0, 10.0]
+target = [0.0, 0.0, 0.0]
+
+[[objects]]
+type = "plane"
+size = [30.0, 30.0]
+
+[[objects]]
+type = "box"
+size = [1.0, 1.0, 1.0]
+translation = [0.3, 1.0, 0.2]
+)";
+    const std::string model =
+        "\n[[objects]]\ntype = \"gltf\"\nfile = \"" PENUMBRA_TEST_DATA_DIR "/gltf/lights.gltf\"\n";
+    char lights[1024];
+    std::snprintf(lights, sizeof(lights), R"(
+[[lights]]
+type = "spot"
+position = [0.0, 5.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+color = [1.0, 0.5, 0.25]
+intensity = 40.0
+range = 12.0
+inner_angle = %.9g
+outer_angle = %.9g
+radius = 0.0
+
+[[lights]]
+type = "point"
+position = [2.0, 3.0, 0.0]
+intensity = 4.0
+range = 20.0
+radius = 0.0
+
+[[lights]]
+type = "directional"
+direction = [0.0, -1.0, 0.0]
+intensity = 2.5
+)",
+                  static_cast<double>(static_cast<float>(glm::degrees(0.2))),
+                  static_cast<double>(static_cast<float>(glm::degrees(0.6))));
+    const RenderSettings settings = small_settings(160, 120);
+    const RenderedFrame imported =
+        render_with_validation(scene_from_toml(base + model + "import_lights = true\n"), settings);
+    const RenderedFrame written = render_with_validation(scene_from_toml(base + lights + model), settings);
+    ASSERT_EQ(imported.images.color_rgba8.size(), written.images.color_rgba8.size());
+    EXPECT_TRUE(imported.images.color_rgba8 == written.images.color_rgba8) << "the imported lights render differently";
+    EXPECT_EQ(imported.info.local_shadows.size(), 2u) << "both local lights are shadowed";
+}
+
+}  // namespace
+}  // namespace penumbra::testing

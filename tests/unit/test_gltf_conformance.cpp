@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
 
@@ -86,6 +88,57 @@ TEST(GltfConformance, MalformedOrUndeclaredFormsAreClearErrors) {
                 HasSubstr(".sparse.indices: index 2 at position 1 is out of range (the accessor has 2 elements)"));
     EXPECT_THAT(load_error("quantized_undeclared.gltf"),
                 HasSubstr("attributes.POSITION: 3 components of SHORT needs the KHR_mesh_quantization extension"));
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// KHR_lights_punctual (issue 19): lights placed by nodes, imported only when asked, in
+// world space through the placement, with glTF's units and defaults mapped as documented.
+TEST(GltfLights, PunctualLightsAreImportedThroughTheirNodesAndPlacement) {
+    Scene without;
+    append_gltf(without, test_data("gltf/lights.gltf"), {glm::mat4{1.0f}});
+    EXPECT_TRUE(without.lights.empty()) << "lights are imported only with import_lights";
+
+    Scene scene;
+    const glm::mat4 placement = glm::translate(glm::mat4{1.0f}, glm::vec3{10.0f, 0.0f, 0.0f});
+    append_gltf(scene, test_data("gltf/lights.gltf"), {placement}, {.import_lights = true});
+    ASSERT_EQ(scene.lights.size(), 3u);
+    const Light& spot = scene.lights[0];
+    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_LE(glm::distance(spot.position, glm::vec3(10.0f, 5.0f, 0.0f)), 1e-5f);
+    EXPECT_LE(glm::distance(spot.direction, glm::vec3(0.0f, -1.0f, 0.0f)), 1e-5f);
+    EXPECT_EQ(spot.color, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_FLOAT_EQ(spot.intensity, 40.0f);
+    EXPECT_FLOAT_EQ(spot.range, 12.0f);
+    EXPECT_NEAR(spot.inner_angle_degrees, 11.4592f, 1e-3f);
+    EXPECT_NEAR(spot.outer_angle_degrees, 34.3775f, 1e-3f);
+    EXPECT_EQ(spot.radius, 0.0f);
+    const Light& point = scene.lights[1];
+    EXPECT_EQ(point.type, LightType::Point);
+    EXPECT_LE(glm::distance(point.position, glm::vec3(12.0f, 3.0f, 0.0f)), 1e-5f);
+    EXPECT_FLOAT_EQ(point.range, 20.0f) << "no range: where 4 cd / d^2 falls to 1/100 of its 1 m value";
+    const Light& sun = scene.lights[2];
+    EXPECT_EQ(sun.type, LightType::Directional);
+    EXPECT_LE(glm::distance(sun.direction, glm::vec3(0.0f, -1.0f, 0.0f)), 1e-5f);
+    EXPECT_FLOAT_EQ(sun.intensity, 2.5f);
+}
+
+// From a scene file: `import_lights = true`; the scene's own lights come first, so the
+// file's directional light is the sun only when the scene has none.
+TEST(GltfLights, SceneFileImportsAfterItsOwnLights) {
+    const std::string object = "[[objects]]\ntype = \"gltf\"\nfile = \"" + test_data("gltf/lights.gltf").string() +
+                               "\"\nimport_lights = true\n";
+    const Scene with_sun =
+        testing::parse_scene_text("[[lights]]\ntype = \"directional\"\ndirection = [1.0, -1.0, 0.0]\n\n" + object);
+    ASSERT_EQ(with_sun.lights.size(), 4u);
+    EXPECT_EQ(with_sun.lights[0].type, LightType::Directional);
+    EXPECT_GT(with_sun.lights[0].direction.x, 0.5f);
+    EXPECT_EQ(testing::parse_scene_text(object).lights.size(), 3u);
+    EXPECT_THAT(testing::scene_error(object + "import_lights = \"yes\"\n"), HasSubstr("import_lights"));
 }
 
 }  // namespace

@@ -26,16 +26,19 @@ std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(const std::string& name);
 
 // glTF 2.0 (.gltf with external or embedded buffers, and .glb): node hierarchy and
-// transforms, triangle meshes with 16/32-bit indices, positions, normals (computed when
-// missing), UV0, base colour factor and texture, alphaMode with alphaCutoff, doubleSided.
+// transforms, triangle meshes (sparse, quantized and morphed ones included: the static pose
+// of the weights), positions, normals (computed when missing), the UV set the base colour
+// texture reads, base colour factor and texture with its sampler, alphaMode with
+// alphaCutoff, doubleSided (docs/scene-format.md lists the rules).
 // Appends the model's meshes, materials and textures to `scene` and one Instance per
 // (mesh primitive, placement): instance.world = placement * node world transform.
-// Triangle strips and fans become lists; points and lines are skipped. A placement whose
-// world transform mirrors (negative determinant) gets a copy of the mesh with reversed
-// winding, so front faces stay counter-clockwise in world space.
-// Throws InputError naming the file and the problem (missing file, malformed JSON,
-// out-of-range accessor or index, missing buffer, unsupported primitive mode...); the
-// scene is then left as it was.
-void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements);
+// With import_lights, the file's KHR_lights_punctual lights are appended to scene.lights
+// too, one per (light node, placement), after the scene's own (so that the first
+// directional light of the file becomes the sun only when the scene defines none).
+struct GltfImportOptions {
+    bool import_lights = false;
+};
+void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
+                 const GltfImportOptions& options = {});
 
 }  // namespace penumbra

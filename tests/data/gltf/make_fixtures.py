@@ -307,6 +307,26 @@ def write_conformance_fixtures():
             masked["materials"][0]["alphaCutoff"] = 0.5
             write_json(name + suffix + ".gltf", masked)
 
+    # KHR_lights_punctual: a spot 5 m above the quad's node shining down (-Z turned to -Y by
+    # -90 degrees about X), a point light without a range, and a directional light tilted
+    # down; the quad is node 0.
+    document, data = quad_document()
+    down = [-0.7071067811865476, 0.0, 0.0, 0.7071067811865476]
+    document["nodes"] += [
+        {"translation": [0.0, 5.0, 0.0], "rotation": down, "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"translation": [2.0, 3.0, 0.0], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"rotation": down, "extensions": {"KHR_lights_punctual": {"light": 2}}},
+    ]
+    document["scenes"][0]["nodes"] = [0, 1, 2, 3]
+    document["extensionsUsed"] = ["KHR_lights_punctual"]
+    document["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"type": "spot", "color": [1.0, 0.5, 0.25], "intensity": 40.0, "range": 12.0,
+         "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.6}},
+        {"type": "point", "intensity": 4.0},
+        {"type": "directional", "intensity": 2.5},
+    ]}}
+    write_json("lights.gltf", embed(document, data))
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
