@@ -2,6 +2,8 @@
 // absent (`"mesh": "zero"` drops the mesh) and a negative byteStride reads as 0 (packed).
 // The properties whose value is an index, a count, a byte offset or a stride are checked
 // here, on the JSON itself, before tinygltf reads it (glTF 2.0 schema, section 5).
+#include <algorithm>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "penumbra/errors.hpp"
@@ -92,12 +94,50 @@ void check_primitives(const JsonChecker& checker, const Json& mesh, const std::s
     }
 }
 
+// Extensions a file may require without changing what casts a shadow or where (they shade
+// surfaces, or Penumbra reads them): anything else in extensionsRequired is refused by
+// name, rather than failing later on what tinygltf cannot read (a Draco mesh's accessors
+// have no bufferView) or casting the wrong shadow.
+bool honoured_when_required(const std::string& extension) {
+    static const char* const kHonoured[] = {
+        "KHR_mesh_quantization",           "KHR_lights_punctual",     "KHR_materials_unlit",
+        "KHR_materials_emissive_strength", "KHR_materials_clearcoat", "KHR_materials_sheen",
+        "KHR_materials_specular",          "KHR_materials_ior",       "KHR_materials_iridescence",
+        "KHR_materials_variants",          "KHR_materials_volume"};
+    return std::find(std::begin(kHonoured), std::end(kHonoured), extension) != std::end(kHonoured);
+}
+
+std::string extension_feature(const std::string& extension) {
+    if (extension == "KHR_draco_mesh_compression") return " (Draco-compressed meshes)";
+    if (extension == "EXT_meshopt_compression") return " (meshoptimizer-compressed buffers)";
+    if (extension == "KHR_texture_basisu" || extension == "EXT_texture_webp") return " (an image format)";
+    if (extension == "KHR_texture_transform") return " (texture coordinate transforms)";
+    return "";
+}
+
+void check_required_extensions(const JsonChecker& checker, const Json& document) {
+    if (!document.contains("extensionsRequired")) return;
+    const Json& required = document["extensionsRequired"];
+    if (!required.is_array()) checker.fail("extensionsRequired", "expected an array of extension names");
+    for (size_t i = 0; i < required.size(); ++i) {
+        if (!required[i].is_string()) {
+            checker.fail("extensionsRequired[" + std::to_string(i) + "]", "expected an extension name");
+        }
+        const std::string& name = required[i].get_ref<const std::string&>();
+        if (!honoured_when_required(name)) {
+            checker.fail("extensionsRequired",
+                         "the file requires " + name + extension_feature(name) + ", which Penumbra does not support");
+        }
+    }
+}
+
 }  // namespace
 
 void check_gltf_json(std::string_view json, const std::string& origin, const std::filesystem::path& folder) {
     const Json document = Json::parse(json.begin(), json.end(), nullptr, false);
     if (document.is_discarded() || !document.is_object()) return;  // tinygltf reports the syntax error
     const JsonChecker checker(origin);
+    check_required_extensions(checker, document);
     checker.integer(document, "scene", "");
     checker.each(document, "scenes",
                  [&](const Json& scene, const std::string& where) { checker.index_array(scene, "nodes", where); });
