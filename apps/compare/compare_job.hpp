@@ -41,8 +41,15 @@ struct PixelCounts {
     uint64_t facing_away = 0;             // geometry with N.L <= 0 (L toward the sun or the light point)
     uint64_t beyond_shadow_distance = 0;  // facing the sun, but no cascade covers it
     uint64_t outside_light = 0;  // spot/point: facing it, but beyond its range or cone (cone <= kMinConeFactor)
+    uint64_t not_receiving = 0;  // geometry of instances with receive_shadows = false
     uint64_t evaluated = 0;      // what the metrics count
+    uint64_t shadowed = 0;       // evaluated pixels the hard reference puts in shadow
+    double shadowed_percent() const { return evaluated ? 100.0 * static_cast<double>(shadowed) / evaluated : 0.0; }
 };
+
+// Above this share of evaluated pixels in shadow, compare warns: something (a sky box, a
+// dome, a ceiling) most likely blocks the light from the whole view.
+inline constexpr double kMostlyShadowedPercent = 95.0;
 
 struct CompareTimings {
     double render_ms = 0.0;  // every frame, readback included

@@ -84,7 +84,10 @@ Json pixels_json(const PixelCounts& pixels) {
             {"facing_away", pixels.facing_away},
             {"beyond_shadow_distance", pixels.beyond_shadow_distance},
             {"outside_light", pixels.outside_light},
-            {"evaluated", pixels.evaluated}};
+            {"not_receiving", pixels.not_receiving},
+            {"evaluated", pixels.evaluated},
+            {"shadowed_in_reference", pixels.shadowed},
+            {"shadowed_percent", pixels.shadowed_percent()}};
 }
 
 Json vec3_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
@@ -141,6 +144,14 @@ std::string format_compare_summary(const CompareResult& result) {
                   hard.false_lit_outside_edges.percent(), soft.mean_abs_error, soft.p95_abs_error,
                   soft.edge_mean_abs_error, soft.penumbra_width_render_px, soft.penumbra_width_reference_px);
     std::string summary = text;
+    std::snprintf(text, sizeof(text), "  shadowed: %.2f%% of the evaluated pixels in the reference\n",
+                  result.pixels.shadowed_percent());
+    summary += text;
+    if (result.pixels.shadowed_percent() > kMostlyShadowedPercent) {
+        summary +=
+            "  warning: more than 95% of the evaluated pixels are in shadow: geometry such as a sky box or "
+            "dome may block the light everywhere (cast_shadows = false or exclude_casters in the scene file)\n";
+    }
     if (result.stability.frames >= 2) {
         std::snprintf(text, sizeof(text),
                       "  stability over %u frames: mean change %.4f, p99 %.4f, max %.4f, flicker %.3f%%\n",

@@ -121,7 +121,9 @@ std::vector<uint8_t> evaluated_pixels(const renderer::FrameImages& images, const
         counts.total += 1;
         if (images.world_position[i].w <= 0.5f) continue;
         counts.geometry += 1;
-        if (!quality::faces_sun(images.world_position[i], images.world_normal[i], to_sun)) {
+        if (images.world_normal[i].w > 0.5f) {  // the geometry AOV marks instances that receive no shadow
+            counts.not_receiving += 1;
+        } else if (!quality::faces_sun(images.world_position[i], images.world_normal[i], to_sun)) {
             counts.facing_away += 1;
         } else if (images.cascade[i] == kNoCascade) {
             counts.beyond_shadow_distance += 1;
@@ -146,6 +148,10 @@ std::vector<uint8_t> evaluated_local_pixels(const renderer::FrameImages& images,
         const glm::vec4& position = images.world_position[i];
         if (position.w <= 0.5f) continue;
         counts.geometry += 1;
+        if (images.world_normal[i].w > 0.5f) {
+            counts.not_receiving += 1;
+            continue;
+        }
         if (glm::dot(glm::vec3(images.world_normal[i]), light.position - glm::vec3(position)) <= 0.0f) {
             counts.facing_away += 1;
             continue;
@@ -282,6 +288,8 @@ void measure(std::vector<CapturedFrame>& frames, const CompareJob& job, CompareR
         quality::shadow_boundary(frame.width, frame.height, frame.hard, frame.evaluated);
     const std::vector<uint8_t> band = quality::edge_band(frame.width, frame.height, boundary, job.edge_band);
     result.hard = quality::hard_shadow_metrics(frame, boundary, band);
+    result.pixels.shadowed = 0;
+    for (size_t i = 0; i < frame.hard.size(); ++i) result.pixels.shadowed += frame.evaluated[i] && frame.hard[i] == 0;
     result.soft = quality::soft_shadow_metrics(frame, boundary, band);
 
     std::vector<quality::StabilityFrame> stability;

@@ -141,6 +141,7 @@ ShadowRayTracer::ShadowRayTracer(const Scene& scene) : embree_(std::make_unique<
     embree_->top = embree_->new_scene();
     for (const Instance& instance : scene.instances) {
         if (instance.mesh >= embree_->mesh_scenes.size() || !embree_->mesh_scenes[instance.mesh]) continue;
+        if (!instance.cast_shadows) continue;  // as the shadow maps leave it out
         embree_->add_instance(embree_->mesh_scenes[instance.mesh], instance.world);
         triangles_ += scene.meshes[instance.mesh].indices.size() / 3;
     }

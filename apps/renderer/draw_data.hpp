@@ -29,6 +29,7 @@ struct Draw {
     int32_t vertex_offset = 0;
     uint32_t material = 0;  // index into DrawData::materials
     glm::mat4 model{1.0f};
+    bool receive_shadows = true;
 };
 
 struct DrawData {

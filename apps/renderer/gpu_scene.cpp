@@ -61,6 +61,7 @@ void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& range
         draw.vertex_offset = range.vertex_offset;
         draw.material = scene.meshes[instance.mesh].material;
         draw.model = instance.world;
+        draw.receive_shadows = instance.receive_shadows;
         draw_data_.draws.push_back(draw);
     }
 }
@@ -170,7 +171,7 @@ void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRang
         if (ranges.at(instance.mesh).index_count == 0) continue;
         const MaterialBinding& material = draw_data_.materials.at(scene.meshes[instance.mesh].material);
         uint32_t flags = kInstanceAlphaMasked;
-        if (casts[instance.mesh]) flags |= kInstanceCastsShadows;
+        if (casts[instance.mesh] && instance.cast_shadows) flags |= kInstanceCastsShadows;
         if (material.double_sided) flags |= kInstanceDoubleSided;
         shadows.add_instance({ids[instance.mesh], to_mat4(instance.world), flags});
     }

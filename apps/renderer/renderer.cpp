@@ -10,6 +10,7 @@
 #include "gpu/barriers.hpp"
 #include "gpu/frame_commands.hpp"
 #include "gpu/pipeline.hpp"
+#include "penumbra/errors.hpp"
 #include "renderer/frame_uniforms.hpp"
 #include "renderer/geometry_aov_pass.hpp"
 #include "renderer/gpu_scene.hpp"
@@ -198,12 +199,23 @@ std::string Renderer::light_warning() const {
     return warning;
 }
 
+std::string Renderer::enclosure_warning() const {
+    const std::vector<std::string> names = scene_.enclosing_casters();
+    if (names.empty()) return {};
+    const std::string name = escape_control_characters(names.front());
+    return "penumbra: warning: \"" + name +
+           "\" encloses the camera and the whole scene and casts shadows, so it may shadow everything "
+           "(a sky box or dome?): give its object cast_shadows = false, or exclude_casters = [\"" +
+           name + "\"]";
+}
+
 FrameImages Renderer::render(const Camera& camera, ReadbackMode readback) {
     prepare_frame(camera);
     if (!resources_->warned) {
         resources_->warned = true;
-        const std::string warning = light_warning();
-        if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
+        for (const std::string& warning : {light_warning(), enclosure_warning()}) {
+            if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
+        }
     }
     const Clock::time_point submit_start = Clock::now();
     resources_->commands.submit_and_wait([&](VkCommandBuffer cmd) {

@@ -104,6 +104,9 @@ public:
     void fit_cascades_to(const std::optional<Camera>& camera) { cascade_camera_ = camera; }
     // The one-line warning for shadow-casting lights left unshadowed or unlit; empty when none.
     std::string light_warning() const;
+    // The one-line warning for a shadow caster that encloses the camera and the whole scene
+    // (Scene::enclosing_casters()); empty when none.
+    std::string enclosure_warning() const;
 
 private:
     void prepare_frame(const Camera& camera);

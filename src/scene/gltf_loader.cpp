@@ -1,8 +1,10 @@
 #include "penumbra/scene/loader.hpp"
 
+#include <fnmatch.h>
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+
 #include <map>
 #include <tuple>
 
@@ -36,8 +38,18 @@ public:
     void place_model(const std::vector<glm::mat4>& placements, const GltfImportOptions& options) {
         collect_nodes(checked_root_nodes(source_));
         refuse_too_many_instances(placements.size());
-        for (const glm::mat4& placement : placements) {
-            for (const PlacedMesh& placed : placed_meshes_) place_mesh(placed, placement * placed.transform);
+        check_exclusion_patterns(options.exclude_casters);
+        const size_t model_first = scene_.instances.size();
+        for (size_t p = 0; p < placements.size(); ++p) {
+            const size_t first = scene_.instances.size();
+            for (const PlacedMesh& placed : placed_meshes_) place_mesh(placed, placements[p] * placed.transform);
+            for (size_t i = first; i < scene_.instances.size(); ++i) {
+                Instance& instance = scene_.instances[i];
+                instance.cast_shadows = instance.cast_shadows &&
+                                        (options.placement_casts.empty() || options.placement_casts.at(p)) &&
+                                        !excluded_[i - model_first];
+                instance.receive_shadows = options.placement_receives.empty() || options.placement_receives.at(p);
+            }
         }
         if (options.import_lights) append_gltf_lights(source_, placed_lights_, placements, scene_.lights);
     }
@@ -134,7 +146,12 @@ private:
         for (size_t primitive = 0; primitive < gltf_mesh.primitives.size(); ++primitive) {
             const std::optional<uint32_t> scene_mesh =
                 convert_mesh(mesh, static_cast<int>(primitive), mirrored, weights);
-            if (scene_mesh) scene_.instances.push_back({*scene_mesh, world});
+            if (!scene_mesh) continue;
+            Instance instance{*scene_mesh, world};
+            instance.name = node.name.empty() ? "nodes[" + std::to_string(placed.node) + "]" : node.name;
+            instance.cast_shadows = !unlit(gltf_mesh.primitives[primitive].material);
+            scene_.instances.push_back(instance);
+            excluded_.push_back(matches_any(node.name) || matches_any(gltf_mesh.name));
         }
     }
 
@@ -159,6 +176,36 @@ private:
         }
         converted_meshes_.emplace(key, scene_index);
         return scene_index;
+    }
+
+    // KHR_materials_unlit: skies and backdrops, which a user does not expect to cast.
+    bool unlit(int material) const {
+        return material >= 0 && static_cast<size_t>(material) < model().materials.size() &&
+               model().materials[static_cast<size_t>(material)].extensions.count("KHR_materials_unlit") > 0;
+    }
+
+    bool matches_any(const std::string& name) const {
+        return !name.empty() && std::any_of(exclusions_.begin(), exclusions_.end(), [&](const std::string& pattern) {
+            return ::fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+        });
+    }
+
+    // Every pattern must name something: a typo would otherwise leave the sky box casting.
+    void check_exclusion_patterns(const std::vector<std::string>& patterns) {
+        exclusions_ = patterns;
+        for (size_t i = 0; i < patterns.size(); ++i) {
+            const auto matches = [&](const std::string& name) {
+                return !name.empty() && ::fnmatch(patterns[i].c_str(), name.c_str(), 0) == 0;
+            };
+            const bool found = std::any_of(model().nodes.begin(), model().nodes.end(),
+                                           [&](const tinygltf::Node& node) { return matches(node.name); }) ||
+                               std::any_of(model().meshes.begin(), model().meshes.end(),
+                                           [&](const tinygltf::Mesh& mesh) { return matches(mesh.name); });
+            if (!found) {
+                source_.fail("exclude_casters[" + std::to_string(i) + "]",
+                             "\"" + patterns[i] + "\" matches no node or mesh name of the model");
+            }
+        }
     }
 
     // The TEXCOORD set a material's base colour texture reads (its textureInfo.texCoord).
@@ -279,6 +326,8 @@ private:
     Scene& scene_;
     const GltfSource& source_;
     std::vector<PlacedMesh> placed_meshes_;
+    std::vector<std::string> exclusions_;  // exclude_casters patterns
+    std::vector<bool> excluded_;           // per instance placed: its node or mesh matches a pattern
     std::vector<GltfPlacedLight> placed_lights_;
     // (mesh, primitive, mirrored, morph weights) -> scene mesh
     std::map<std::tuple<int, int, bool, std::vector<double>>, std::optional<uint32_t>> converted_meshes_;

@@ -109,11 +109,16 @@ private:
         const Material material = read_primitive_material(reader);
         const glm::vec2 uv_scale =
             positive_components(reader, "uv_scale", reader.optional_vec2("uv_scale").value_or(glm::vec2{1.0f}));
+        Instance instance{static_cast<uint32_t>(scene_.meshes.size()), world};
+        instance.cast_shadows = reader.boolean_or("cast_shadows", true);
+        instance.receive_shadows = reader.boolean_or("receive_shadows", true);
+        const std::string path = reader.key_path("type");  // "objects[2].type"
+        instance.name = path.substr(0, path.rfind('.')) + " (" + type + ")";
         reader.reject_unknown_keys();
         for (Vertex& vertex : mesh.vertices) vertex.uv *= uv_scale;
         mesh.material = static_cast<uint32_t>(scene_.materials.size());
         scene_.materials.push_back(material);
-        scene_.instances.push_back({static_cast<uint32_t>(scene_.meshes.size()), world});
+        scene_.instances.push_back(instance);
         scene_.meshes.push_back(std::move(mesh));
     }
 
@@ -151,6 +156,10 @@ private:
     void add_gltf(TomlTableReader& reader) {
         const std::filesystem::path file = base_directory_ / reader.required_string("file");
         const glm::mat4 object_transform = read_transform(reader);
+        GltfImportOptions options;
+        const bool casts = reader.boolean_or("cast_shadows", true);
+        const bool receives = reader.boolean_or("receive_shadows", true);
+        options.exclude_casters = reader.optional_string_list("exclude_casters").value_or(std::vector<std::string>{});
         std::vector<glm::mat4> placements;
         const bool has_instances = reader.contains("instances");
         for (const toml::table* instance : reader.table_array("instances")) {
@@ -159,13 +168,18 @@ private:
                 reader.key_path("instances") + "[" + std::to_string(placements.size()) + "]");
             // The object's own transform acts as the parent of every instance.
             placements.push_back(object_transform * read_transform(instance_reader));
+            options.placement_casts.push_back(instance_reader.boolean_or("cast_shadows", casts));
+            options.placement_receives.push_back(instance_reader.boolean_or("receive_shadows", receives));
             instance_reader.reject_unknown_keys();
         }
         if (has_instances && placements.empty()) {
             reader.fail("instances", "empty array (leave the key out for one instance at the object's transform)");
         }
-        if (!has_instances) placements.push_back(object_transform);
-        GltfImportOptions options;
+        if (!has_instances) {
+            placements.push_back(object_transform);
+            options.placement_casts.push_back(casts);
+            options.placement_receives.push_back(receives);
+        }
         options.import_lights = reader.boolean_or("import_lights", false);
         reader.reject_unknown_keys();
         try {

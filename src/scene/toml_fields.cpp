@@ -244,6 +244,21 @@ std::optional<std::vector<float>> TomlTableReader::optional_number_list(std::str
     return std::vector<float>(values.begin(), values.end());
 }
 
+std::optional<std::vector<std::string>> TomlTableReader::optional_string_list(std::string_view key) {
+    const toml::node* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_array()) fail(key, "expected an array of strings, got " + describe_toml_value(*node));
+    std::vector<std::string> strings;
+    for (const toml::node& element : *node->as_array()) {
+        if (!element.is_string()) {
+            fail(key, "expected an array of strings, element " + std::to_string(strings.size()) + " is " +
+                          describe_toml_value(element));
+        }
+        strings.push_back(element.as_string()->get());
+    }
+    return strings;
+}
+
 glm::vec3 TomlTableReader::vec3_or(std::string_view key, const glm::vec3& fallback) {
     return optional_vec3(key).value_or(fallback);
 }

@@ -76,6 +76,8 @@ public:
         for (const auto& choice : choices) names.push_back(choice.first);
         fail_unknown_value(key, *name, names);
     }
+    // An array of strings (possibly empty).
+    std::optional<std::vector<std::string>> optional_string_list(std::string_view key);
     // An array of any number of numbers.
     std::optional<std::vector<float>> optional_number_list(std::string_view key);
     // An array of exactly N numbers.

@@ -343,3 +343,55 @@ TEST_F(Cli, TomlParserAssertionInputIsAnError) {
     expect_failure(run("render scene.toml --config bad.toml -o out.png"), 2, "bad.toml");
     EXPECT_FALSE(fs::exists(dir_ / "out.png"));
 }
+
+// Shadow-casting control (issue 16): a closed 200 m box around the camera and the scene
+// shadows every pixel and is named in a warning; with cast_shadows = false it casts nothing
+// and the floating box's shadow is back; receive_shadows = false on the ground removes it.
+double shadowed_fraction(const std::filesystem::path& aov) {
+    const penumbra::PngImage image = penumbra::read_png(aov);
+    size_t shadowed = 0;
+    for (const uint16_t value : image.samples) shadowed += value < 32768;
+    return static_cast<double>(shadowed) / static_cast<double>(image.samples.size());
+}
+
+TEST_F(Cli, SkyBoxIsNamedInAWarningAndCastShadowsTurnsItOff) {
+    const std::string sky = "\n[[objects]]\ntype = \"box\"\nsize = [200.0, 200.0, 200.0]\n";
+    write_file("sky.toml", std::string(kValidScene) + sky);
+    const RunResult boxed = run("render sky.toml --validate --aov shadow --width 64 --height 48 -o boxed.png");
+    ASSERT_EQ(boxed.exit_code, 0) << boxed.err;
+    EXPECT_NE(boxed.err.find("warning: \"objects[2] (box)\" encloses the camera and the whole scene"),
+              std::string::npos)
+        << boxed.err;
+    // Every pixel showing geometry is shadowed; the rest show the sky through the culled
+    // inside of the box (no geometry: visibility 1).
+    EXPECT_GT(shadowed_fraction(dir_ / "boxed.png"), 0.7);
+
+    write_file("open.toml", std::string(kValidScene) + sky + "cast_shadows = false\n");
+    const RunResult open = run("render open.toml --validate --aov shadow --width 64 --height 48 -o open.png");
+    ASSERT_EQ(open.exit_code, 0) << open.err;
+    EXPECT_TRUE(open.err.empty()) << open.err;
+    const double box_shadow = shadowed_fraction(dir_ / "open.png");
+    EXPECT_GT(box_shadow, 0.005);
+    EXPECT_LT(box_shadow, 0.2);
+
+    write_file("unreceiving.toml", replace(std::string(kValidScene) + sky + "cast_shadows = false\n",
+                                           "size = [40.0, 40.0]", "size = [40.0, 40.0]\nreceive_shadows = false"));
+    const RunResult bare = run("render unreceiving.toml --validate --aov shadow --width 64 --height 48 -o bare.png");
+    ASSERT_EQ(bare.exit_code, 0) << bare.err;
+    EXPECT_LT(shadowed_fraction(dir_ / "bare.png"), box_shadow / 4.0) << "the ground still receives the shadow";
+}
+
+// compare reports the share of evaluated pixels in shadow and warns above 95 %.
+TEST_F(Cli, CompareWarnsWhenAlmostEverythingIsShadowed) {
+    write_file("sky.toml", std::string(kValidScene) + "\n[[objects]]\ntype = \"box\"\nsize = [200.0, 200.0, 200.0]\n");
+    const RunResult boxed = run("compare sky.toml --width 48 --height 32 --rays 1 --stability-frames 1 --out-dir cmp");
+    ASSERT_EQ(boxed.exit_code, 0) << boxed.err;
+    EXPECT_NE(boxed.out.find("warning: more than 95% of the evaluated pixels are in shadow"), std::string::npos)
+        << boxed.out;
+    write_file("scene.toml", kValidScene);
+    const RunResult normal =
+        run("compare scene.toml --width 48 --height 32 --rays 1 --stability-frames 1 --out-dir cmp2");
+    ASSERT_EQ(normal.exit_code, 0) << normal.err;
+    EXPECT_NE(normal.out.find("shadowed: "), std::string::npos) << normal.out;
+    EXPECT_EQ(normal.out.find("warning: more than 95%"), std::string::npos) << normal.out;
+}

@@ -15,7 +15,7 @@ layout(location = 1) in vec3 in_world_normal;
 layout(location = 2) in vec2 in_uv;
 
 layout(location = 0) out vec4 out_world_position;  // w = 1: geometry (the clear value has w = 0)
-layout(location = 1) out vec4 out_world_normal;
+layout(location = 1) out vec4 out_world_normal;  // w = 1: the instance receives no shadow
 
 void main() {
     vec3 normal = normalize(in_world_normal);
@@ -26,5 +26,5 @@ void main() {
     if (draw.flags.z == RENDERER_ALPHA_MASK && base_color.a < draw.material.x) discard;
 
     out_world_position = vec4(in_world_position, 1.0);
-    out_world_normal = vec4(normal, 0.0);
+    out_world_normal = vec4(normal, draw.flags.w != 0u ? 0.0 : 1.0);
 }

@@ -46,7 +46,10 @@ void main() {
     if (draw.flags.y != 0u) base_color *= texture(base_color_texture, in_uv);
     if (draw.flags.z == RENDERER_ALPHA_MASK && base_color.a < draw.material.x) discard;
 
-    float visibility = penumbra_sun_visibility(receiver, normal);
+    // An instance that does not receive shadows (scene files' receive_shadows = false) is
+    // lit as if nothing were in the way; the lookups stay in uniform control flow.
+    const bool receives = draw.flags.w != 0u;
+    float visibility = receives ? penumbra_sun_visibility(receiver, normal) : 1.0;
     const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
     vec3 color = shade_sun(base_color.rgb, normal, to_view, frame.to_sun.xyz, frame.sun_radiance.rgb * visibility,
                            draw.material.y, draw.material.z);
@@ -66,7 +69,8 @@ void main() {
         }
         const LocalLight light = local.lights[i];
         const float shadow =
-            penumbra_light_shadow(light.shadow_index, in_world_position, normal, plane_normal, gl_FragCoord.xy);
+            receives ? penumbra_light_shadow(light.shadow_index, in_world_position, normal, plane_normal, gl_FragCoord.xy)
+                     : 1.0;
         if (int(i) == frame.visibility_light) visibility = shadow * cone;
         const float falloff = distance_falloff(distance, light.range);
         color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance * (falloff * cone * shadow),

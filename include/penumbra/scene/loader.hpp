@@ -35,8 +35,16 @@ Scene builtin_scene(const std::string& name);
 // With import_lights, the file's KHR_lights_punctual lights are appended to scene.lights
 // too, one per (light node, placement), after the scene's own (so that the first
 // directional light of the file becomes the sun only when the scene defines none).
+// exclude_casters: names of nodes or meshes ('*' matches any run of characters) whose
+// primitives cast no shadow; a pattern that matches no name is an error. Primitives with a
+// KHR_materials_unlit material (skies, backdrops) cast none either. placement_casts and
+// placement_receives, when not empty, give each placement's instances their
+// cast_shadows and receive_shadows.
 struct GltfImportOptions {
     bool import_lights = false;
+    std::vector<std::string> exclude_casters;
+    std::vector<bool> placement_casts;
+    std::vector<bool> placement_receives;
 };
 void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
                  const GltfImportOptions& options = {});

@@ -136,6 +136,9 @@ struct Mesh {
 struct Instance {
     uint32_t mesh = 0;
     glm::mat4 world{1.0f};
+    bool cast_shadows = true;     // drawn into shadow maps (and traced by compare's reference)
+    bool receive_shadows = true;  // false: lit as if nothing shadowed it
+    std::string name;             // where it came from, for messages: a glTF node's name, an object's type
 };
 
 struct Scene {
@@ -153,6 +156,9 @@ struct Scene {
     const Light* sun() const;
     // Triangles submitted when every instance is drawn once.
     uint64_t triangle_count() const;
+    // Names of the shadow-casting instances whose world bounds enclose the camera and every
+    // other instance: a sky box or dome that would shadow the whole image.
+    std::vector<std::string> enclosing_casters() const;
 };
 
 }  // namespace penumbra

@@ -327,6 +327,20 @@ def write_conformance_fixtures():
     ]}}
     write_json("lights.gltf", embed(document, data))
 
+    # Names for exclude_casters: node "ground" places mesh "floor", node "sky dome" places
+    # mesh "sky_mesh"; node "backdrop" places mesh "card" whose material is unlit.
+    document, data = quad_document()
+    primitive = document["meshes"][0]["primitives"][0]
+    document["meshes"] = [{"name": "floor", "primitives": [primitive]},
+                          {"name": "sky_mesh", "primitives": [primitive]},
+                          {"name": "card", "primitives": [dict(primitive, material=1)]}]
+    document["materials"].append({"extensions": {"KHR_materials_unlit": {}}})
+    document["extensionsUsed"] = ["KHR_materials_unlit"]
+    document["nodes"] = [{"name": "ground", "mesh": 0}, {"name": "sky dome", "mesh": 1},
+                         {"name": "backdrop", "mesh": 2}]
+    document["scenes"][0]["nodes"] = [0, 1, 2]
+    write_json("named.gltf", embed(document, data))
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]

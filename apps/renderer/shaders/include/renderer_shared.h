@@ -64,7 +64,8 @@ struct DrawPushConstants {
     mat4 model;       // model -> world
     vec4 base_color;  // linear RGBA factor
     vec4 material;    // x: alpha cutoff, y: roughness, z: metallic
-    // y: 1 when the material has a base colour texture, z: alpha mode (RENDERER_ALPHA_*)
+    // y: 1 when the material has a base colour texture, z: alpha mode (RENDERER_ALPHA_*),
+    // w: 1 when the instance receives shadows
     uvec4 flags;
 };
 

@@ -1,0 +1,84 @@
+// Which instances cast and receive shadows (issue 16): cast_shadows and receive_shadows per
+// scene object and per glTF instance, exclude_casters by node or mesh name (with '*'), glTF
+// materials that are unlit, and the enclosing-caster check behind the sky-box warning.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "penumbra/scene/loader.hpp"
+#include "scene_test_support.hpp"
+
+namespace penumbra {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using testing::parse_scene_text;
+using testing::scene_error;
+using testing::test_data;
+
+std::string named_model(const std::string& keys) {
+    return "[[objects]]\ntype = \"gltf\"\nfile = \"" + test_data("gltf/named.gltf").string() + "\"\n" + keys;
+}
+
+std::vector<bool> casts(const Scene& scene) {
+    std::vector<bool> flags;
+    for (const Instance& instance : scene.instances) flags.push_back(instance.cast_shadows);
+    return flags;
+}
+
+TEST(ShadowControl, SceneObjectsCastAndReceiveUnlessTold) {
+    const Scene scene = parse_scene_text(
+        "[[objects]]\ntype = \"plane\"\nreceive_shadows = false\n\n"
+        "[[objects]]\ntype = \"box\"\ncast_shadows = false\n\n[[objects]]\ntype = \"sphere\"\n");
+    ASSERT_EQ(scene.instances.size(), 3u);
+    EXPECT_TRUE(scene.instances[0].cast_shadows);
+    EXPECT_FALSE(scene.instances[0].receive_shadows);
+    EXPECT_FALSE(scene.instances[1].cast_shadows);
+    EXPECT_TRUE(scene.instances[1].receive_shadows);
+    EXPECT_TRUE(scene.instances[2].cast_shadows && scene.instances[2].receive_shadows);
+    EXPECT_EQ(scene.instances[1].name, "objects[1] (box)");
+    EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\ncast_shadows = 0\n"), HasSubstr("objects[0].cast_shadows"));
+}
+
+// The unlit card never casts; names and patterns exclude the rest.
+TEST(ShadowControl, GltfExclusionsByNodeOrMeshNameAndUnlitMaterials) {
+    EXPECT_THAT(casts(parse_scene_text(named_model(""))), ElementsAre(true, true, false));
+    EXPECT_THAT(casts(parse_scene_text(named_model("exclude_casters = [\"sky dome\"]\n"))),
+                ElementsAre(true, false, false));
+    EXPECT_THAT(casts(parse_scene_text(named_model("exclude_casters = [\"floor\"]\n"))),
+                ElementsAre(false, true, false));
+    EXPECT_THAT(casts(parse_scene_text(named_model("exclude_casters = [\"sky*\"]\n"))),
+                ElementsAre(true, false, false));
+    const Scene scene = parse_scene_text(named_model(""));
+    EXPECT_EQ(scene.instances[1].name, "sky dome");
+    EXPECT_THAT(scene_error(named_model("exclude_casters = [\"skbox\"]\n")),
+                HasSubstr("exclude_casters[0]: \"skbox\" matches no node or mesh name of the model"));
+    EXPECT_THAT(scene_error(named_model("exclude_casters = \"sky\"\n")),
+                HasSubstr("objects[0].exclude_casters: expected an array of strings"));
+}
+
+TEST(ShadowControl, GltfObjectAndInstanceFlags) {
+    const Scene scene = parse_scene_text(
+        named_model("cast_shadows = false\ninstances = [{ translation = [1.0, 0.0, 0.0] },\n"
+                    "  { translation = [2.0, 0.0, 0.0], cast_shadows = true, receive_shadows = false }]\n"));
+    ASSERT_EQ(scene.instances.size(), 6u);
+    EXPECT_THAT(casts(scene), ElementsAre(false, false, false, true, true, false));
+    EXPECT_TRUE(scene.instances[0].receive_shadows);
+    EXPECT_FALSE(scene.instances[3].receive_shadows);
+}
+
+// A closed box around the camera and everything else is found and named; the ground plane
+// alone, or the box once it casts no shadow, is not.
+TEST(ShadowControl, EnclosingCastersAreFound) {
+    const std::string scene_text =
+        "[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n\n"
+        "[[objects]]\ntype = \"plane\"\nsize = [30.0, 30.0]\n\n"
+        "[[objects]]\ntype = \"box\"\nsize = [200.0, 200.0, 200.0]\n";
+    EXPECT_THAT(parse_scene_text(scene_text).enclosing_casters(), ElementsAre("objects[1] (box)"));
+    EXPECT_TRUE(parse_scene_text(scene_text + "cast_shadows = false\n").enclosing_casters().empty());
+    EXPECT_TRUE(
+        parse_scene_text("[[objects]]\ntype = \"plane\"\n\n[[objects]]\ntype = \"box\"\n").enclosing_casters().empty());
+}
+
+}  // namespace
+}  // namespace penumbra
