@@ -95,6 +95,7 @@ size_t accessor_count(const GltfSource& source, int accessor, const std::string&
 // How a node places a primitive.
 struct GltfPrimitiveOptions {
     int uv_set = 0;                     // the TEXCOORD_n its material's base colour texture reads
+    glm::mat3 uv_transform{1.0f};       // its KHR_texture_transform, applied to the UVs at load
     std::vector<double> morph_weights;  // node.weights, else mesh.weights; missing ones are 0
 };
 
@@ -121,6 +122,12 @@ std::optional<int> punctual_light_of(const GltfSource& source, const tinygltf::N
 // at 1 m (docs/scene-format.md).
 void append_gltf_lights(const GltfSource& source, const std::vector<GltfPlacedLight>& placed,
                         const std::vector<glm::mat4>& placements, std::vector<Light>& lights);
+
+// KHR_texture_transform of a textureInfo as a matrix on (u, v, 1): translation * rotation
+// * scale, the extension's order; its texCoord, when given, replaces `uv_set`
+// (gltf_texture_transform.cpp).
+glm::mat3 read_texture_transform(const GltfSource& source, const tinygltf::Value& extension, const std::string& where,
+                                 int& uv_set);
 
 // Converts a decoded image (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
 // image holds no pixels (it failed to decode) or its size does not match its header.

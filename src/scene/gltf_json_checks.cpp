@@ -103,7 +103,7 @@ bool honoured_when_required(const std::string& extension) {
         "KHR_mesh_quantization",           "KHR_lights_punctual",     "KHR_materials_unlit",
         "KHR_materials_emissive_strength", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "KHR_materials_specular",          "KHR_materials_ior",       "KHR_materials_iridescence",
-        "KHR_materials_variants",          "KHR_materials_volume"};
+        "KHR_materials_variants",          "KHR_materials_volume",    "KHR_texture_transform"};
     return std::find(std::begin(kHonoured), std::end(kHonoured), extension) != std::end(kHonoured);
 }
 
@@ -111,7 +111,6 @@ std::string extension_feature(const std::string& extension) {
     if (extension == "KHR_draco_mesh_compression") return " (Draco-compressed meshes)";
     if (extension == "EXT_meshopt_compression") return " (meshoptimizer-compressed buffers)";
     if (extension == "KHR_texture_basisu" || extension == "EXT_texture_webp") return " (an image format)";
-    if (extension == "KHR_texture_transform") return " (texture coordinate transforms)";
     return "";
 }
 

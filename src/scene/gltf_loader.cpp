@@ -165,7 +165,9 @@ private:
         if (const auto found = converted_meshes_.find(key); found != converted_meshes_.end()) return found->second;
         const std::string where =
             "meshes[" + std::to_string(mesh) + "].primitives[" + std::to_string(primitive_index) + "]";
-        const GltfPrimitiveOptions options{uv_set(primitive.material), pose};
+        GltfPrimitiveOptions options;
+        options.morph_weights = pose;
+        read_uv_mapping(primitive.material, options);
         std::optional<Mesh> converted = convert_gltf_primitive(source_, primitive, options, where);
         std::optional<uint32_t> scene_index;
         if (converted) {
@@ -208,12 +210,20 @@ private:
         }
     }
 
-    // The TEXCOORD set a material's base colour texture reads (its textureInfo.texCoord).
-    int uv_set(int material) const {
-        if (material < 0 || static_cast<size_t>(material) >= model().materials.size()) return 0;
+    // Where the material's base colour (alpha) texture is read: its textureInfo.texCoord
+    // and KHR_texture_transform. Penumbra keeps one UV set per vertex, used by that texture
+    // alone, so the transform is applied to the UVs at load.
+    void read_uv_mapping(int material, GltfPrimitiveOptions& options) const {
+        if (material < 0 || static_cast<size_t>(material) >= model().materials.size()) return;
         const tinygltf::TextureInfo& texture =
             model().materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture;
-        return texture.index >= 0 ? std::max(texture.texCoord, 0) : 0;
+        if (texture.index < 0) return;
+        options.uv_set = std::max(texture.texCoord, 0);
+        const auto extension = texture.extensions.find("KHR_texture_transform");
+        if (extension == texture.extensions.end()) return;
+        const std::string where = "materials[" + std::to_string(material) +
+                                  "].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform";
+        options.uv_transform = read_texture_transform(source_, extension->second, where, options.uv_set);
     }
 
     uint32_t convert_material(int index, const std::string& where) {

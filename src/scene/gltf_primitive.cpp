@@ -138,7 +138,9 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
         const std::vector<glm::vec2> uvs =
             read_texcoord_accessor(source, uv_accessor, where + ".attributes." + uv_name);
         require_same_count(source, uvs.size(), positions.size(), where + ".attributes." + uv_name);
-        for (size_t i = 0; i < uvs.size(); ++i) mesh.vertices[i].uv = uvs[i];
+        for (size_t i = 0; i < uvs.size(); ++i) {
+            mesh.vertices[i].uv = glm::vec2{options.uv_transform * glm::vec3{uvs[i], 1.0f}};
+        }
     } else if (options.uv_set != 0) {
         source.fail(where + ".attributes",
                     "the material's base colour texture reads " + uv_name + ", which the primitive does not have");

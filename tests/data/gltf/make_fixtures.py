@@ -341,6 +341,31 @@ def write_conformance_fixtures():
     document["scenes"][0]["nodes"] = [0, 1, 2]
     write_json("named.gltf", embed(document, data))
 
+    # KHR_texture_transform on the alpha texture: UVs stored as 2 uv - 1 come back to uv under
+    # scale 0.5 and offset 0.5; UVs stored rotated come back under the rotation (0.5 rad about
+    # the origin, u' = cos u + sin v, v' = -sin u + cos v).
+    import math
+    rgba = [[255, 0, 0, 255, 0, 255, 0, 128], [0, 0, 255, 0, 255, 255, 255, 255]]
+    angle = 0.5
+    inverse_rotation = [(math.cos(angle) * u - math.sin(angle) * v, math.sin(angle) * u + math.cos(angle) * v)
+                        for u, v in UVS]
+    for name, stored, transform in (
+            ("texture_transform.gltf", [(2 * u - 1, 2 * v - 1) for u, v in UVS],
+             {"offset": [0.5, 0.5], "scale": [0.5, 0.5]}),
+            ("texture_transform_rotation.gltf", inverse_rotation, {"rotation": angle})):
+        document, data = quad_document()
+        builder = Builder()
+        builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+        document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = builder.add(
+            pack("<2f", stored), FLOAT, "VEC2", 4)
+        document["buffers"][0]["byteLength"] = len(builder.data)
+        transformed = textured(embed(document, builder.data), png(2, 2, 4, rgba))
+        transformed["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+            "KHR_texture_transform": transform}
+        transformed["extensionsUsed"] = ["KHR_texture_transform"]
+        transformed["extensionsRequired"] = ["KHR_texture_transform"]
+        write_json(name, transformed)
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
