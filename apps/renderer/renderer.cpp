@@ -213,6 +213,9 @@ FrameImages Renderer::render(const Camera& camera, ReadbackMode readback) {
     prepare_frame(camera);
     if (!resources_->warned) {
         resources_->warned = true;
+        for (const std::string& warning : scene_.warnings) {
+            std::fprintf(stderr, "penumbra: warning: %s\n", escape_control_characters(warning).c_str());
+        }
         for (const std::string& warning : {light_warning(), enclosure_warning()}) {
             if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
         }

@@ -345,6 +345,25 @@ private:
     std::map<std::tuple<int, TextureWrap, TextureWrap, bool>, int32_t> converted_images_;  // (image, sampling)
 };
 
+// The extensions the file lists (used or required) that Penumbra does not read, comma
+// separated; KHR_lights_punctual counts as read only when its lights are imported.
+std::string ignored_extensions(const tinygltf::Model& model, const GltfImportOptions& options) {
+    static const char* const kRead[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_materials_unlit"};
+    std::vector<std::string> listed = model.extensionsUsed;
+    listed.insert(listed.end(), model.extensionsRequired.begin(), model.extensionsRequired.end());
+    std::sort(listed.begin(), listed.end());
+    listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+    std::string ignored;
+    for (const std::string& name : listed) {
+        const bool read = std::find(std::begin(kRead), std::end(kRead), name) != std::end(kRead) ||
+                          (name == "KHR_lights_punctual" && options.import_lights);
+        if (read) continue;
+        ignored += (ignored.empty() ? "" : ", ") + name;
+        if (name == "KHR_lights_punctual") ignored += " (import_lights = true reads its lights)";
+    }
+    return ignored;
+}
+
 }  // namespace
 
 void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
@@ -360,6 +379,9 @@ void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vec
     const size_t light_count = scene.lights.size();
     try {
         GltfImporter(scene, source).place_model(placements, options);
+        if (const std::string ignored = ignored_extensions(model, options); !ignored.empty()) {
+            scene.warnings.push_back(origin + ": ignores the glTF extension(s) " + ignored);
+        }
     } catch (...) {
         scene.textures.resize(texture_count);
         scene.materials.resize(material_count);

@@ -88,7 +88,10 @@ TEST(GltfConformance, MorphTargetsPoseTheMeshWithMeshOrNodeWeights) {
     expect_same_triangles("morph_node_weights.gltf", "quad.gltf");
 }
 
-TEST(GltfConformance, QuantizedAttributesLoadAsTheFloatQuad) { expect_same_triangles("quantized.gltf", "quad.gltf"); }
+TEST(GltfConformance, QuantizedAttributesLoadAsTheFloatQuad) {
+    expect_same_triangles("quantized.gltf", "quad.gltf");
+    EXPECT_TRUE(load_fixture("quantized.gltf").warnings.empty()) << "KHR_mesh_quantization is read, not ignored";
+}
 
 TEST(GltfConformance, MalformedOrUndeclaredFormsAreClearErrors) {
     EXPECT_THAT(load_error("sparse_index_out_of_range.gltf"),
@@ -109,11 +112,17 @@ TEST(GltfLights, PunctualLightsAreImportedThroughTheirNodesAndPlacement) {
     Scene without;
     append_gltf(without, test_data("gltf/lights.gltf"), {glm::mat4{1.0f}});
     EXPECT_TRUE(without.lights.empty()) << "lights are imported only with import_lights";
+    // Extensions Penumbra does not read are named in one warning line per file.
+    ASSERT_EQ(without.warnings.size(), 1u);
+    EXPECT_THAT(without.warnings[0],
+                HasSubstr("lights.gltf: ignores the glTF extension(s) KHR_lights_punctual (import_lights = true reads "
+                          "its lights)"));
 
     Scene scene;
     const glm::mat4 placement = glm::translate(glm::mat4{1.0f}, glm::vec3{10.0f, 0.0f, 0.0f});
     append_gltf(scene, test_data("gltf/lights.gltf"), {placement}, {.import_lights = true});
     ASSERT_EQ(scene.lights.size(), 3u);
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
     const Light& spot = scene.lights[0];
     EXPECT_EQ(spot.type, LightType::Spot);
     EXPECT_LE(glm::distance(spot.position, glm::vec3(10.0f, 5.0f, 0.0f)), 1e-5f);

@@ -149,6 +149,9 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Mesh> meshes;
     std::vector<Instance> instances;
+    // What loading noticed but did not refuse (a glTF's ignored extensions), one line each,
+    // for the tools to print.
+    std::vector<std::string> warnings;
 
     // World-space bounds of every instance.
     Aabb world_bounds() const;
