@@ -99,11 +99,19 @@ void check_primitives(const JsonChecker& checker, const Json& mesh, const std::s
 // name, rather than failing later on what tinygltf cannot read (a Draco mesh's accessors
 // have no bufferView) or casting the wrong shadow.
 bool honoured_when_required(const std::string& extension) {
-    static const char* const kHonoured[] = {
-        "KHR_mesh_quantization",           "KHR_lights_punctual",     "KHR_materials_unlit",
-        "KHR_materials_emissive_strength", "KHR_materials_clearcoat", "KHR_materials_sheen",
-        "KHR_materials_specular",          "KHR_materials_ior",       "KHR_materials_iridescence",
-        "KHR_materials_variants",          "KHR_materials_volume",    "KHR_texture_transform"};
+    static const char* const kHonoured[] = {"KHR_mesh_quantization",
+                                            "KHR_lights_punctual",
+                                            "KHR_materials_unlit",
+                                            "KHR_materials_emissive_strength",
+                                            "KHR_materials_clearcoat",
+                                            "KHR_materials_sheen",
+                                            "KHR_materials_specular",
+                                            "KHR_materials_ior",
+                                            "KHR_materials_iridescence",
+                                            "KHR_materials_variants",
+                                            "KHR_materials_volume",
+                                            "KHR_texture_transform",
+                                            "KHR_materials_pbrSpecularGlossiness"};
     return std::find(std::begin(kHonoured), std::end(kHonoured), extension) != std::end(kHonoured);
 }
 

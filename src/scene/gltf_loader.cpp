@@ -215,15 +215,78 @@ private:
     // alone, so the transform is applied to the UVs at load.
     void read_uv_mapping(int material, GltfPrimitiveOptions& options) const {
         if (material < 0 || static_cast<size_t>(material) >= model().materials.size()) return;
-        const tinygltf::TextureInfo& texture =
-            model().materials[static_cast<size_t>(material)].pbrMetallicRoughness.baseColorTexture;
-        if (texture.index < 0) return;
-        options.uv_set = std::max(texture.texCoord, 0);
-        const auto extension = texture.extensions.find("KHR_texture_transform");
-        if (extension == texture.extensions.end()) return;
-        const std::string where = "materials[" + std::to_string(material) +
-                                  "].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform";
-        options.uv_transform = read_texture_transform(source_, extension->second, where, options.uv_set);
+        const BaseColorSource color = base_color_source(material);
+        if (color.texture < 0) return;
+        options.uv_set = color.tex_coord;
+        if (color.transform == nullptr) return;
+        options.uv_transform = read_texture_transform(
+            source_, *color.transform, color.where + ".extensions.KHR_texture_transform", options.uv_set);
+    }
+
+    // Where a material's base colour (its alpha) comes from: pbrMetallicRoughness, or the
+    // diffuse of KHR_materials_pbrSpecularGlossiness when the material has it (the
+    // extension's rule: a client that reads it uses it).
+    struct BaseColorSource {
+        glm::vec4 factor{1.0f};
+        int texture = -1;
+        int tex_coord = 0;
+        const tinygltf::Value* transform = nullptr;  // KHR_texture_transform of the texture
+        std::string where;                           // the textureInfo's JSON path
+    };
+
+    BaseColorSource base_color_source(int index) const {
+        const tinygltf::Material& gltf = model().materials[static_cast<size_t>(index)];
+        const std::string material_where = "materials[" + std::to_string(index) + "]";
+        BaseColorSource color;
+        const auto spec_gloss = gltf.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (spec_gloss != gltf.extensions.end()) {
+            read_diffuse(spec_gloss->second, material_where + ".extensions.KHR_materials_pbrSpecularGlossiness", color);
+            return color;
+        }
+        const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() != 4 || !all_finite(pbr.baseColorFactor)) {
+            source_.fail(material_where + ".pbrMetallicRoughness.baseColorFactor", "expected 4 finite numbers");
+        }
+        color.factor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]};
+        color.texture = pbr.baseColorTexture.index;
+        color.tex_coord = std::max(pbr.baseColorTexture.texCoord, 0);
+        const auto transform = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
+        if (transform != pbr.baseColorTexture.extensions.end()) color.transform = &transform->second;
+        color.where = material_where + ".pbrMetallicRoughness.baseColorTexture";
+        return color;
+    }
+
+    // diffuseFactor (default 1) and diffuseTexture {index, texCoord, extensions}.
+    void read_diffuse(const tinygltf::Value& extension, const std::string& where, BaseColorSource& color) const {
+        if (!extension.IsObject()) source_.fail(where, "expected an object");
+        if (extension.Has("diffuseFactor")) {
+            const tinygltf::Value& factor = extension.Get("diffuseFactor");
+            const bool valid = factor.IsArray() && factor.ArrayLen() == 4 && [&] {
+                for (int i = 0; i < 4; ++i) {
+                    if (!factor.Get(i).IsNumber() || !std::isfinite(factor.Get(i).GetNumberAsDouble())) return false;
+                }
+                return true;
+            }();
+            if (!valid) source_.fail(where + ".diffuseFactor", "expected 4 finite numbers");
+            for (int i = 0; i < 4; ++i) color.factor[i] = static_cast<float>(factor.Get(i).GetNumberAsDouble());
+        }
+        if (!extension.Has("diffuseTexture")) return;
+        color.where = where + ".diffuseTexture";
+        const tinygltf::Value& texture = extension.Get("diffuseTexture");
+        if (!texture.IsObject() || !texture.Has("index") || !texture.Get("index").IsInt() ||
+            texture.Get("index").GetNumberAsInt() < 0) {
+            source_.fail(color.where, "expected a textureInfo with an index");
+        }
+        color.texture = texture.Get("index").GetNumberAsInt();
+        if (texture.Has("texCoord")) {
+            if (!texture.Get("texCoord").IsInt() || texture.Get("texCoord").GetNumberAsInt() < 0) {
+                source_.fail(color.where + ".texCoord", "expected an index >= 0");
+            }
+            color.tex_coord = texture.Get("texCoord").GetNumberAsInt();
+        }
+        if (texture.Has("extensions") && texture.Get("extensions").Has("KHR_texture_transform")) {
+            color.transform = &texture.Get("extensions").Get("KHR_texture_transform");
+        }
     }
 
     uint32_t convert_material(int index, const std::string& where) {
@@ -244,16 +307,10 @@ private:
         const tinygltf::Material& gltf = model().materials[static_cast<size_t>(index)];
         const std::string material_where = "materials[" + std::to_string(index) + "]";
         const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() != 4 || !all_finite(pbr.baseColorFactor)) {
-            source_.fail(material_where + ".pbrMetallicRoughness.baseColorFactor", "expected 4 finite numbers");
-        }
+        const BaseColorSource color = base_color_source(index);
         Material material;
-        material.base_color = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
-                               pbr.baseColorFactor[3]};
-        if (pbr.baseColorTexture.index >= 0) {
-            material.base_color_texture =
-                convert_texture(pbr.baseColorTexture.index, material_where + ".pbrMetallicRoughness.baseColorTexture");
-        }
+        material.base_color = color.factor;
+        if (color.texture >= 0) material.base_color_texture = convert_texture(color.texture, color.where);
         material.alpha_mode = read_alpha_mode(gltf.alphaMode, material_where + ".alphaMode");
         material.alpha_cutoff = static_cast<float>(gltf.alphaCutoff);
         material.double_sided = gltf.doubleSided;
@@ -348,7 +405,8 @@ private:
 // The extensions the file lists (used or required) that Penumbra does not read, comma
 // separated; KHR_lights_punctual counts as read only when its lights are imported.
 std::string ignored_extensions(const tinygltf::Model& model, const GltfImportOptions& options) {
-    static const char* const kRead[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_materials_unlit"};
+    static const char* const kRead[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_materials_unlit",
+                                        "KHR_materials_pbrSpecularGlossiness"};
     std::vector<std::string> listed = model.extensionsUsed;
     listed.insert(listed.end(), model.extensionsRequired.begin(), model.extensionsRequired.end());
     std::sort(listed.begin(), listed.end());

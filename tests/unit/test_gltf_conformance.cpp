@@ -83,6 +83,19 @@ TEST(GltfConformance, TextureTransformIsAppliedToTheAlphaTextureCoordinates) {
     expect_same_triangles("texture_transform_rotation.gltf", "textured.gltf");
 }
 
+// KHR_materials_pbrSpecularGlossiness: the diffuse factor and texture are the base colour
+// (and so the alpha mask), as the metallic-roughness equivalent's.
+TEST(GltfConformance, SpecularGlossinessDiffuseIsTheBaseColour) {
+    expect_same_triangles("spec_gloss.gltf", "textured.gltf");
+    const Scene expected = load_fixture("textured.gltf");
+    const Scene actual = load_fixture("spec_gloss.gltf");
+    const Material& material = actual.materials.at(actual.meshes[0].material);
+    EXPECT_EQ(material.base_color, expected.materials.at(expected.meshes[0].material).base_color);
+    ASSERT_EQ(material.base_color_texture, 0);
+    EXPECT_EQ(actual.textures[0].rgba8, expected.textures[0].rgba8);
+    EXPECT_TRUE(actual.warnings.empty());
+}
+
 TEST(GltfConformance, MorphTargetsPoseTheMeshWithMeshOrNodeWeights) {
     expect_same_triangles("morph_mesh_weights.gltf", "quad.gltf");
     expect_same_triangles("morph_node_weights.gltf", "quad.gltf");

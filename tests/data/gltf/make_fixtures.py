@@ -366,6 +366,20 @@ def write_conformance_fixtures():
         transformed["extensionsRequired"] = ["KHR_texture_transform"]
         write_json(name, transformed)
 
+    # KHR_materials_pbrSpecularGlossiness: the diffuse factor and texture give the alpha
+    # (metallic-roughness has a fallback without texture that must not win).
+    document, data = quad_document()
+    rgba = [[255, 0, 0, 255, 0, 255, 0, 128], [0, 0, 255, 0, 255, 255, 255, 255]]
+    spec_gloss = textured(embed(document, data), png(2, 2, 4, rgba))
+    material = spec_gloss["materials"][0]
+    material["extensions"] = {"KHR_materials_pbrSpecularGlossiness": {
+        "diffuseFactor": material["pbrMetallicRoughness"]["baseColorFactor"],
+        "diffuseTexture": {"index": 0}}}
+    material["pbrMetallicRoughness"] = {"baseColorFactor": [1.0, 1.0, 1.0, 1.0]}
+    spec_gloss["extensionsUsed"] = ["KHR_materials_pbrSpecularGlossiness"]
+    spec_gloss["extensionsRequired"] = ["KHR_materials_pbrSpecularGlossiness"]
+    write_json("spec_gloss.gltf", spec_gloss)
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
