@@ -2,11 +2,24 @@
 // Rendering for tests: a scene from TOML text, rendered in-process with the validation
 // layer on. The returned frame is only valid when the layer reported nothing (including
 // while the device and instance were destroyed); the helpers assert that.
+#include <ostream>
 #include <string>
 
 #include "penumbra/scene/render_settings.hpp"
 #include "penumbra/scene/scene.hpp"
 #include "renderer/renderer.hpp"
+
+namespace penumbra {
+
+// gtest prints a test's parameter with PrintTo, found by argument-dependent lookup: a filter
+// by its name rather than as raw bytes in the test log.
+inline void PrintTo(ShadowFilter filter, std::ostream* os) {
+    for (const auto& [name, value] : shadow_filter_names()) {
+        if (value == filter) *os << name;
+    }
+}
+
+}  // namespace penumbra
 
 namespace penumbra::testing {
 

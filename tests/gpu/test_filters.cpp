@@ -26,6 +26,10 @@ renderer::FrameImages render_clean(const Scene& scene, const RenderSettings& set
 struct DefaultSceneCase {
     ShadowFilter filter;
     int cascades;
+    friend void PrintTo(const DefaultSceneCase& c, std::ostream* os) {
+        PrintTo(c.filter, os);
+        *os << ", " << c.cascades << " cascades";
+    }
 };
 
 class FilterRendersDefaultScene : public ::testing::TestWithParam<DefaultSceneCase> {};

@@ -15,6 +15,7 @@ struct PrimitiveCase {
     std::function<Mesh()> make;
     size_t triangles;
     Aabb bounds;
+    friend void PrintTo(const PrimitiveCase& c, std::ostream* os) { *os << c.name; }  // not its bytes
 };
 
 std::vector<PrimitiveCase> primitive_cases() {
