@@ -12,11 +12,12 @@
 namespace penumbra {
 namespace {
 
-void write_output(const RenderJob& job, const renderer::FrameImages& images) {
+// Writes the output image and returns its size (the shadow-map strip's, not the frame's).
+std::pair<uint32_t, uint32_t> write_output(const RenderJob& job, const renderer::FrameImages& images) {
     if (job.debug == DebugView::ShadowMap) {
         const renderer::GrayImage strip = renderer::shadow_map_strip(images);
         write_png_gray8(job.output, strip.width, strip.height, strip.pixels);
-        return;
+        return {strip.width, strip.height};
     }
     switch (job.aov) {
         case Aov::None:
@@ -29,6 +30,7 @@ void write_output(const RenderJob& job, const renderer::FrameImages& images) {
             write_png_gray8(job.output, images.width, images.height, images.cascade);
             break;
     }
+    return {images.width, images.height};
 }
 
 // The light whose visibility `--aov shadow:N` writes, checked against the scene: -1 for the sun.
@@ -97,8 +99,8 @@ RenderSummary run_render_job(const RenderJob& job) {
     }
     // Checked after the device and instance are gone, so leak reports count too.
     check_validation(*device_options.validation_log);
-    write_output(job, images);
-    return {job.output, device_name, images.width, images.height};
+    const auto [width, height] = write_output(job, images);
+    return {job.output, device_name, width, height};
 }
 
 }  // namespace penumbra

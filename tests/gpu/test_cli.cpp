@@ -395,3 +395,16 @@ TEST_F(Cli, CompareWarnsWhenAlmostEverythingIsShadowed) {
     EXPECT_NE(normal.out.find("shadowed: "), std::string::npos) << normal.out;
     EXPECT_EQ(normal.out.find("warning: more than 95%"), std::string::npos) << normal.out;
 }
+
+// The line a render prints names the size of the file it wrote: for --debug shadowmap the
+// strip of shadow-map layers, not the colour image (issue 16).
+TEST_F(Cli, DebugShadowMapReportsTheSizeOfTheFileItWrote) {
+    write_file("scene.toml", kValidScene);
+    const RunResult result = run(
+        "render scene.toml --debug shadowmap --shadow-resolution 512 --cascades 2 --width 64 --height 48 -o sm.png");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const penumbra::PngImage image = penumbra::read_png(dir_ / "sm.png");
+    const std::string size = std::to_string(image.width) + "x" + std::to_string(image.height);
+    EXPECT_NE(result.out.find("(" + size + ","), std::string::npos) << result.out << " vs " << size;
+    EXPECT_NE(size, "64x48");
+}
