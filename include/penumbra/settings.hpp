@@ -80,6 +80,9 @@ struct FilterSettings {
     int evsm_components = 4;                         // 2 (positive warp only) or 4
     float msm_moment_bias = 3.0e-5f;                 // 0..0.01
     bool msm_optimized_quantization = false;         // RGBA16 moments (Peters & Klein 2015, sec. 4.3)
+
+    // Every field: a field added later is compared without anyone remembering to.
+    bool operator==(const FilterSettings&) const = default;
 };
 
 struct ShadowSettings {

@@ -147,30 +147,14 @@ bool is_moment_filter(ShadowFilter filter) {
     return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
 }
 
-namespace {
-
-// Every filter field sizes or specialises something: the pipelines' specialization
-// constants, the moments maps' formats, the blur pipelines.
-bool same_filter(const FilterSettings& a, const FilterSettings& b) {
-    return a.mode == b.mode && a.receiver_plane_bias == b.receiver_plane_bias && a.pcf_radius == b.pcf_radius &&
-           a.poisson_taps == b.poisson_taps && a.poisson_radius == b.poisson_radius &&
-           a.pcss_blocker_taps == b.pcss_blocker_taps && a.pcss_quality == b.pcss_quality &&
-           a.pcss_early_out == b.pcss_early_out && a.pcss_max_penumbra == b.pcss_max_penumbra &&
-           a.light_bleeding_reduction == b.light_bleeding_reduction && a.blur_radius == b.blur_radius &&
-           a.moments_poisson == b.moments_poisson && a.evsm_positive_exponent == b.evsm_positive_exponent &&
-           a.evsm_negative_exponent == b.evsm_negative_exponent && a.evsm_components == b.evsm_components &&
-           a.msm_moment_bias == b.msm_moment_bias && a.msm_optimized_quantization == b.msm_optimized_quantization;
-}
-
-}  // namespace
-
+// Every filter field specialises the pipelines or sizes the moments maps.
 bool requires_recreation(const Settings& current, const Settings& next) {
     const CascadeSettings& a = current.shadow.cascades;
     const CascadeSettings& b = next.shadow.cascades;
     const LocalShadowSettings& local_a = current.local_shadows;
     const LocalShadowSettings& local_b = next.local_shadows;
     return a.count != b.count || a.resolution != b.resolution || current.shadow.strategy != next.shadow.strategy ||
-           !same_filter(current.shadow.filter, next.shadow.filter) || local_a.budget != local_b.budget ||
+           current.shadow.filter != next.shadow.filter || local_a.budget != local_b.budget ||
            local_a.resolution != local_b.resolution || local_a.sizing != local_b.sizing;
 }
 

@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "penumbra/errors.hpp"
 #include "penumbra/settings.hpp"
@@ -158,6 +159,61 @@ TEST(ShadowSettings, ValidManualSplitsPassAndAreIgnoredForOtherSchemes) {
     ShadowSettings practical;
     practical.cascades.manual_splits = {9.0f, 1.0f};  // not used by the practical scheme
     EXPECT_NO_THROW(validate_shadow_settings(practical, "practical"));
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// What needs a new ShadowSystem: every filter field (each specialises the pipelines or sizes
+// the moments maps), the cascade count and resolution, the strategy, the local-shadow budget,
+// resolution and sizing; the biases, splits, distances and blend band change between frames.
+TEST(SettingsRecreation, StructuralFieldsNeedANewSystemOthersDoNot) {
+    const Settings base;
+    const std::vector<std::function<void(Settings&)>> structural = {
+        [](Settings& s) { s.shadow.filter.mode = ShadowFilter::Pcss; },
+        [](Settings& s) { s.shadow.filter.receiver_plane_bias = false; },
+        [](Settings& s) { s.shadow.filter.pcf_radius = 3; },
+        [](Settings& s) { s.shadow.filter.poisson_taps = 32; },
+        [](Settings& s) { s.shadow.filter.poisson_radius = 4.0f; },
+        [](Settings& s) { s.shadow.filter.pcss_blocker_taps = 32; },
+        [](Settings& s) { s.shadow.filter.pcss_quality = PcssQuality::High; },
+        [](Settings& s) { s.shadow.filter.pcss_early_out = true; },
+        [](Settings& s) { s.shadow.filter.pcss_max_penumbra = 16.0f; },
+        [](Settings& s) { s.shadow.filter.light_bleeding_reduction = 0.5f; },
+        [](Settings& s) { s.shadow.filter.blur_radius = 4; },
+        [](Settings& s) { s.shadow.filter.moments_poisson = true; },
+        [](Settings& s) { s.shadow.filter.evsm_positive_exponent = 20.0f; },
+        [](Settings& s) { s.shadow.filter.evsm_negative_exponent = 2.0f; },
+        [](Settings& s) { s.shadow.filter.evsm_components = 2; },
+        [](Settings& s) { s.shadow.filter.msm_moment_bias = 1e-4f; },
+        [](Settings& s) { s.shadow.filter.msm_optimized_quantization = true; },
+        [](Settings& s) { s.shadow.cascades.count = 2; },
+        [](Settings& s) { s.shadow.cascades.resolution = 1024; },
+        [](Settings& s) { s.shadow.strategy = ShadowStrategy::Multiview; },
+        [](Settings& s) { s.local_shadows.budget = 2; },
+        [](Settings& s) { s.local_shadows.resolution = 512; },
+        [](Settings& s) { s.local_shadows.sizing = LocalShadowSizing::Fixed; },
+    };
+    for (size_t i = 0; i < structural.size(); ++i) {
+        Settings next = base;
+        structural[i](next);
+        EXPECT_TRUE(requires_recreation(base, next)) << "change " << i;
+    }
+    const std::vector<std::function<void(Settings&)>> per_frame = {
+        [](Settings& s) { s.shadow.bias.slope = 3.0f; },
+        [](Settings& s) { s.shadow.bias.normal_offset = 1.0f; },
+        [](Settings& s) { s.shadow.blend_width = 0.2f; },
+        [](Settings& s) { s.shadow.cascades.max_distance = 80.0f; },
+        [](Settings& s) { s.shadow.cascades.split_lambda = 0.5f; },
+    };
+    for (size_t i = 0; i < per_frame.size(); ++i) {
+        Settings next = base;
+        per_frame[i](next);
+        EXPECT_FALSE(requires_recreation(base, next)) << "change " << i;
+    }
 }
 
 }  // namespace
