@@ -55,6 +55,13 @@ class Builder:
         return len(self.accessors) - 1
 
 
+def extend(document, data):
+    """A Builder that appends to an existing document's buffer, views and accessors."""
+    builder = Builder()
+    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    return builder
+
+
 def quad_document(index_type=USHORT, with_normals=True, with_indices=True, positions=POSITIONS,
                   indices=INDICES, mode=None):
     builder = Builder()
@@ -187,8 +194,7 @@ def write_conformance_fixtures():
     textured.gltf."""
     # Sparse positions: the dense data has vertices 1 and 2 wrong; the sparse part restores them.
     document, data = quad_document()
-    builder = Builder()
-    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    builder = extend(document, data)
     wrong = [POSITIONS[0], (9.0, 9.0, 9.0), (9.0, 9.0, 9.0), POSITIONS[3]]
     dense = builder.add(pack("<3f", wrong), FLOAT, "VEC3", 4)
     sparse_indices = builder.add(pack("<H", [(1,), (2,)]), USHORT, "SCALAR", 2)
@@ -213,8 +219,7 @@ def write_conformance_fixtures():
 
     # A sparse accessor without a bufferView starts as zeros: every vertex substituted.
     document, data = quad_document()
-    builder = Builder()
-    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    builder = extend(document, data)
     all_indices = builder.add(pack("<B", [(0,), (1,), (2,), (3,)]), UBYTE, "SCALAR", 4)
     all_values = builder.add(pack("<3f", POSITIONS), FLOAT, "VEC3", 4)
     document["accessors"].append({"componentType": FLOAT, "count": 4, "type": "VEC3", "sparse": {
@@ -227,8 +232,7 @@ def write_conformance_fixtures():
 
     # The alpha texture reads TEXCOORD_1; TEXCOORD_0 is all zeros.
     document, data = quad_document()
-    builder = Builder()
-    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    builder = extend(document, data)
     attributes = document["meshes"][0]["primitives"][0]["attributes"]
     attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"]
     attributes["TEXCOORD_0"] = builder.add(pack("<2f", [(0.0, 0.0)] * 4), FLOAT, "VEC2", 4)
@@ -244,8 +248,7 @@ def write_conformance_fixtures():
     for name, mesh_weights, node_weights in (("morph_mesh_weights.gltf", [1.0, 0.0], None),
                                              ("morph_node_weights.gltf", [0.0, 0.0], [1.0, 0.0])):
         document, data = quad_document()
-        builder = Builder()
-        builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+        builder = extend(document, data)
         raised = [(x, y + 1.0, z) for x, y, z in POSITIONS]
         primitive = document["meshes"][0]["primitives"][0]
         primitive["attributes"]["POSITION"] = builder.add(pack("<3f", raised), FLOAT, "VEC3", 4)
@@ -263,8 +266,7 @@ def write_conformance_fixtures():
     # KHR_mesh_quantization: positions as SHORT twice the size, halved by the node's scale;
     # normals as normalized BYTE; texture coordinates as UNSIGNED_BYTE (not normalized).
     document, data = quad_document()
-    builder = Builder()
-    builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+    builder = extend(document, data)
     attributes = document["meshes"][0]["primitives"][0]["attributes"]
     doubled = [tuple(int(2 * c) for c in p) for p in POSITIONS]
     attributes["POSITION"] = builder.add(pad4(pack("<3h", doubled)), SHORT, "VEC3", 4)
@@ -294,8 +296,7 @@ def write_conformance_fixtures():
                                  ("alpha_mirrored", 33648, [255, 0, 0, 255])):
         for suffix, uvs, alphas, wrap_s in (("", wide_uvs, [255, 0], wrap), ("_expanded", UVS, expanded, 10497)):
             document, data = quad_document()
-            builder = Builder()
-            builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+            builder = extend(document, data)
             document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = builder.add(
                 pack("<2f", uvs), FLOAT, "VEC2", 4)
             document["buffers"][0]["byteLength"] = len(builder.data)
@@ -354,8 +355,7 @@ def write_conformance_fixtures():
              {"offset": [0.5, 0.5], "scale": [0.5, 0.5]}),
             ("texture_transform_rotation.gltf", inverse_rotation, {"rotation": angle})):
         document, data = quad_document()
-        builder = Builder()
-        builder.data, builder.views, builder.accessors = data, document["bufferViews"], document["accessors"]
+        builder = extend(document, data)
         document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = builder.add(
             pack("<2f", stored), FLOAT, "VEC2", 4)
         document["buffers"][0]["byteLength"] = len(builder.data)
