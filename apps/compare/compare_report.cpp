@@ -148,9 +148,12 @@ std::string format_compare_summary(const CompareResult& result) {
                   result.pixels.shadowed_percent());
     summary += text;
     if (result.pixels.shadowed_percent() > kMostlyShadowedPercent) {
-        summary +=
-            "  warning: more than 95% of the evaluated pixels are in shadow: geometry such as a sky box or "
-            "dome may block the light everywhere (cast_shadows = false or exclude_casters in the scene file)\n";
+        std::snprintf(text, sizeof(text),
+                      "  warning: more than %.0f%% of the evaluated pixels are in shadow: geometry such as a sky box "
+                      "or dome may block the light everywhere (cast_shadows = false or exclude_casters in the scene "
+                      "file)\n",
+                      kMostlyShadowedPercent);
+        summary += text;
     }
     if (result.stability.frames >= 2) {
         std::snprintf(text, sizeof(text),

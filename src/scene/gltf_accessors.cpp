@@ -65,6 +65,7 @@ struct AccessorLayout {
     std::string where;  // "<use> (accessors[i])"
     size_t component_size = 0;
     size_t component_count = 0;
+    bool normalized = false;  // integer components map to [0, 1] or [-1, 1] (never for indices)
     size_t element_size() const { return component_size * component_count; }
 };
 
@@ -85,6 +86,7 @@ AccessorLayout checked_layout(const GltfSource& source, int index, const std::st
     }
     layout.component_size = static_cast<size_t>(component_size);
     layout.component_count = static_cast<size_t>(component_count);
+    layout.normalized = layout.accessor->normalized;
     return layout;
 }
 
@@ -159,7 +161,7 @@ void read_dense(const GltfSource& source, const AccessorLayout& layout, std::vec
     for (size_t i = 0; i < accessor.count; ++i) {
         for (size_t c = 0; c < layout.component_count; ++c) {
             values[i * layout.component_count + c] = read_component(first + i * stride + c * layout.component_size,
-                                                                    accessor.componentType, accessor.normalized);
+                                                                    accessor.componentType, layout.normalized);
         }
     }
 }
@@ -206,9 +208,8 @@ void apply_sparse(const GltfSource& source, const AccessorLayout& layout, std::v
         }
         previous = element;
         for (size_t c = 0; c < layout.component_count; ++c) {
-            values[element * layout.component_count + c] =
-                read_component(replacements + i * element_size + c * layout.component_size, accessor.componentType,
-                               accessor.normalized);
+            values[element * layout.component_count + c] = read_component(
+                replacements + i * element_size + c * layout.component_size, accessor.componentType, layout.normalized);
         }
     }
 }
@@ -346,10 +347,8 @@ std::vector<uint32_t> read_index_accessor(const GltfSource& source, int index, c
         source.fail(where, "expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, got " +
                                describe_type(*layout.accessor, layout.component_count));
     }
-    AccessorLayout plain = layout;  // indices are never normalised
-    tinygltf::Accessor copy = *layout.accessor;
-    copy.normalized = false;
-    plain.accessor = &copy;
+    AccessorLayout plain = layout;
+    plain.normalized = false;  // indices are never normalised
     const std::vector<double> values = read_values(source, plain);
     std::vector<uint32_t> indices(values.size());
     for (size_t i = 0; i < values.size(); ++i) indices[i] = static_cast<uint32_t>(values[i]);

@@ -3,6 +3,7 @@
 // the JSON and decodes buffers and images but does not check that accessors, buffer views
 // and indices stay inside their buffers, so everything read from a model goes through the
 // checked readers below: a malformed file is an InputError, never an out-of-bounds read.
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -67,6 +68,10 @@ void check_gltf_uri(const GltfUri& uri, const std::string& origin);
 bool is_data_uri(const std::string& uri);
 // Percent-decodes a uri the way tinygltf does before opening the file.
 std::string decode_gltf_uri(const std::string& uri, const std::string& origin, const std::string& where);
+
+// Finite, and within what the float math downstream carries (kMaxNumberMagnitude): every
+// number read from a model's JSON passes this.
+inline bool within_float_math(double value) { return std::isfinite(value) && std::abs(value) <= kMaxNumberMagnitude; }
 
 // The root nodes of the model's default scene (or every parentless node without scenes),
 // after checking that the nodes form disjoint strict trees (gltf_hierarchy.cpp).

@@ -15,8 +15,6 @@ namespace {
 // The irradiance a spot or point light without a range fades to, relative to 1 m.
 constexpr double kRangeFalloff = 0.01;
 
-bool finite_within(double value) { return std::isfinite(value) && std::abs(value) <= kMaxNumberMagnitude; }
-
 LightType light_type(const GltfSource& source, const tinygltf::Light& light, const std::string& where) {
     if (light.type == "directional") return LightType::Directional;
     if (light.type == "spot") return LightType::Spot;
@@ -29,19 +27,19 @@ Light convert_light(const GltfSource& source, const tinygltf::Light& gltf, const
     Light light;
     light.type = light_type(source, gltf, where);
     if (!gltf.color.empty()) {
-        if (gltf.color.size() != 3 || !std::all_of(gltf.color.begin(), gltf.color.end(), finite_within) ||
+        if (gltf.color.size() != 3 || !std::all_of(gltf.color.begin(), gltf.color.end(), within_float_math) ||
             *std::min_element(gltf.color.begin(), gltf.color.end()) < 0.0) {
             source.fail(where + ".color", "expected 3 finite numbers >= 0");
         }
         light.color = {gltf.color[0], gltf.color[1], gltf.color[2]};
     }
-    if (!finite_within(gltf.intensity) || gltf.intensity < 0.0) {
+    if (!within_float_math(gltf.intensity) || gltf.intensity < 0.0) {
         source.fail(where + ".intensity", "expected a finite number >= 0, got " + std::to_string(gltf.intensity));
     }
     light.intensity = static_cast<float>(gltf.intensity);
     light.radius = 0.0f;  // punctual: the spot and point shadows are hard with pcss as well
     if (light.type == LightType::Directional) return light;
-    if (!finite_within(gltf.range) || gltf.range < 0.0) {
+    if (!within_float_math(gltf.range) || gltf.range < 0.0) {
         source.fail(where + ".range", "expected a finite number > 0, got " + std::to_string(gltf.range));
     }
     const double fade_range = std::sqrt(std::max(gltf.intensity, kRangeFalloff) / kRangeFalloff);

@@ -19,8 +19,13 @@ namespace {
 
 // Finite, and within what the float math downstream carries (kMaxNumberMagnitude).
 bool all_finite(const std::vector<double>& values) {
-    return std::all_of(values.begin(), values.end(),
-                       [](double value) { return std::isfinite(value) && std::abs(value) <= kMaxNumberMagnitude; });
+    return std::all_of(values.begin(), values.end(), within_float_math);
+}
+
+// exclude_casters: a shell-style pattern ('*', '?', '[...]') against a node or mesh name;
+// unnamed nodes and meshes match nothing.
+bool name_matches(const std::string& pattern, const std::string& name) {
+    return !name.empty() && ::fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
 }
 
 // A node that places a mesh, with its model-space transform.
@@ -187,18 +192,15 @@ private:
     }
 
     bool matches_any(const std::string& name) const {
-        return !name.empty() && std::any_of(exclusions_.begin(), exclusions_.end(), [&](const std::string& pattern) {
-            return ::fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
-        });
+        return std::any_of(exclusions_.begin(), exclusions_.end(),
+                           [&](const std::string& pattern) { return name_matches(pattern, name); });
     }
 
     // Every pattern must name something: a typo would otherwise leave the sky box casting.
     void check_exclusion_patterns(const std::vector<std::string>& patterns) {
         exclusions_ = patterns;
         for (size_t i = 0; i < patterns.size(); ++i) {
-            const auto matches = [&](const std::string& name) {
-                return !name.empty() && ::fnmatch(patterns[i].c_str(), name.c_str(), 0) == 0;
-            };
+            const auto matches = [&](const std::string& name) { return name_matches(patterns[i], name); };
             const bool found = std::any_of(model().nodes.begin(), model().nodes.end(),
                                            [&](const tinygltf::Node& node) { return matches(node.name); }) ||
                                std::any_of(model().meshes.begin(), model().meshes.end(),
@@ -263,7 +265,8 @@ private:
             const tinygltf::Value& factor = extension.Get("diffuseFactor");
             const bool valid = factor.IsArray() && factor.ArrayLen() == 4 && [&] {
                 for (int i = 0; i < 4; ++i) {
-                    if (!factor.Get(i).IsNumber() || !std::isfinite(factor.Get(i).GetNumberAsDouble())) return false;
+                    if (!factor.Get(i).IsNumber() || !within_float_math(factor.Get(i).GetNumberAsDouble()))
+                        return false;
                 }
                 return true;
             }();

@@ -7,15 +7,13 @@
 namespace penumbra {
 namespace {
 
-bool finite_within(double value) { return std::isfinite(value) && std::abs(value) <= kMaxNumberMagnitude; }
-
 // An optional [x, y] property (default `fallback`).
 glm::vec2 read_pair(const GltfSource& source, const tinygltf::Value& object, const char* key, glm::vec2 fallback,
                     const std::string& where) {
     if (!object.Has(key)) return fallback;
     const tinygltf::Value& value = object.Get(key);
     if (!value.IsArray() || value.ArrayLen() != 2 || !value.Get(0).IsNumber() || !value.Get(1).IsNumber() ||
-        !finite_within(value.Get(0).GetNumberAsDouble()) || !finite_within(value.Get(1).GetNumberAsDouble())) {
+        !within_float_math(value.Get(0).GetNumberAsDouble()) || !within_float_math(value.Get(1).GetNumberAsDouble())) {
         source.fail(where + "." + key, "expected 2 finite numbers");
     }
     return {static_cast<float>(value.Get(0).GetNumberAsDouble()), static_cast<float>(value.Get(1).GetNumberAsDouble())};
@@ -31,7 +29,7 @@ glm::mat3 read_texture_transform(const GltfSource& source, const tinygltf::Value
     double rotation = 0.0;
     if (extension.Has("rotation")) {
         const tinygltf::Value& value = extension.Get("rotation");
-        if (!value.IsNumber() || !finite_within(value.GetNumberAsDouble())) {
+        if (!value.IsNumber() || !within_float_math(value.GetNumberAsDouble())) {
             source.fail(where + ".rotation", "expected a finite number (radians)");
         }
         rotation = value.GetNumberAsDouble();

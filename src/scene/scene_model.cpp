@@ -22,14 +22,15 @@ bool contains(const Aabb& outer, const Aabb& inner) {
 
 std::vector<std::string> Scene::enclosing_casters() const {
     std::vector<std::string> names;
+    if (instances.size() < 2) return names;
+    Aabb eye;
+    eye.expand(camera.eye);
     std::vector<Aabb> bounds(instances.size());
     for (size_t i = 0; i < instances.size(); ++i) {
         bounds[i] = transform_aabb(meshes.at(instances[i].mesh).bounds, instances[i].world);
     }
     for (size_t i = 0; i < instances.size(); ++i) {
-        if (!instances[i].cast_shadows || instances.size() < 2) continue;
-        Aabb eye;
-        eye.expand(camera.eye);
+        if (!instances[i].cast_shadows) continue;
         bool encloses = contains(bounds[i], eye);
         for (size_t j = 0; j < instances.size() && encloses; ++j) {
             encloses = j == i || contains(bounds[i], bounds[j]);
