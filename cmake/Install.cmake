@@ -1,6 +1,7 @@
 # `cmake --install build --prefix P`: the library (its archive and those of the layers it
-# is made of, which carry no headers), the public headers and GLSL includes, and the
-# package configuration with exported targets. The scene component goes in only when it
+# is made of, which carry no headers), the Vulkan helper component it is built on
+# (Penumbra::gpu, with its public headers in include/penumbra/gpu/), the public headers and
+# GLSL includes, and the package configuration with exported targets. The scene component goes in only when it
 # is built (PENUMBRA_BUILD_TOOLS), in an export set of its own, so that a user who asks
 # for the library alone never needs toml++ or tinygltf.
 include(CMakePackageConfigHelpers)

@@ -5,7 +5,9 @@
 #   2. checks the installed headers: exactly the public headers of include/penumbra/ (less
 #      the scene component's) and the generated version.hpp, each compiling on its own;
 #   3. configures and builds examples/minimal and examples/deferred from clean folders
-#      with find_package(Penumbra) on WORK/prefix, into WORK/minimal and WORK/deferred.
+#      with find_package(Penumbra) on WORK/prefix, into WORK/minimal and WORK/deferred,
+#      and tests/examples/gpu_component (a client of the Vulkan helper component,
+#      Penumbra::gpu) into WORK/gpu_component.
 # The example tests (tests/examples) run the binaries; ctest runs this script first.
 #   scripts/build_examples.sh WORK
 set -euo pipefail
@@ -43,4 +45,7 @@ for example in minimal deferred; do
     -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_COMPILE_WARNING_AS_ERROR=ON >/dev/null
   cmake --build "$work/$example"
 done
-echo "build_examples: the library, its installed headers and both examples built in $work"
+cmake -S "$source_dir/tests/examples/gpu_component" -B "$work/gpu_component" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_COMPILE_WARNING_AS_ERROR=ON >/dev/null
+cmake --build "$work/gpu_component"
+echo "build_examples: the library, its installed headers, both examples and the gpu component client built in $work"

@@ -6,10 +6,10 @@
 
 #include "bench/bench_job.hpp"
 #include "bench/tap_ceiling_pass.hpp"
-#include "gpu/frame_commands.hpp"
-#include "gpu/timestamps.hpp"
 #include "image/output_files.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/frame_commands.hpp"
+#include "penumbra/gpu/timestamps.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "renderer/renderer.hpp"
 

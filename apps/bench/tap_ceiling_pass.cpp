@@ -5,7 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "bench_shaders.hpp"
-#include "gpu/barriers.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "renderer/draw_recording.hpp"
 
 namespace penumbra::bench {

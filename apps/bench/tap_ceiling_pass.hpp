@@ -8,9 +8,9 @@
 
 #include <cstdint>
 
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 
 namespace penumbra::bench {
 

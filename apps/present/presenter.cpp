@@ -1,6 +1,6 @@
 #include "present/presenter.hpp"
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::present {
 namespace {

@@ -17,8 +17,8 @@
 #include <optional>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/handle.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/handle.hpp"
 #include "present/swapchain.hpp"
 #include "present/window.hpp"
 

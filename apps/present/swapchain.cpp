@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::present {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "gpu/check.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::present {
 namespace {

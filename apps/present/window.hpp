@@ -13,8 +13,8 @@
 #include <cstdint>
 #include <string>
 
-#include "gpu/device.hpp"
 #include "penumbra/device.hpp"
+#include "penumbra/gpu/device.hpp"
 
 struct GLFWwindow;
 

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "gpu/features.hpp"
+#include "penumbra/gpu/features.hpp"
 
 namespace penumbra::renderer {
 namespace {

@@ -5,9 +5,9 @@
 // own device: the ShadowSystem gets context.device_desc().
 #include <functional>
 
-#include "gpu/device.hpp"
-#include "gpu/one_time_commands.hpp"
 #include "penumbra/device.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/one_time_commands.hpp"
 
 namespace penumbra::renderer {
 

@@ -5,7 +5,7 @@
 
 #include <span>
 
-#include "gpu/pipeline.hpp"
+#include "penumbra/gpu/pipeline.hpp"
 #include "renderer/draw_data.hpp"
 #include "renderer/shader_interface.hpp"
 

@@ -3,7 +3,7 @@
 #include <array>
 #include <cmath>
 
-#include "gpu/pipeline.hpp"
+#include "penumbra/gpu/pipeline.hpp"
 #include "renderer/renderer.hpp"
 
 namespace penumbra::renderer {

@@ -4,8 +4,8 @@
 // and the lights as the ShadowSystem takes them.
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/handle.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/handle.hpp"
 #include "penumbra/lights.hpp"
 #include "penumbra/scene/render_settings.hpp"
 #include "penumbra/scene/scene.hpp"

@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "gpu/barriers.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "renderer/draw_recording.hpp"
 #include "renderer/shader_interface.hpp"
 #include "renderer_shaders.hpp"

@@ -6,8 +6,8 @@
 // (nothing is copied), with the material's texture as the alpha mask of masked casters.
 #include <vector>
 
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "penumbra/scene/scene.hpp"
 #include "penumbra/shadow_system.hpp"
 #include "renderer/app_context.hpp"

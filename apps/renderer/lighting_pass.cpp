@@ -3,7 +3,7 @@
 #include <array>
 #include <vector>
 
-#include "gpu/barriers.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "renderer/draw_recording.hpp"
 #include "renderer/shader_interface.hpp"
 #include "renderer_shaders.hpp"

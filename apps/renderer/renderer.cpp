@@ -7,10 +7,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "gpu/barriers.hpp"
-#include "gpu/frame_commands.hpp"
-#include "gpu/pipeline.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/frame_commands.hpp"
+#include "penumbra/gpu/pipeline.hpp"
 #include "renderer/frame_uniforms.hpp"
 #include "renderer/geometry_aov_pass.hpp"
 #include "renderer/gpu_scene.hpp"

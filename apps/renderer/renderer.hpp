@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "gpu/resources.hpp"
-#include "gpu/timestamps.hpp"
+#include "penumbra/gpu/resources.hpp"
+#include "penumbra/gpu/timestamps.hpp"
 #include "penumbra/scene/render_settings.hpp"
 #include "penumbra/scene/scene.hpp"
 #include "penumbra/shadow_system.hpp"

@@ -1,4 +1,4 @@
-#include "gpu/barriers.hpp"
+#include "penumbra/gpu/barriers.hpp"
 
 namespace penumbra::gpu {
 namespace {

@@ -1,4 +1,4 @@
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 #include <filesystem>
 

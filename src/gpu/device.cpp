@@ -1,8 +1,8 @@
-#include "gpu/device.hpp"
+#include "penumbra/gpu/device.hpp"
 
 #include <vector>
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 

@@ -1,4 +1,4 @@
-#include "gpu/dispatch.hpp"
+#include "penumbra/gpu/dispatch.hpp"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "gpu/features.hpp"
+#include "penumbra/gpu/features.hpp"
 
 namespace penumbra::gpu {
 

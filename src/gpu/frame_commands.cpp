@@ -1,6 +1,6 @@
-#include "gpu/frame_commands.hpp"
+#include "penumbra/gpu/frame_commands.hpp"
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 

@@ -1,6 +1,6 @@
-#include "gpu/one_time_commands.hpp"
+#include "penumbra/gpu/one_time_commands.hpp"
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 

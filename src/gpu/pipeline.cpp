@@ -1,6 +1,6 @@
-#include "gpu/pipeline.hpp"
+#include "penumbra/gpu/pipeline.hpp"
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 

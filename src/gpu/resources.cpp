@@ -1,9 +1,9 @@
-#include "gpu/resources.hpp"
+#include "penumbra/gpu/resources.hpp"
 
 #include <cstring>
 
-#include "gpu/barriers.hpp"
-#include "gpu/check.hpp"
+#include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 namespace {

@@ -1,8 +1,9 @@
-#include "gpu/timestamps.hpp"
+#include "penumbra/gpu/timestamps.hpp"
 
-#include <stdexcept>
+#include <string>
 
-#include "gpu/check.hpp"
+#include "penumbra/errors.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 namespace {
@@ -46,7 +47,7 @@ void GpuTimer::begin_frame(VkCommandBuffer cmd) {
 
 uint32_t GpuTimer::begin(VkCommandBuffer cmd, std::string name) {
     if (names_.size() >= max_scopes_) {
-        throw std::logic_error("GpuTimer: more than " + std::to_string(max_scopes_) + " scopes in one frame");
+        throw UsageError("GpuTimer: more than " + std::to_string(max_scopes_) + " scopes in one frame");
     }
     const auto scope = static_cast<uint32_t>(names_.size());
     names_.push_back(std::move(name));
@@ -66,7 +67,7 @@ void GpuTimer::end(VkCommandBuffer cmd, uint32_t scope) {
 std::optional<std::vector<ScopeTime>> GpuTimer::read() const {
     if (!supported() || names_.empty()) return std::nullopt;
     for (const bool ended : ended_) {
-        if (!ended) throw std::logic_error("GpuTimer: a scope was opened but never closed");
+        if (!ended) throw UsageError("GpuTimer: a scope was opened but never closed");
     }
     std::vector<uint64_t> ticks(2 * names_.size());
     // No WAIT flag: a result that is not there yet must not block forever.

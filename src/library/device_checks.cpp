@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "gpu/features.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/features.hpp"
 
 namespace penumbra::library {
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
 // Checks that a caller's device can run a ShadowSystem (docs/library.md, "Device
 // requirements") and reads which optional features it has.
-#include "gpu/device.hpp"
 #include "penumbra/device.hpp"
+#include "penumbra/gpu/device.hpp"
 
 namespace penumbra::library {
 

@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
-#include "gpu/timestamps.hpp"
 #include "library/shadow_maps.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
+#include "penumbra/gpu/timestamps.hpp"
 
 namespace penumbra::library {
 

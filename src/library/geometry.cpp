@@ -5,10 +5,10 @@
 #include <cstring>
 #include <string>
 
-#include "gpu/barriers.hpp"
 #include "library/conversions.hpp"
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/barriers.hpp"
 
 namespace penumbra::library {
 namespace {

@@ -8,11 +8,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
 #include "library/retired.hpp"
 #include "passes/casters.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "penumbra/scene/scene.hpp"
 #include "penumbra/shadow_system.hpp"
 

@@ -8,15 +8,15 @@
 #include <vector>
 
 #include "core/local_lights.hpp"
-#include "gpu/device.hpp"
-#include "gpu/resources.hpp"
-#include "gpu/timestamps.hpp"
 #include "library/retired.hpp"
 #include "passes/casters.hpp"
 #include "passes/local_moments_pass.hpp"
 #include "passes/local_shadow_pass.hpp"
 #include "passes/moments_pass.hpp"
 #include "passes/shadow_pass.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/resources.hpp"
+#include "penumbra/gpu/timestamps.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::library {

@@ -13,7 +13,6 @@
 #include "core/cascades.hpp"
 #include "core/caster_facing.hpp"
 #include "core/local_lights.hpp"
-#include "gpu/device.hpp"
 #include "library/conversions.hpp"
 #include "library/device_checks.hpp"
 #include "library/frame_setup.hpp"
@@ -25,6 +24,7 @@
 #include "passes/shadow_filter_specialization.hpp"
 #include "passes/visibility_resolve_pass.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/device.hpp"
 
 namespace penumbra {
 namespace {

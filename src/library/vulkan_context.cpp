@@ -2,7 +2,7 @@
 // device, for callers without a renderer of their own.
 #include <utility>
 
-#include "gpu/context.hpp"
+#include "library/device_context.hpp"
 #include "penumbra/device.hpp"
 #include "penumbra/errors.hpp"
 

@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "gpu/check.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::passes {
 namespace {

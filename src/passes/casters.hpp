@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "penumbra/scene/scene.hpp"
 #include "penumbra/settings.hpp"
 

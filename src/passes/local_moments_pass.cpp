@@ -1,7 +1,7 @@
 #include "passes/local_moments_pass.hpp"
 
-#include "gpu/barriers.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
 #include "passes/moments_blur.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {

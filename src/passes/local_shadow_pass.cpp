@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "gpu/barriers.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {

@@ -1,9 +1,9 @@
 #include "passes/moments_blur.hpp"
 
-#include "gpu/barriers.hpp"
 #include "passes/casters.hpp"
 #include "passes/shader_interface.hpp"
 #include "passes/shadow_filter_specialization.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {

@@ -1,8 +1,8 @@
 #include "passes/moments_pass.hpp"
 
-#include "gpu/barriers.hpp"
 #include "passes/shader_interface.hpp"
 #include "passes/shadow_filter_specialization.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {

@@ -13,11 +13,11 @@
 #include <optional>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
 #include "passes/casters.hpp"
 #include "passes/moments_blur.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {

@@ -4,7 +4,7 @@
 // the same variant.
 #include <vector>
 
-#include "gpu/pipeline.hpp"
+#include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <string>
 
-#include "gpu/barriers.hpp"
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {

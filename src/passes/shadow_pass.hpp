@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
-#include "gpu/timestamps.hpp"
 #include "passes/casters.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
+#include "penumbra/gpu/timestamps.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {

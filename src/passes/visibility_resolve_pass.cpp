@@ -2,8 +2,8 @@
 
 #include <array>
 
-#include "gpu/barriers.hpp"
 #include "passes/shadow_filter_specialization.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {

@@ -4,10 +4,10 @@
 // light's visibility with the configured filter into an RGBA8 array image.
 #include <vulkan/vulkan.h>
 
-#include "gpu/device.hpp"
-#include "gpu/pipeline.hpp"
-#include "gpu/resources.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {

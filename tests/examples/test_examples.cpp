@@ -210,6 +210,16 @@ TEST(Examples, DeferredShadowFollowsTheMovedBox) {
     expect_matches_scene(dir / "second.png", {3.0f, 3.0f, -2.0f}, 100);
 }
 
+// The Vulkan helper component, installed and used by a client of its own
+// (tests/examples/gpu_component): its buffer, one-off commands and host barrier work on
+// the device of a VulkanContext, validation-clean.
+TEST(Examples, GpuComponentWorksFromTheInstalledPackage) {
+    ASSERT_TRUE(built("penumbra_gpu_component"));
+    const fs::path dir = fresh_dir("gpu_component");
+    EXPECT_EQ(run_example("penumbra_gpu_component", "", dir), 0) << log_of(dir);
+    EXPECT_NE(log_of(dir).find("0 of 1024 words wrong"), std::string::npos) << log_of(dir);
+}
+
 // Forward (interpolated positions and normals) and deferred (positions rebuilt from depth,
 // normals from its derivatives) sample the same maps: away from silhouettes and shadow
 // edges they must give the same visibility, and the whole images must be nearly equal.

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "gpu/barriers.hpp"
+#include "penumbra/gpu/barriers.hpp"
 
 namespace penumbra::view {
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/resources.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "present/presenter.hpp"
 #include "renderer/app_context.hpp"
 

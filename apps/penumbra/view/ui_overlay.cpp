@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "gpu/check.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::view {
 namespace {

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpu/handle.hpp"
+#include "penumbra/gpu/handle.hpp"
 #include "present/presenter.hpp"
 #include "present/window.hpp"
 #include "renderer/app_context.hpp"

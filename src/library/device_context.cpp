@@ -1,12 +1,12 @@
-#include "gpu/context.hpp"
+#include "library/device_context.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <optional>
 
-#include "gpu/check.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 namespace {

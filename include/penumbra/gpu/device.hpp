@@ -1,7 +1,7 @@
 #pragma once
 // The device layer's view of a Vulkan device: handles, the function table they are used
-// through, and what the device can do. A Device owns nothing: the caller (or gpu::Context,
-// which creates one) keeps the instance and device alive and destroys them.
+// through, and what the device can do. A Device owns nothing: the caller (or the library's
+// VulkanContext, which creates one) keeps the instance and device alive and destroys them.
 //
 // Calls go through the table: `device->vkCmdDraw(cmd, ...)` (operator-> reaches the
 // VulkanFunctions of this device; see gpu/dispatch.hpp).
@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <string>
 
-#include "gpu/dispatch.hpp"
+#include "penumbra/gpu/dispatch.hpp"
 
 namespace penumbra::gpu {
 
@@ -42,7 +42,8 @@ struct DeviceHandles {
 class Device {
 public:
     // Loads the function table through `get_instance_proc_addr` and reads the device's
-    // properties. Checks nothing about features: see check_device_requirements().
+    // properties. Checks nothing about features (a ShadowSystem checks what it needs and
+    // names what is missing).
     Device(const DeviceHandles& handles, const EnabledFeatures& features,
            PFN_vkGetInstanceProcAddr get_instance_proc_addr);
     virtual ~Device() = default;
@@ -70,7 +71,8 @@ public:
     uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
 
 protected:
-    // For gpu::Context, which creates the handles first and then calls initialize().
+    // For the library's own device context, which creates the handles first and then calls
+    // initialize().
     Device() = default;
     void initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index = 0);
     VulkanFunctions vk_;

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/handle.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/handle.hpp"
 
 namespace penumbra::gpu {
 
@@ -40,7 +40,7 @@ public:
 
     // Resets the queries and forgets the previous frame's scopes.
     void begin_frame(VkCommandBuffer cmd);
-    // Opens a scope; returns its index for end(). Throws std::logic_error past max_scopes.
+    // Opens a scope; returns its index for end(). Throws UsageError past max_scopes.
     uint32_t begin(VkCommandBuffer cmd, std::string name);
     void end(VkCommandBuffer cmd, uint32_t scope);
 

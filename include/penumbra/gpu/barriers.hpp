@@ -4,7 +4,7 @@
 // here, in one table, instead of hand-written barriers throughout the code.
 #include <vulkan/vulkan.h>
 
-#include "gpu/resources.hpp"
+#include "penumbra/gpu/resources.hpp"
 
 namespace penumbra::gpu {
 

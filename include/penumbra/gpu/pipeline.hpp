@@ -9,8 +9,8 @@
 #include <span>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/handle.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/handle.hpp"
 
 namespace penumbra::gpu {
 

@@ -6,8 +6,8 @@
 
 #include <functional>
 
-#include "gpu/device.hpp"
-#include "gpu/handle.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/handle.hpp"
 
 namespace penumbra::gpu {
 

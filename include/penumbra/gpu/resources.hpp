@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "gpu/device.hpp"
-#include "gpu/handle.hpp"
-#include "gpu/one_time_commands.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/handle.hpp"
+#include "penumbra/gpu/one_time_commands.hpp"
 
 namespace penumbra::gpu {
 

@@ -8,7 +8,7 @@
 
 #include <utility>
 
-#include "gpu/device.hpp"
+#include "penumbra/gpu/device.hpp"
 
 namespace penumbra::gpu {
 

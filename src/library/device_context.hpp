@@ -4,7 +4,7 @@
 // and synchronization validation), physical-device choice, a device with exactly the
 // features Penumbra uses and one graphics + compute queue. Headless by default: no
 // surface, no swapchain;
-// ContextOptions::presentation turns on what a window needs (the viewer's src/present).
+// ContextOptions::presentation turns on what a window needs (the viewer's apps/present).
 // A Context is a gpu::Device, so everything that takes a Device takes a Context.
 #include <vulkan/vulkan.h>
 
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "gpu/device.hpp"
+#include "penumbra/gpu/device.hpp"
 
 namespace penumbra::gpu {
 
