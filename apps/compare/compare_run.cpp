@@ -248,6 +248,9 @@ std::vector<CapturedFrame> render_and_trace(const CompareJob& job, const Prepare
             result.nearest_texel_world_size = motion_texel_size(context, prepared);
         }
         renderer::Renderer renderer(context, prepared.scene, prepared.settings);
+        // Stability measures the shadow map's own changes under camera motion: the Poisson
+        // and PCSS patterns, which otherwise rotate every frame, stay as in frame 0.
+        renderer.fix_sampling_pattern(0);
         TraceTarget target{{result.to_sun, result.sun_angular_diameter_degrees, job.rays},
                            result.local_light ? &*result.local_light : nullptr};
         const uint32_t frame_count = result.local_light ? 1 : job.stability_frames;

@@ -244,7 +244,9 @@ void Renderer::prepare_frame(const Camera& camera) {
     ShadowSystem& shadows = resources_->shadows;
     shadows.set_lights(shadow_lights(scene_.lights));
     const ViewDesc view = view_of(camera, settings_);
-    const penumbra::FrameInfo& frame = shadows.prepare(cascade_camera_ ? view_of(*cascade_camera_, settings_) : view);
+    ViewDesc shadow_view = cascade_camera_ ? view_of(*cascade_camera_, settings_) : view;
+    shadow_view.sampling_frame = sampling_frame_;
+    const penumbra::FrameInfo& frame = shadows.prepare(shadow_view);
     shadow_frame_ = frame.frame;
     shadow_set_ = frame.descriptor_set;
     last_frame_.cascades = frame.cascades;

@@ -102,6 +102,9 @@ public:
     // (nullopt: the rendered camera again). `penumbra compare` uses it to measure shimmer:
     // the image stays put while the cascades follow a moving camera.
     void fit_cascades_to(const std::optional<Camera>& camera) { cascade_camera_ = camera; }
+    // Fixes the Poisson/PCSS sampling rotation (ViewDesc::sampling_frame); nullopt: a new
+    // rotation every frame, as by default.
+    void fix_sampling_pattern(std::optional<uint32_t> sampling_frame) { sampling_frame_ = sampling_frame; }
     // The one-line warning for shadow-casting lights left unshadowed or unlit; empty when none.
     std::string light_warning() const;
     // The one-line warning for a shadow caster that encloses the camera and the whole scene
@@ -122,6 +125,7 @@ private:
     uint64_t shadow_frame_ = 0;                    // the ShadowSystem's FrameInfo of the frame being rendered:
     VkDescriptorSet shadow_set_ = VK_NULL_HANDLE;  // its number and descriptor set
     std::optional<Camera> cascade_camera_;         // fit_cascades_to()
+    std::optional<uint32_t> sampling_frame_;       // fix_sampling_pattern()
 };
 
 }  // namespace penumbra::renderer

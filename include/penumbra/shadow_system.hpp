@@ -121,6 +121,11 @@ struct ViewDesc {
     float far_plane = 200.0f;    // > near_plane, finite: the cascades reach min(far, max_distance)
     uint32_t width = 1280;       // the rendered image in pixels: aspect ratio, and the local
     uint32_t height = 720;       // shadow maps' coverage sizing
+    // Rotates the per-pixel sampling pattern of the Poisson and PCSS filters, so that a
+    // renderer that accumulates frames (TAA) averages the pattern away. nullopt: the frame
+    // number, a new rotation every frame; a fixed value keeps the pattern still (the tools'
+    // `compare` fixes it while it measures temporal stability).
+    std::optional<uint32_t> sampling_frame;
 };
 
 // A look-at ViewDesc (eye, target, up; up may not be parallel to target - eye).

@@ -105,7 +105,8 @@ struct ShadowSystem::Impl {
     library::Geometry geometry;
 
     std::vector<Light> lights;
-    uint64_t frame = 0;  // prepare() calls so far; the current frame's number
+    uint64_t frame = 0;           // prepare() calls so far; the current frame's number
+    uint32_t sampling_frame = 0;  // rotates the Poisson/PCSS patterns (ViewDesc::sampling_frame)
     FrameInfo info;
     // What prepare() computed for record_shadow_maps().
     std::vector<passes::DrawList> cascade_lists;
@@ -176,8 +177,8 @@ struct ShadowSystem::Impl {
             info.cascades.push_back(out);
         }
         library::FrameSlot& slot = slots.at(frame);
-        const shader::PenumbraShadowUniforms uniforms = library::build_shadow_uniforms(
-            camera, set, sun_light, casts, settings.shadow, static_cast<uint32_t>(frame - 1));
+        const shader::PenumbraShadowUniforms uniforms =
+            library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow, sampling_frame);
         std::memcpy(slot.shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
     }
 
@@ -276,6 +277,7 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     slot.shadow_maps_recorded = false;
     slot.visibility_recorded = false;
     impl.info.frame = impl.frame;
+    impl.sampling_frame = view.sampling_frame.value_or(static_cast<uint32_t>(impl.frame - 1));
     impl.info.sun.reset();
     for (uint32_t i = 0; i < impl.lights.size(); ++i) {
         if (impl.lights[i].type == LightType::Directional) {

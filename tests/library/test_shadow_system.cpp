@@ -2,9 +2,10 @@
 // shadow against the analytic one; instances that move, lose their shadow flag or go away
 // and lights that change show in the next frame; caller buffers and uploaded arrays give
 // the same shadow maps; the caller's normals; frames in flight; caster face culling; a
-// point light's slot; timings and memory.
+// point light's slot; timings and memory; the sampling frame that rotates the patterns.
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "library_fixture.hpp"
@@ -481,6 +482,36 @@ TEST_F(ShadowSystemFrames, HugeAndTinyDirectionsAreTheSameLight) {
                             {kSunDirection.x * scale, kSunDirection.y * scale, kSunDirection.z * scale}};
         shadows.set_lights({&sun, 1});
         EXPECT_EQ(render_visibility(shadows).values, unit) << scale;
+    }
+}
+
+// ViewDesc::sampling_frame: by default the Poisson and PCSS patterns rotate every frame
+// (the penumbra's pixels change between two identical frames); a fixed sampling frame
+// gives bit-identical frames, and the same rotation as the frame number it names.
+TEST_F(ShadowSystemFrames, FixedSamplingFrameStillsTheRotatingPatterns) {
+    for (const ShadowFilter filter : {ShadowFilter::Poisson, ShadowFilter::Pcss}) {
+        Settings settings = test_settings();
+        settings.shadow.filter.mode = filter;
+        ShadowSystem shadows(system_desc(settings));
+        const MeshArrays box = box_mesh();
+        const MeshArrays ground = ground_mesh();
+        add_scene(shadows, box, ground);
+        const auto render_with = [&](std::optional<uint32_t> sampling_frame) {
+            ViewDesc view = top_down_view();
+            view.sampling_frame = sampling_frame;
+            shadows.prepare(view);
+            submit([&](VkCommandBuffer cmd) {
+                shadows.record_shadow_maps(cmd);
+                record_ground_visibility(cmd, shadows, nullptr, NormalEncoding::SignedFloat);
+            });
+            return read_visibility(shadows, 0).values;
+        };
+        const std::vector<float> frame_0 = render_with(std::nullopt);  // frame number 0
+        const std::vector<float> frame_1 = render_with(std::nullopt);
+        EXPECT_NE(frame_0, frame_1) << "the pattern rotates from frame to frame";
+        EXPECT_EQ(render_with(0u), frame_0);
+        EXPECT_EQ(render_with(0u), frame_0);
+        EXPECT_EQ(render_with(1u), frame_1);
     }
 }
 
