@@ -7,6 +7,7 @@
 // shimmer of K frames under small camera motions (temporal stability).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ struct CompareJob {
     uint32_t stability_frames = 8;  // frames under camera motion (1 = no stability measurement)
     std::filesystem::path out_dir = "compare";
     std::optional<std::filesystem::path> json;  // default: out_dir / "compare.json"
+    // Optional: called while the reference of frame `frame` (0-based, of `frames`) is traced,
+    // with its rows traced so far; on the calling thread.
+    std::function<void(uint32_t frame, uint32_t frames, uint32_t rows_done, uint32_t rows)> progress;
 };
 
 struct PixelCounts {

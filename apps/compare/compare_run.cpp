@@ -183,9 +183,9 @@ CapturedFrame capture(renderer::FrameImages& images, const quality::ShadowRayTra
     quality::SurfaceImage surfaces{images.width, images.height, std::move(images.world_position),
                                    std::move(images.world_normal)};
     quality::ReferenceImages reference =
-        target.local_light
-            ? quality::trace_local_light_reference(tracer, surfaces, *target.local_light, target.sun.rays)
-            : quality::trace_reference(tracer, surfaces, target.sun);
+        target.local_light ? quality::trace_local_light_reference(tracer, surfaces, *target.local_light,
+                                                                  target.sun.rays, target.sun.progress)
+                           : quality::trace_reference(tracer, surfaces, target.sun);
     frame.positions = std::move(surfaces.positions);
     frame.hard = std::move(reference.hard);
     if (soft) *soft = std::move(reference.soft);
@@ -267,6 +267,11 @@ std::vector<CapturedFrame> render_and_trace(const CompareJob& job, const Prepare
                 result.images.world_position = images.world_position;
             }
             start = Clock::now();
+            if (job.progress) {
+                target.sun.progress = [&job, k, frame_count](uint32_t done, uint32_t rows) {
+                    job.progress(k, frame_count, done, rows);
+                };
+            }
             PixelCounts counts;
             frames.push_back(capture(images, tracer, target, counts, k == 0 ? &result.images.frame.soft : nullptr));
             frames.back().camera = frame_camera(camera, prepared.settings);

@@ -41,7 +41,8 @@ int bench(penumbra::bench::BenchJob job) {
     return 0;
 }
 
-int compare(const penumbra::compare::CompareJob& job) {
+int compare(penumbra::compare::CompareJob job) {
+    job.progress = penumbra::cli::terminal_trace_progress_bar();
     const penumbra::compare::CompareResult result = penumbra::compare::run_compare_job(job);
     std::printf("%s", penumbra::compare::format_compare_summary(result).c_str());
     const auto written = penumbra::compare::write_compare_outputs(result);

@@ -67,32 +67,35 @@ float light_reach(const Light& light, const glm::vec4& position, const glm::vec4
 }
 
 ReferenceImages trace_local_light_reference(const ShadowRayTracer& tracer, const SurfaceImage& surfaces,
-                                            const Light& light, uint32_t rays) {
+                                            const Light& light, uint32_t rays, const RowProgress& progress) {
     const size_t pixels = size_t{surfaces.width} * surfaces.height;
     ReferenceImages images;
     images.hard.assign(pixels, 1);
     if (rays > 0) images.soft.assign(pixels, 1.0f);
     const bool area_light = rays > 1 && light.radius > 0.0f;
     const float offset = end_offset(light.position);
-    parallel_rows(surfaces.height, [&](uint32_t row) {
-        for (uint32_t x = 0; x < surfaces.width; ++x) {
-            const size_t pixel = size_t{row} * surfaces.width + x;
-            const glm::vec4& position = surfaces.positions[pixel];
-            const glm::vec4& normal = surfaces.normals[pixel];
-            if (position.w <= 0.5f) continue;
-            if (!in_range_and_facing(light, glm::vec3(position), glm::vec3(normal))) {
-                images.hard[pixel] = 0;
-                if (rays > 0) images.soft[pixel] = 0.0f;
-                continue;
+    parallel_rows(
+        surfaces.height,
+        [&](uint32_t row) {
+            for (uint32_t x = 0; x < surfaces.width; ++x) {
+                const size_t pixel = size_t{row} * surfaces.width + x;
+                const glm::vec4& position = surfaces.positions[pixel];
+                const glm::vec4& normal = surfaces.normals[pixel];
+                if (position.w <= 0.5f) continue;
+                if (!in_range_and_facing(light, glm::vec3(position), glm::vec3(normal))) {
+                    images.hard[pixel] = 0;
+                    if (rays > 0) images.soft[pixel] = 0.0f;
+                    continue;
+                }
+                const glm::vec3 origin = shadow_ray_origin(glm::vec3(position), glm::vec3(normal));
+                images.hard[pixel] = segment_occluded(tracer, origin, light.position, offset) ? 0 : 1;
+                if (rays == 0) continue;
+                images.soft[pixel] =
+                    area_light ? soft_visibility(tracer, light, origin, rays, static_cast<uint32_t>(pixel), offset)
+                               : static_cast<float>(images.hard[pixel]);
             }
-            const glm::vec3 origin = shadow_ray_origin(glm::vec3(position), glm::vec3(normal));
-            images.hard[pixel] = segment_occluded(tracer, origin, light.position, offset) ? 0 : 1;
-            if (rays == 0) continue;
-            images.soft[pixel] =
-                area_light ? soft_visibility(tracer, light, origin, rays, static_cast<uint32_t>(pixel), offset)
-                           : static_cast<float>(images.hard[pixel]);
-        }
-    });
+        },
+        progress);
     return images;
 }
 

@@ -28,6 +28,6 @@ float light_reach(const Light& light, const glm::vec4& position, const glm::vec4
 // from range or facing) read 0, as in the AOV. `rays` <= 1 or a light of radius 0 gives a
 // soft image equal to the hard one; rays = 0 leaves the soft image empty.
 ReferenceImages trace_local_light_reference(const ShadowRayTracer& tracer, const SurfaceImage& surfaces,
-                                            const Light& light, uint32_t rays);
+                                            const Light& light, uint32_t rays, const RowProgress& progress = {});
 
 }  // namespace penumbra::quality

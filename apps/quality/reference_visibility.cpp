@@ -43,24 +43,28 @@ ReferenceImages trace_reference(const ShadowRayTracer& tracer, const SurfaceImag
     images.hard.assign(pixels, 1);
     if (options.rays > 0) images.soft.assign(pixels, 1.0f);
     const SunDisk sun(options.to_sun, options.angular_diameter_degrees);
-    parallel_rows(surfaces.height, [&](uint32_t row) {
-        for (uint32_t x = 0; x < surfaces.width; ++x) {
-            const size_t pixel = size_t{row} * surfaces.width + x;
-            const glm::vec4& position = surfaces.positions[pixel];
-            const glm::vec4& normal = surfaces.normals[pixel];
-            if (position.w <= 0.5f) continue;
-            if (!faces_sun(position, normal, sun.center())) {
-                images.hard[pixel] = 0;
-                if (options.rays > 0) images.soft[pixel] = 0.0f;
-                continue;
+    parallel_rows(
+        surfaces.height,
+        [&](uint32_t row) {
+            for (uint32_t x = 0; x < surfaces.width; ++x) {
+                const size_t pixel = size_t{row} * surfaces.width + x;
+                const glm::vec4& position = surfaces.positions[pixel];
+                const glm::vec4& normal = surfaces.normals[pixel];
+                if (position.w <= 0.5f) continue;
+                if (!faces_sun(position, normal, sun.center())) {
+                    images.hard[pixel] = 0;
+                    if (options.rays > 0) images.soft[pixel] = 0.0f;
+                    continue;
+                }
+                const glm::vec3 origin = shadow_ray_origin(glm::vec3(position), glm::vec3(normal));
+                images.hard[pixel] = tracer.occluded(origin, sun.center()) ? 0 : 1;
+                if (options.rays > 0) {
+                    images.soft[pixel] =
+                        soft_visibility(tracer, sun, origin, options.rays, static_cast<uint32_t>(pixel));
+                }
             }
-            const glm::vec3 origin = shadow_ray_origin(glm::vec3(position), glm::vec3(normal));
-            images.hard[pixel] = tracer.occluded(origin, sun.center()) ? 0 : 1;
-            if (options.rays > 0) {
-                images.soft[pixel] = soft_visibility(tracer, sun, origin, options.rays, static_cast<uint32_t>(pixel));
-            }
-        }
-    });
+        },
+        options.progress);
     return images;
 }
 

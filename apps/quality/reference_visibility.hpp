@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include "quality/parallel_rows.hpp"
 #include "quality/shadow_ray_tracer.hpp"
 
 namespace penumbra::quality {
@@ -25,7 +26,8 @@ struct SurfaceImage {
 struct ReferenceOptions {
     glm::vec3 to_sun{0.0f, 1.0f, 0.0f};  // unit direction toward the sun
     float angular_diameter_degrees = 0.53f;
-    uint32_t rays = 64;  // soft reference rays per pixel; 0 = hard reference only
+    uint32_t rays = 64;    // soft reference rays per pixel; 0 = hard reference only
+    RowProgress progress;  // optional: rows traced so far (on the calling thread)
 };
 
 struct ReferenceImages {
