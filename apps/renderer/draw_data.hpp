@@ -18,7 +18,9 @@ struct MaterialBinding {
     float alpha_cutoff = 0.5f;
     float roughness = 0.6f;
     float metallic = 0.0f;
+    glm::vec3 emissive{0.0f};  // emitted radiance, times the emissive texture when it has one
     bool has_texture = false;
+    bool has_emissive_texture = false;
     bool alpha_masked = false;  // MASK, or BLEND cast and shaded as MASK
     bool double_sided = false;
 };

@@ -20,7 +20,8 @@ shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBi
     constants.model = draw.model;
     constants.base_color = material.base_color;
     constants.material = {material.alpha_cutoff, material.roughness, material.metallic, 0.0f};
-    constants.flags = {0u, material.has_texture ? 1u : 0u,
+    constants.emissive = glm::vec4(material.emissive, 0.0f);
+    constants.flags = {material.has_emissive_texture ? 1u : 0u, material.has_texture ? 1u : 0u,
                        material.alpha_masked ? RENDERER_ALPHA_MASK : RENDERER_ALPHA_OPAQUE,
                        draw.receive_shadows ? 1u : 0u};
     return constants;

@@ -102,33 +102,37 @@ void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
     textures_.push_back(gpu::create_texture_rgba8(context.one_time(), 1, 1, white));
     texture_samplers_.push_back(gpu::create_sampler(context, {}));
 
-    const VkDescriptorSetLayoutBinding binding{RENDERER_BINDING_BASE_COLOR_TEXTURE,
-                                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                                               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-    material_set_layout_ = gpu::create_descriptor_set_layout(context, {&binding, 1});
+    const VkDescriptorSetLayoutBinding bindings[] = {
+        {RENDERER_BINDING_BASE_COLOR_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+         VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {RENDERER_BINDING_EMISSIVE_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+         nullptr}};
+    material_set_layout_ = gpu::create_descriptor_set_layout(context, bindings);
     draw_data_.material_set_layout = material_set_layout_;
 
     std::vector<Material> materials = scene.materials;
     if (materials.empty()) materials.emplace_back();  // a scene may have meshes but no materials
     const auto count = static_cast<uint32_t>(materials.size());
-    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count};
+    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * count};
     descriptor_pool_ = gpu::create_descriptor_pool(context, count, {&pool_size, 1});
 
     for (const Material& material : materials) {
         MaterialBinding binding_data;
         binding_data.descriptor_set = gpu::allocate_descriptor_set(context, descriptor_pool_, material_set_layout_);
-        const bool has_texture = material.base_color_texture >= 0 &&
-                                 material.base_color_texture < static_cast<int32_t>(scene.textures.size());
-        const size_t texture_index =
-            has_texture ? static_cast<size_t>(material.base_color_texture) : textures_.size() - 1;
+        const size_t texture_index = texture_slot(material.base_color_texture);
         const gpu::Image& texture = textures_[texture_index];
         const VkSampler sampler = texture_samplers_[texture_index];
         gpu::write_combined_image_sampler(context, binding_data.descriptor_set, RENDERER_BINDING_BASE_COLOR_TEXTURE,
                                           texture.view, sampler);
+        const size_t emissive_index = texture_slot(material.emissive_texture);
+        gpu::write_combined_image_sampler(context, binding_data.descriptor_set, RENDERER_BINDING_EMISSIVE_TEXTURE,
+                                          textures_[emissive_index].view, texture_samplers_[emissive_index]);
         binding_data.texture_view = texture.view;
         binding_data.texture_sampler = sampler;
         binding_data.base_color = material.base_color;
-        binding_data.has_texture = has_texture;
+        binding_data.has_texture = texture_index != white_texture_slot();
+        binding_data.emissive = material.emissive;
+        binding_data.has_emissive_texture = emissive_index != white_texture_slot();
         // BLEND materials are drawn and cast alpha-tested at 0.5 (docs/techniques.md):
         // sorted transparency is out of scope and a shadow map stores one depth per texel.
         binding_data.alpha_masked = material.alpha_mode != AlphaMode::Opaque;

@@ -30,6 +30,14 @@ private:
 
     std::vector<MeshRange> upload_geometry(const AppContext& context, const Scene& scene);
     void create_materials(const AppContext& context, const Scene& scene);
+    // The white fallback texel, last in textures_.
+    size_t white_texture_slot() const { return textures_.size() - 1; }
+    // Where a material's texture index (Scene::textures, -1 for none) is in textures_; the
+    // white texel for none or an index out of range.
+    size_t texture_slot(int32_t texture) const {
+        return texture >= 0 && static_cast<size_t>(texture) < white_texture_slot() ? static_cast<size_t>(texture)
+                                                                                   : white_texture_slot();
+    }
     void add_draws(const Scene& scene, const std::vector<MeshRange>& ranges);
     void add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows) const;
 

@@ -28,6 +28,8 @@ static_assert(sizeof(LocalLight) == 64);
 static_assert(sizeof(LocalLights) == 64 * RENDERER_MAX_LOCAL_LIGHTS);
 static_assert(offsetof(DrawPushConstants, base_color) == 64);
 static_assert(offsetof(DrawPushConstants, flags) == 96);
-static_assert(sizeof(DrawPushConstants) == 112);
+static_assert(offsetof(DrawPushConstants, emissive) == 112);
+// 128 bytes: the push-constant size every Vulkan device supports (maxPushConstantsSize).
+static_assert(sizeof(DrawPushConstants) == 128);
 
 }  // namespace penumbra::renderer::shader

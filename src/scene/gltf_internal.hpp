@@ -134,6 +134,19 @@ void append_gltf_lights(const GltfSource& source, const std::vector<GltfPlacedLi
 glm::mat3 read_texture_transform(const GltfSource& source, const tinygltf::Value& extension, const std::string& where,
                                  int& uv_set);
 
+// The emissive part of a glTF material (glTF 2.0 3.9.2, gltf_emissive.cpp): emissiveFactor
+// times KHR_materials_emissive_strength's emissiveStrength, and the emissiveTexture with
+// the UV set and KHR_texture_transform it is read with. InputError for factors that are
+// not 3 finite numbers >= 0 or a strength that is not a finite number >= 0.
+struct GltfEmissive {
+    glm::vec3 factor{0.0f};
+    int texture = -1;  // glTF texture index, -1 for none
+    int uv_set = 0;
+    glm::mat3 uv_transform{1.0f};
+    std::string where;  // the textureInfo's JSON path
+};
+GltfEmissive read_gltf_emissive(const GltfSource& source, int material);
+
 // Converts a decoded image (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
 // image holds no pixels (it failed to decode) or its size does not match its header.
 Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, const std::string& where);

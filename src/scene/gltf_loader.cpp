@@ -319,7 +319,26 @@ private:
         material.double_sided = gltf.doubleSided;
         material.roughness = std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f);
         material.metallic = std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f);
+        read_emissive(index, material);
         return material;
+    }
+
+    // Penumbra keeps one UV set per vertex, mapped for the base colour texture: an emissive
+    // texture read with other UVs cannot be shown, so it is left out with a warning (its
+    // factor is kept).
+    void read_emissive(int index, Material& material) {
+        const GltfEmissive emissive = read_gltf_emissive(source_, index);
+        material.emissive = emissive.factor;
+        if (emissive.texture < 0) return;
+        GltfPrimitiveOptions mesh_uvs;
+        read_uv_mapping(index, mesh_uvs);
+        if (emissive.uv_set == mesh_uvs.uv_set && emissive.uv_transform == mesh_uvs.uv_transform) {
+            material.emissive_texture = convert_texture(emissive.texture, emissive.where);
+        } else {
+            scene_.warnings.push_back(source_.origin + ": " + emissive.where +
+                                      ": ignored (read with other texture coordinates or another "
+                                      "KHR_texture_transform than the base colour texture)");
+        }
     }
 
     AlphaMode read_alpha_mode(const std::string& mode, const std::string& where) const {
@@ -409,7 +428,7 @@ private:
 // separated; KHR_lights_punctual counts as read only when its lights are imported.
 std::string ignored_extensions(const tinygltf::Model& model, const GltfImportOptions& options) {
     static const char* const kRead[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_materials_unlit",
-                                        "KHR_materials_pbrSpecularGlossiness"};
+                                        "KHR_materials_pbrSpecularGlossiness", "KHR_materials_emissive_strength"};
     std::vector<std::string> listed = model.extensionsUsed;
     listed.insert(listed.end(), model.extensionsRequired.begin(), model.extensionsRequired.end());
     std::sort(listed.begin(), listed.end());

@@ -140,6 +140,10 @@ private:
         material.double_sided = reader.boolean_or("double_sided", material.double_sided);
         material.roughness = unit_interval_number(reader, "roughness", material.roughness);
         material.metallic = unit_interval_number(reader, "metallic", material.metallic);
+        material.emissive = reader.vec3_or("emissive", material.emissive);
+        if (material.emissive.x < 0.0f || material.emissive.y < 0.0f || material.emissive.z < 0.0f) {
+            reader.fail("emissive", "components must be >= 0, got " + format_vector(&material.emissive[0], 3));
+        }
         return material;
     }
 

@@ -170,5 +170,32 @@ TEST(GltfLights, SceneFileImportsAfterItsOwnLights) {
     EXPECT_THAT(testing::scene_error(object + "import_lights = \"yes\"\n"), HasSubstr("import_lights"));
 }
 
+// Emission: emissiveFactor times KHR_materials_emissive_strength, and the emissive texture
+// when it reads the UVs the mesh keeps (the base colour's); one read with other UVs is left
+// out with a warning naming it, and its factor is kept.
+TEST(GltfConformance, EmissiveFactorStrengthAndTexture) {
+    const Scene scene = load_fixture("emissive.gltf");
+    ASSERT_EQ(scene.materials.size(), 1u);
+    const Material& material = scene.materials[0];
+    EXPECT_EQ(material.emissive, glm::vec3(4.0f, 2.0f, 1.0f));
+    EXPECT_EQ(material.emissive_texture, material.base_color_texture);
+    EXPECT_GE(material.emissive_texture, 0);
+    EXPECT_TRUE(scene.warnings.empty()) << "KHR_materials_emissive_strength is read, not ignored";
+
+    const Scene other_uvs = load_fixture("emissive_other_uvs.gltf");
+    EXPECT_EQ(other_uvs.materials[0].emissive, glm::vec3(1.0f));
+    EXPECT_EQ(other_uvs.materials[0].emissive_texture, -1);
+    ASSERT_EQ(other_uvs.warnings.size(), 1u);
+    EXPECT_THAT(other_uvs.warnings[0], HasSubstr("materials[0].emissiveTexture: ignored"));
+}
+
+TEST(GltfConformance, MalformedEmissionIsNamed) {
+    EXPECT_THAT(load_error("emissive_negative.gltf"),
+                HasSubstr("materials[0].emissiveFactor: expected 3 finite numbers >= 0"));
+    EXPECT_THAT(load_error("emissive_bad_strength.gltf"),
+                HasSubstr("materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: expected a "
+                          "finite number >= 0"));
+}
+
 }  // namespace
 }  // namespace penumbra

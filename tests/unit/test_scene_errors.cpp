@@ -195,6 +195,8 @@ INSTANTIATE_TEST_SUITE_P(
                         "scene.toml: objects[0].alpha_cutoff: must be between 0 and 1, got 1.5"},
         ObjectErrorCase{"roughness", "[[objects]]\ntype = \"box\"\nroughness = -0.1\n",
                         "scene.toml: objects[0].roughness: must be between 0 and 1, got -0.1"},
+        ObjectErrorCase{"negative_emissive", "[[objects]]\ntype = \"box\"\nemissive = [0, -2, 1]\n",
+                        "scene.toml: objects[0].emissive: components must be >= 0, got [0, -2, 1]"},
         ObjectErrorCase{"negative_colour", "[[objects]]\ntype = \"box\"\ncolor = [1, -1, 1]\n",
                         "scene.toml: objects[0].color: components must be >= 0 and alpha at most 1, got [1, -1, 1, 1]"},
         ObjectErrorCase{"gltf_without_file", "[[objects]]\ntype = \"gltf\"\n",

@@ -82,6 +82,7 @@ TEST(SceneToml, PrimitiveMaterialDefaultsAndOverrides) {
         color = [0.1, 0.2, 0.3, 0.5]
         roughness = 0.25
         metallic = 1
+        emissive = [2.0, 0.5, 0.0]
         double_sided = true
         alpha_mode = "blend"
     )");
@@ -91,10 +92,12 @@ TEST(SceneToml, PrimitiveMaterialDefaultsAndOverrides) {
     EXPECT_EQ(plain.alpha_mode, AlphaMode::Opaque);
     EXPECT_EQ(plain.base_color_texture, -1);
     EXPECT_FALSE(plain.double_sided);
+    EXPECT_EQ(plain.emissive, glm::vec3(0.0f));
     const Material& custom = scene.materials[scene.meshes[1].material];
     EXPECT_EQ(custom.base_color, glm::vec4(0.1f, 0.2f, 0.3f, 0.5f));
     EXPECT_FLOAT_EQ(custom.roughness, 0.25f);
     EXPECT_FLOAT_EQ(custom.metallic, 1.0f);
+    EXPECT_EQ(custom.emissive, glm::vec3(2.0f, 0.5f, 0.0f));
     EXPECT_TRUE(custom.double_sided);
     EXPECT_EQ(custom.alpha_mode, AlphaMode::Blend);
 }

@@ -1,6 +1,6 @@
 #version 460
-// Forward shading of the sun (Lambert diffuse + GGX specular), spot and point lights and
-// ambient, with every light's shadow from Penumbra's shadow library, included here as any
+// Forward shading of the sun (Lambert diffuse + GGX specular), spot and point lights,
+// ambient and emission, with every light's shadow from Penumbra's shadow library, included here as any
 // renderer would include it (penumbra/shadow.glsl, its descriptor set at set 2). Besides
 // the tone-mapped colour it writes two exact outputs used by tests and tools: a light's
 // visibility (R16_UNORM: the sun's, or light N's with `--aov shadow:N`) and the index of
@@ -16,6 +16,7 @@ layout(std430, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_LIGHTS) read
 };
 layout(push_constant) uniform PushBlock { DrawPushConstants draw; };
 layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_BASE_COLOR_TEXTURE) uniform sampler2D base_color_texture;
+layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_EMISSIVE_TEXTURE) uniform sampler2D emissive_texture;
 
 #define PENUMBRA_SHADOW_SET RENDERER_SET_SHADOWS
 #include "penumbra/shadow.glsl"
@@ -77,6 +78,10 @@ void main() {
                            draw.material.y, draw.material.z);
     }
     color += base_color.rgb * frame.ambient.rgb;
+    // Emission (glTF emissiveFactor x texture) is the surface's own light: no shadow.
+    vec3 emission = draw.emissive.rgb;
+    if (draw.flags.x != 0u) emission *= texture(emissive_texture, in_uv).rgb;
+    color += emission;
     const int cascade = receiver.cascade;
     if (frame.debug_view == RENDERER_DEBUG_VIEW_CASCADES && cascade >= 0) color *= kCascadeTints[cascade];
 

@@ -116,6 +116,11 @@ struct Material {
     bool double_sided = false;
     float roughness = 0.6f;
     float metallic = 0.0f;
+    // Light the surface emits itself (linear RGB radiance, unaffected by shadows): glTF's
+    // emissiveFactor x KHR_materials_emissive_strength, times emissive_texture where set
+    // (read with the mesh's one UV set, like the base colour texture).
+    glm::vec3 emissive{0.0f};
+    int32_t emissive_texture = -1;  // index into Scene::textures, -1 for none
 };
 
 struct Vertex {

@@ -380,6 +380,27 @@ def write_conformance_fixtures():
     spec_gloss["extensionsRequired"] = ["KHR_materials_pbrSpecularGlossiness"]
     write_json("spec_gloss.gltf", spec_gloss)
 
+    # Emission: emissiveFactor x KHR_materials_emissive_strength, with an emissive texture
+    # read through the base colour's UVs (emissive.gltf), or through TEXCOORD_1 while the
+    # base colour reads TEXCOORD_0 (emissive_other_uvs.gltf: Penumbra keeps one UV set).
+    rgba = [[255, 0, 0, 255, 0, 255, 0, 128], [0, 0, 255, 0, 255, 255, 255, 255]]
+    emissive = textured(embed(*quad_document()), png(2, 2, 4, rgba))
+    emissive["materials"][0]["emissiveFactor"] = [1.0, 0.5, 0.25]
+    emissive["materials"][0]["emissiveTexture"] = {"index": 0}
+    emissive["materials"][0]["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}
+    emissive["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    write_json("emissive.gltf", emissive)
+    second_set = json.load(open(os.path.join(HERE, "texcoord1.gltf")))
+    second_set["materials"][0]["emissiveFactor"] = [1.0, 1.0, 1.0]
+    second_set["materials"][0]["emissiveTexture"] = {"index": 0}  # texCoord 0, the base colour reads 1
+    write_json("emissive_other_uvs.gltf", second_set)
+    negative = json.load(open(os.path.join(HERE, "emissive.gltf")))
+    negative["materials"][0]["emissiveFactor"] = [1.0, -0.5, 0.0]
+    write_json("emissive_negative.gltf", negative)
+    bad_strength = json.load(open(os.path.join(HERE, "emissive.gltf")))
+    bad_strength["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = "bright"
+    write_json("emissive_bad_strength.gltf", bad_strength)
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]

@@ -17,6 +17,7 @@
 #define RENDERER_BINDING_LIGHTS 1
 #define RENDERER_SET_MATERIAL 1
 #define RENDERER_BINDING_BASE_COLOR_TEXTURE 0
+#define RENDERER_BINDING_EMISSIVE_TEXTURE 1
 // The ShadowSystem's descriptor set (the shaders define PENUMBRA_SHADOW_SET to this).
 #define RENDERER_SET_SHADOWS 2
 
@@ -64,9 +65,10 @@ struct DrawPushConstants {
     mat4 model;       // model -> world
     vec4 base_color;  // linear RGBA factor
     vec4 material;    // x: alpha cutoff, y: roughness, z: metallic
-    // y: 1 when the material has a base colour texture, z: alpha mode (RENDERER_ALPHA_*),
-    // w: 1 when the instance receives shadows
+    // x: 1 when the material has an emissive texture, y: 1 when it has a base colour
+    // texture, z: alpha mode (RENDERER_ALPHA_*), w: 1 when the instance receives shadows
     uvec4 flags;
+    vec4 emissive;  // rgb: emitted radiance (linear), added unshadowed; w unused
 };
 
 #endif
