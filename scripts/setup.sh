@@ -20,6 +20,8 @@ packages=(
   # `penumbra view`: the window and its surface, the Dear ImGui panel (core library and the
   # GLFW/Vulkan backend sources), and a virtual X server for its tests (xvfb-run needs xauth)
   libglfw3-dev libimgui-dev xvfb xauth
+  # real glTF 2.0 models (Khronos samples) for bench/quality_report.py's real-asset table
+  assimp-testmodels
 )
 
 missing=()

@@ -93,6 +93,11 @@ float penumbra_local_compare_tap(PenumbraLocalShadow light, PenumbraLocalCoord c
     return texture(penumbra_local_map, vec4(uv, coord.layer, reference));
 }
 
+// hard: one hardware comparison at the receiver, no receiver-plane bias.
+float penumbra_local_hard(PenumbraLocalShadow light, PenumbraLocalCoord coord) {
+    return texture(penumbra_local_map, vec4(penumbra_clamp_to_light(light, coord.uv), coord.layer, coord.depth));
+}
+
 float penumbra_local_pcf(PenumbraLocalShadow light, PenumbraLocalCoord coord) {
     const int radius = int(penumbra_shadow.pcf_radius);
     const float bias = penumbra_local_static_bias(coord);
@@ -155,13 +160,16 @@ float penumbra_local_pcss(PenumbraLocalShadow light, PenumbraLocalCoord coord, v
             blockers += 1u;
         }
     }
-    if (blockers == 0u) return 1.0;
+    if (blockers == 0u) return penumbra_local_compare_tap(light, coord, vec2(0.0), bias);  // as the sun's: a contact or gap
     blocker_distance /= float(blockers);
     // 2. Penumbra width at the receiver, into the map.
     const float penumbra_world = (coord.distance - blocker_distance) * light.radius / max(blocker_distance, 1e-4);
-    const float radius = clamp(penumbra_world * uv_per_metre_at_receiver, texel, max_radius);
-    // 3. Poisson PCF over the penumbra.
-    return penumbra_local_poisson_comparisons(light, coord, kPenumbraFilterTaps, radius, rotation);
+    const float radius = min(penumbra_world * uv_per_metre_at_receiver, max_radius);
+    // 3. Poisson PCF over the penumbra, less the taps' own bilinear width, as the sun's
+    //    (penumbra_pcss_disk_radius): a sub-texel penumbra is one comparison at the receiver.
+    const float disk_radius = penumbra_pcss_disk_radius(vec2(radius), texel).x;
+    if (penumbra_pcss_is_single_tap(vec2(disk_radius), texel)) return penumbra_local_compare_tap(light, coord, vec2(0.0), bias);
+    return penumbra_local_poisson_comparisons(light, coord, kPenumbraFilterTaps, disk_radius, rotation);
 }
 
 // Filtered moments around the receiver (bilinear, or 16 Poisson taps of poisson_radius
@@ -193,7 +201,7 @@ float penumbra_local_shadow(PenumbraLocalShadow light, vec3 world_position, vec3
     if (coord.depth <= 0.0) return 1.0;  // beyond the range
     switch (kPenumbraFilterMode) {
         case PENUMBRA_FILTER_HARD:
-            return texture(penumbra_local_map, vec4(penumbra_clamp_to_light(light, coord.uv), coord.layer, coord.depth));
+            return penumbra_local_hard(light, coord);
         case PENUMBRA_FILTER_POISSON:
             return penumbra_local_poisson(light, coord, pixel);
         case PENUMBRA_FILTER_PCSS:

@@ -77,33 +77,60 @@ PenumbraBlockerSearch penumbra_find_blockers(int cascade, PenumbraShadowCoord co
     return search;
 }
 
-// Blockers found by fewer taps than this fade the result toward lit: at the rim of the
-// search region a lone tap is not a reliable penumbra estimate.
-const float kPenumbraConfidentBlockers = 3.0;
+// PCSS step 3's Poisson disk for a light footprint of radius `penumbra_radius` (shared by
+// the sun and the spot and point lights, local.glsl). Every tap is a bilinear 2x2
+// comparison, which by itself spreads an edge over one texel: a box one texel wide, of
+// per-axis variance texel^2 / 12. A uniform disk of radius r has a per-axis variance of
+// r^2 / 4, and variances add under convolution, so the disk that makes disk (x) bilinear
+// as wide as the light's disk of radius R has r^2 = R^2 - texel^2 / 3. Below
+// R = texel / sqrt(3) the bilinear tap alone is already as wide as the light: r = 0. (A
+// one-texel floor on the disk made PCSS about twice the ray-traced penumbra at the sun's
+// usual sub-texel widths: issue 16, docs/QUALITY.md.)
+vec2 penumbra_pcss_disk_radius(vec2 penumbra_radius, float texel) {
+    return sqrt(max(penumbra_radius * penumbra_radius - vec2(texel * texel / 3.0), vec2(0.0)));
+}
+
+// A disk narrower than this fraction of a texel barely moves any tap's bilinear weights:
+// PCSS then makes one comparison at the receiver, without the rotation's noise or its cost.
+const float kPenumbraSingleTapDisk = 0.05;
+
+bool penumbra_pcss_is_single_tap(vec2 disk_radius, float texel) { return max(disk_radius.x, disk_radius.y) < kPenumbraSingleTapDisk * texel; }
+
+// PCSS's comparison at the receiver itself: the hard filter's, plus the receiver-plane
+// static bias when that bias is on (it is then PCSS's only protection against acne).
+float penumbra_pcss_centre_tap(int cascade, PenumbraShadowCoord coord) {
+    return penumbra_compare_tap(cascade, coord, vec2(0.0), penumbra_receiver_plane_static_bias(coord));
+}
 
 // pcss: percentage-closer soft shadows (Fernando 2005) for a directional light of
 // angular diameter theta. All lengths go to UV per axis through the cascade's light
 // radius (cascade_filter.xy = depth range * tan(theta / 2) / (width, height)), so a
-// cascade whose X and Y extents differ gets an elliptical kernel.
+// cascade whose X and Y extents differ gets an elliptical kernel. Where the penumbra is
+// narrower than the bilinear comparison (the sun's usual case unless the caster is far),
+// it is one comparison at the receiver, as hard is.
 float penumbra_shadow_pcss(int cascade, PenumbraShadowCoord coord, vec2 pixel) {
     const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
-    const vec2 min_radius = vec2(penumbra_shadow.texel_uv);
-    const vec2 max_radius = min_radius * penumbra_shadow.pcss_max_penumbra_texels;
+    const float texel = penumbra_shadow.texel_uv;
+    const vec2 max_radius = vec2(texel * penumbra_shadow.pcss_max_penumbra_texels);
     const mat2 rotation = penumbra_sample_rotation(pixel);
     // 1. Blocker search: an occluder shadows the receiver only within (its distance to
-    //    the receiver) * tan(theta / 2), and no occluder is farther than the light's near plane.
-    const vec2 search_radius = clamp((1.0 - coord.depth) * light_radius_per_depth, min_radius, max_radius);
+    //    the receiver) * tan(theta / 2), and no occluder is farther than the light's near
+    //    plane. None found: any occluder is nearer the receiver than the search's bias (a
+    //    contact, a thin gap), so its penumbra is below a texel and the comparison at the
+    //    receiver decides; returning lit there made contacts and thin gaps leak light.
+    const vec2 search_radius = clamp((1.0 - coord.depth) * light_radius_per_depth, vec2(texel), max_radius);
     const PenumbraBlockerSearch blockers = penumbra_find_blockers(cascade, coord, search_radius, rotation);
-    if (blockers.count == 0u) return 1.0;
+    if (blockers.count == 0u) return penumbra_pcss_centre_tap(cascade, coord);
     if (kPenumbraPcssEarlyOut && blockers.count == kPenumbraSearchTaps) return 0.0;
-    // 2. Penumbra: width (receiver - blocker distance) * 2 tan(theta / 2), so the filter
-    //    radius is the depth difference times the light radius, clamped to [1 texel, max].
-    const vec2 penumbra_radius =
-        clamp((blockers.average_depth - coord.depth) * light_radius_per_depth, min_radius, max_radius);
-    // 3. Variable-width Poisson PCF over the penumbra.
-    const float lit = penumbra_poisson_comparisons(cascade, coord, kPenumbraFilterTaps, penumbra_radius, rotation);
-    // 4. Blocker confidence.
-    return mix(1.0, lit, smoothstep(0.0, kPenumbraConfidentBlockers, float(blockers.count)));
+    // 2. Penumbra: width (receiver - blocker distance) * 2 tan(theta / 2), so the light's
+    //    footprint radius is the depth difference times the light radius (at most max).
+    const vec2 penumbra_radius = min((blockers.average_depth - coord.depth) * light_radius_per_depth, max_radius);
+    // 3. Variable-width Poisson PCF over the penumbra, less the taps' own bilinear width.
+    //    Every blocker found counts: a fade toward lit below 3 blockers (removed) erased
+    //    the shadows of thin casters, which only a few search taps hit.
+    const vec2 disk_radius = penumbra_pcss_disk_radius(penumbra_radius, texel);
+    if (penumbra_pcss_is_single_tap(disk_radius, texel)) return penumbra_pcss_centre_tap(cascade, coord);
+    return penumbra_poisson_comparisons(cascade, coord, kPenumbraFilterTaps, disk_radius, rotation);
 }
 
 // The smallest depth difference (in distance units, 0..1 over the cascade's depth range)
