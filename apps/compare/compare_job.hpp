@@ -85,6 +85,7 @@ struct CompareResult {
     quality::HardShadowMetrics hard;
     quality::SoftShadowMetrics soft;
     quality::StabilityMetrics stability;
+    quality::SamplingNoise sampling_noise;  // frame 0 rendered again with its pattern rotated
     CompareTimings timings;
     CompareImages images;
 };

@@ -163,6 +163,13 @@ std::string format_compare_summary(const CompareResult& result) {
         summary += text;
     }
     if (!result.stability_note.empty()) summary += "  stability: " + result.stability_note + "\n";
+    if (result.sampling_noise.max_change > 0.0) {
+        std::snprintf(text, sizeof(text),
+                      "  sampling noise (frame 0 with its pattern rotated): mean change %.5f, p99 %.4f, max %.4f\n",
+                      result.sampling_noise.mean_change, result.sampling_noise.p99_change,
+                      result.sampling_noise.max_change);
+        summary += text;
+    }
     return summary;
 }
 
@@ -181,6 +188,11 @@ std::string compare_json(const CompareResult& result) {
         {"soft", soft_json(result.soft)},
         {"stability", stability_json(result.stability)},
         {"stability_note", result.stability_note.empty() ? Json(nullptr) : Json(result.stability_note)},
+        {"sampling_noise",
+         {{"compared_pixels", result.sampling_noise.compared_pixels},
+          {"mean_change", result.sampling_noise.mean_change},
+          {"p99_change", result.sampling_noise.p99_change},
+          {"max_change", result.sampling_noise.max_change}}},
         {"timings_ms",
          {{"render", result.timings.render_ms}, {"bvh", result.timings.bvh_ms}, {"trace", result.timings.trace_ms}}},
         {"images", images}};

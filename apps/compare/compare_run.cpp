@@ -229,6 +229,16 @@ void require_local_shadow(const renderer::AppContext& context, const PreparedJob
     }
 }
 
+// Frame 0 rendered again with its sampling pattern rotated (the next frame's rotation),
+// nothing else changed: the grain of Poisson and PCSS, reported apart from stability.
+quality::SamplingNoise rotated_pattern_noise(renderer::Renderer& renderer, const Camera& camera,
+                                             const CapturedFrame& frame_0) {
+    renderer.fix_sampling_pattern(1);
+    const renderer::FrameImages rotated = renderer.render(camera);
+    renderer.fix_sampling_pattern(0);
+    return quality::sampling_noise(frame_0.rendered, visibility_as_float(rotated.visibility), frame_0.evaluated);
+}
+
 // Renders frame 0 and then frames 1.. with the cascades fitted to slightly moved cameras
 // (the image itself stays put, so each pixel shows the same surface point in every frame
 // and any change of its visibility is the shadow map's: shimmer). Each frame's reference
@@ -276,7 +286,10 @@ std::vector<CapturedFrame> render_and_trace(const CompareJob& job, const Prepare
             frames.push_back(capture(images, tracer, target, counts, k == 0 ? &result.images.frame.soft : nullptr));
             frames.back().camera = frame_camera(camera, prepared.settings);
             result.timings.trace_ms += milliseconds_since(start);
-            if (k == 0) result.pixels = counts;
+            if (k == 0) {
+                result.pixels = counts;
+                result.sampling_noise = rotated_pattern_noise(renderer, camera, frames.back());
+            }
             target.sun.rays = 0;  // later frames: the hard reference only
         }
     }

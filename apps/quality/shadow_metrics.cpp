@@ -197,4 +197,23 @@ StabilityMetrics stability_metrics(std::span<const StabilityFrame> frames, const
     return metrics;
 }
 
+SamplingNoise sampling_noise(std::span<const float> first, std::span<const float> rotated,
+                             std::span<const uint8_t> evaluated) {
+    SamplingNoise noise;
+    std::vector<float> changes;
+    for (size_t pixel = 0; pixel < first.size() && pixel < rotated.size() && pixel < evaluated.size(); ++pixel) {
+        if (evaluated[pixel]) changes.push_back(std::abs(first[pixel] - rotated[pixel]));
+    }
+    noise.compared_pixels = changes.size();
+    if (changes.empty()) return noise;
+    double sum = 0.0;
+    for (const float change : changes) {
+        sum += change;
+        noise.max_change = std::max(noise.max_change, static_cast<double>(change));
+    }
+    noise.mean_change = sum / static_cast<double>(changes.size());
+    noise.p99_change = percentile(std::move(changes), 0.99);
+    return noise;
+}
+
 }  // namespace penumbra::quality

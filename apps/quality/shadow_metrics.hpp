@@ -111,4 +111,17 @@ struct StabilityMetrics {
 
 StabilityMetrics stability_metrics(std::span<const StabilityFrame> frames, const StabilityGeometry& geometry);
 
+// The grain of filters that rotate their sampling pattern per frame (Poisson, PCSS): the
+// per-pixel change between two renders of the same frame whose patterns differ only in
+// rotation. 0 for filters that do not rotate; a temporal filter (TAA) averages it away.
+struct SamplingNoise {
+    uint64_t compared_pixels = 0;  // evaluated pixels
+    double mean_change = 0.0;
+    double p99_change = 0.0;
+    double max_change = 0.0;
+};
+
+SamplingNoise sampling_noise(std::span<const float> first, std::span<const float> rotated,
+                             std::span<const uint8_t> evaluated);
+
 }  // namespace penumbra::quality

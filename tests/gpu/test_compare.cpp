@@ -218,6 +218,20 @@ TEST(CompareMetrics, RotatingPatternsAreNotCountedAsShimmer) {
     EXPECT_LT(pcss.stability.max_change, 0.05);
 }
 
+// The grain of a rotating pattern is reported apart: frame 0 rendered again with the next
+// rotation differs for Poisson, and not at all for hard shadows, which do not rotate.
+TEST(CompareMetrics, SamplingNoiseIsReportedApartFromStability) {
+    const std::string text = ground_scene_toml(kSlantedLight, kSlabAndBox);
+    RenderSettings settings = small_settings(240, 180);
+    settings.shadow.filter.mode = ShadowFilter::Poisson;
+    const compare::CompareResult poisson = compare_scene(text, settings, 1, 1);
+    EXPECT_GT(poisson.sampling_noise.compared_pixels, 10000u);
+    EXPECT_GT(poisson.sampling_noise.max_change, 0.05) << "the rotated Poisson disk moves the penumbra's values";
+    settings.shadow.filter.mode = ShadowFilter::Hard;
+    const compare::CompareResult hard = compare_scene(text, settings, 1, 1);
+    EXPECT_EQ(hard.sampling_noise.max_change, 0.0);
+}
+
 // The progress callback sees every frame's rows, in order, each frame ending complete.
 TEST(CompareProgress, ReportsEachFramesRowsInOrder) {
     compare::CompareJob job;
