@@ -18,6 +18,7 @@
 //   void penumbra_set_receiver_plane(receiver, coord_dx[2], coord_dy[2], seam)  // optional
 //   float penumbra_sun_shadow(receiver)                // the shadow alone, 1 beyond the cascades
 //   float penumbra_sun_visibility(receiver, normal)    // 0 without a sun or facing away, else the shadow
+//   bool penumbra_faces_light(normal, face_normal, to_light)  // by the shading normal and the face
 //   float penumbra_light_shadow(index, world_position, normal, plane_normal, pixel)
 //   float penumbra_light_visibility(index, world_position, normal, plane_normal, pixel)
 //   int penumbra_select_cascade(penumbra_view_depth(world_position))   // debug views

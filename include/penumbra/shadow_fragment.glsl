@@ -5,6 +5,16 @@
 #ifndef PENUMBRA_SHADOW_FRAGMENT_GLSL
 #define PENUMBRA_SHADOW_FRAGMENT_GLSL
 
+// The receiver's geometric plane (receiver-plane bias of spot and point lights, the sun's
+// face test): the cross
+// product of the position's screen-space derivatives, or the shading normal where the
+// triangle is too small or too oblique for them.
+vec3 penumbra_geometric_normal(vec3 world_position, vec3 shading_normal) {
+    const vec3 n = cross(dFdx(world_position), dFdy(world_position));
+    const float length_squared = dot(n, n);
+    return length_squared > 1e-20 ? n * inversesqrt(length_squared) : shading_normal;
+}
+
 // The sun's receiver at this fragment, with receiver-plane gradients. Where the quad's
 // pixels chose different cascades the derivatives mix two projections: no gradient there.
 PenumbraSunReceiver penumbra_sun_receiver_fragment(vec3 world_position, vec3 normal) {
@@ -19,16 +29,8 @@ PenumbraSunReceiver penumbra_sun_receiver_fragment(vec3 world_position, vec3 nor
     }
     const bool seam = fwidth(float(receiver.cascade)) != 0.0;
     penumbra_set_receiver_plane(receiver, coord_dx, coord_dy, seam);
+    receiver.face_normal = penumbra_geometric_normal(world_position, normal);
     return receiver;
-}
-
-// The receiver's geometric plane (receiver-plane bias of spot and point lights): the cross
-// product of the position's screen-space derivatives, or the shading normal where the
-// triangle is too small or too oblique for them.
-vec3 penumbra_geometric_normal(vec3 world_position, vec3 shading_normal) {
-    const vec3 n = cross(dFdx(world_position), dFdy(world_position));
-    const float length_squared = dot(n, n);
-    return length_squared > 1e-20 ? n * inversesqrt(length_squared) : shading_normal;
 }
 
 #endif

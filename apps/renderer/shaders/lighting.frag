@@ -62,7 +62,8 @@ void main() {
         const vec3 light_vector = local.lights[i].position - in_world_position;
         const float distance = length(light_vector);
         const vec3 to_light = light_vector / max(distance, 1e-4);
-        const bool in_range = distance < local.lights[i].range && dot(normal, to_light) > 0.0;
+        const bool in_range =
+            distance < local.lights[i].range && penumbra_faces_light(normal, plane_normal, to_light);
         const float cone = in_range ? spot_cone(local.lights[i], to_light) : 0.0;
         if (cone <= 0.0) {
             if (int(i) == frame.visibility_light) visibility = 0.0;

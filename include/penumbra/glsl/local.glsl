@@ -223,12 +223,12 @@ float penumbra_light_shadow(uint index, vec3 world_position, vec3 normal, vec3 p
 }
 
 // The visibility of spot or point light `index` for shading: 0 where the surface faces
-// away from the light (its own shadow), else its shadow. The cone and the distance falloff
-// are the caller's lighting.
+// away from the light by its normal or its face (its own shadow, penumbra_faces_light),
+// else its shadow. The cone and the distance falloff are the caller's lighting.
 float penumbra_light_visibility(uint index, vec3 world_position, vec3 normal, vec3 plane_normal, vec2 pixel) {
     if (index >= penumbra_local.light_count) return 1.0;
     const PenumbraLocalShadow light = penumbra_local.lights[index];
-    if (dot(normal, light.position - world_position) <= 0.0) return 0.0;
+    if (!penumbra_faces_light(normal, plane_normal, light.position - world_position)) return 0.0;
     return penumbra_local_shadow(light, world_position, normal, plane_normal, pixel);
 }
 

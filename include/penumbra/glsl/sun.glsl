@@ -71,6 +71,9 @@ struct PenumbraSunReceiver {
     int cascade;  // -1: beyond the last cascade, or the sun casts no shadow
     float view_depth;
     vec2 pixel;  // rotates the sampling patterns (gl_FragCoord.xy, or the pixel centre)
+    // The geometric normal of the visible face (the shading normal itself where derivatives
+    // are not available), for penumbra_faces_light().
+    vec3 face_normal;
     PenumbraShadowCoord coords[2];
 };
 
@@ -82,12 +85,22 @@ ivec2 penumbra_receiver_cascades(int cascade) {
     return ivec2(current, min(current + 1, last));
 }
 
+// Whether a receiver faces a light (`to_light`, any length): by its shading normal and by
+// its face, the geometric normal turned to the shading normal's side. A face turned away is
+// in its own shadow whatever its interpolated or bent normal says: the back-lit side of a
+// leaf card, the faceted terminator of a smooth-shaded sphere.
+bool penumbra_faces_light(vec3 normal, vec3 face_normal, vec3 to_light) {
+    const vec3 face = dot(face_normal, normal) < 0.0 ? -face_normal : face_normal;
+    return dot(normal, to_light) > 0.0 && dot(face, to_light) > 0.0;
+}
+
 // Without receiver-plane gradients; penumbra_set_receiver_plane() adds them.
 PenumbraSunReceiver penumbra_sun_receiver(vec3 world_position, vec3 world_normal, vec2 pixel) {
     PenumbraSunReceiver receiver;
     receiver.view_depth = penumbra_view_depth(world_position);
     receiver.cascade = penumbra_select_cascade(receiver.view_depth);
     receiver.pixel = pixel;
+    receiver.face_normal = world_normal;
     const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
     for (int i = 0; i < 2; ++i) {
         const vec3 coord = penumbra_project_to_cascade(cascades[i], world_position, world_normal);
@@ -163,9 +176,12 @@ float penumbra_sun_shadow(PenumbraSunReceiver receiver) {
 }
 
 // The sun's visibility for shading: 0 without a sun and where the surface faces away from
-// it (its own shadow), else the shadow above. `normal` is the shading normal.
+// it (its own shadow: by its shading normal, or by its face, e.g. the back-lit side of a
+// leaf card with bent normals), else the shadow above. `normal` is the shading normal.
 float penumbra_sun_visibility(PenumbraSunReceiver receiver, vec3 normal) {
-    if (penumbra_shadow.to_sun.w == 0.0 || dot(normal, penumbra_shadow.to_sun.xyz) <= 0.0) return 0.0;
+    if (penumbra_shadow.to_sun.w == 0.0 || !penumbra_faces_light(normal, receiver.face_normal, penumbra_shadow.to_sun.xyz)) {
+        return 0.0;
+    }
     return penumbra_sun_shadow(receiver);
 }
 

@@ -401,6 +401,18 @@ def write_conformance_fixtures():
     bad_strength["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = "bright"
     write_json("emissive_bad_strength.gltf", bad_strength)
 
+    # Bent normals: the quad faces +Y, its shading normals lean far from it, to
+    # normalize(0, 0.3, -1) (stood up by a 90 degree turn about X, the face looks along +Z
+    # and the normals mostly up): lit from above and behind, the face is turned away.
+    document, data = quad_document()
+    builder = extend(document, data)
+    length = (0.3 ** 2 + 1.0) ** 0.5
+    bent = [(0.0, 0.3 / length, -1.0 / length)] * 4
+    document["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = builder.add(pack("<3f", bent), FLOAT, "VEC3", 4)
+    document["materials"][0]["alphaMode"] = "OPAQUE"
+    document["buffers"][0]["byteLength"] = len(builder.data)
+    write_json("bent_normals.gltf", embed(document, builder.data))
+
     # Broken sparse accessors: an index past the end, indices that do not increase.
     sparse = json.load(open(os.path.join(HERE, "sparse.gltf")))
     position = sparse["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
