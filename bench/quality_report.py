@@ -138,7 +138,7 @@ def run_sweeps(binary, work, quick, scene_list):
 
 
 def metrics_cells(report):
-    hard, soft, noise = report["hard"], report["soft"], report.get("sampling_noise") or {}
+    hard, soft, stability = report["hard"], report["soft"], report["stability"] or {}
     return [f"{hard['false_shadow']['percent']:.3f}", f"{hard['false_shadow_outside_edges']['percent']:.3f}",
             f"{hard['false_lit']['percent']:.2f}", f"{hard['false_lit_outside_edges']['percent']:.2f}",
             f"{soft['mean_abs_error']:.4f}", f"{soft['p95_abs_error']:.3f}", f"{soft['edge_mean_abs_error']:.3f}",
@@ -213,7 +213,7 @@ def run_assets(binary, work, quick):
 
 
 def asset_cells(report):
-    hard, soft, stability = report["hard"], report["soft"], report["stability"] or {}
+    hard, soft, noise = report["hard"], report["soft"], report.get("sampling_noise") or {}
     return [f"{hard['false_shadow']['percent']:.3f}", f"{hard['false_shadow_outside_edges']['percent']:.3f}",
             f"{hard['false_lit']['percent']:.2f}", f"{hard['false_lit_outside_edges']['percent']:.3f}",
             f"{soft['mean_abs_error']:.4f}", f"{soft['edge_mean_abs_error']:.3f}",
