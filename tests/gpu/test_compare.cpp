@@ -197,6 +197,20 @@ translation = [-3.0, 11.0, -6.0]
     EXPECT_EQ(rendered_lit, 0u) << "pixels of the card lit by their bent normal";
 }
 
+// Issue 16, item 2: a textured BLEND caster with non-trivial UVs (an alpha ramp repeated
+// twice and shifted by KHR_texture_transform, like ClearCoatTest's striped coating) casts
+// as MASK at 0.5 in the render and in the reference, and the two agree.
+TEST(CompareReference, StripedBlendCasterCastsAsMaskAtHalfAndTheReferenceAgrees) {
+    const compare::CompareResult blend = compare_scene(masked_quad_scene("blend_striped"), small_settings(240, 180), 4);
+    const compare::CompareResult mask =
+        compare_scene(masked_quad_scene("blend_striped_mask"), small_settings(240, 180), 4);
+    EXPECT_EQ(blend.images.frame.rendered, mask.images.frame.rendered) << "BLEND is rendered as MASK at 0.5";
+    EXPECT_EQ(blend.images.frame.hard, mask.images.frame.hard) << "and traced so";
+    EXPECT_LT(blend.hard.false_lit_outside_edges.percent(), 0.5);
+    EXPECT_LT(blend.hard.false_shadow_outside_edges.percent(), 0.5);
+    EXPECT_GT(shadowed_fraction(blend.images.frame), 0.01) << "the opaque stripes cast";
+}
+
 const glm::vec3 kSlantedLight{-0.6f, -1.0f, 0.35f};
 
 TEST(CompareMetrics, ZeroBiasRaisesFalseShadow) {

@@ -308,6 +308,32 @@ def write_conformance_fixtures():
             masked["materials"][0]["alphaCutoff"] = 0.5
             write_json(name + suffix + ".gltf", masked)
 
+    # A striped BLEND caster like the coating of Khronos' ClearCoatTest (issue 16, item 2):
+    # an alpha ramp repeated twice across the quad (UVs 0..2, REPEAT) and shifted a quarter
+    # by KHR_texture_transform, nearest filtering; BLEND casts as MASK at 0.5, so
+    # blend_striped_mask.gltf (MASK, cutoff 0.5) must cast exactly the same shadow.
+    for name, mode in (("blend_striped", "BLEND"), ("blend_striped_mask", "MASK")):
+        document, data = quad_document()
+        builder = extend(document, data)
+        document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = builder.add(
+            pack("<2f", [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)]), FLOAT, "VEC2", 4)
+        document["buffers"][0]["byteLength"] = len(builder.data)
+        ramp = [0, 64, 127, 128, 200, 255, 200, 64]
+        row = [channel for alpha in ramp for channel in (0, 0, 0, alpha)]
+        striped = textured(embed(document, builder.data), png(len(ramp), 1, 4, [row]))
+        striped["samplers"] = [{"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 33071}]
+        striped["textures"][0]["sampler"] = 0
+        material = striped["materials"][0]
+        material["pbrMetallicRoughness"]["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
+        material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+            "KHR_texture_transform": {"offset": [0.25, 0.0]}}
+        material["alphaMode"] = mode
+        material["alphaCutoff"] = 0.5
+        if mode == "BLEND":
+            del material["alphaCutoff"]
+        striped["extensionsUsed"] = ["KHR_texture_transform"]
+        write_json(name + ".gltf", striped)
+
     # KHR_lights_punctual: a spot 5 m above the quad's node shining down (-Z turned to -Y by
     # -90 degrees about X), a point light without a range, and a directional light tilted
     # down; the quad is node 0.
