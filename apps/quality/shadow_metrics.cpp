@@ -169,6 +169,18 @@ std::optional<float> change_against_first(const StabilityFrame& first, const Sta
     return std::abs(frame.rendered[pixel] - first.rendered[*matched]);
 }
 
+// Mean, 99th percentile and maximum of per-pixel changes (not empty).
+void summarize_changes(std::vector<float> changes, double& mean, double& p99, double& max) {
+    double sum = 0.0;
+    max = 0.0;
+    for (const float change : changes) {
+        sum += change;
+        max = std::max(max, static_cast<double>(change));
+    }
+    mean = sum / static_cast<double>(changes.size());
+    p99 = percentile(std::move(changes), 0.99);
+}
+
 }  // namespace
 
 StabilityMetrics stability_metrics(std::span<const StabilityFrame> frames, const StabilityGeometry& geometry) {
@@ -186,14 +198,8 @@ StabilityMetrics stability_metrics(std::span<const StabilityFrame> frames, const
     }
     metrics.compared_pixels = changes.size();
     if (changes.empty()) return metrics;
-    double sum = 0.0;
-    for (const float change : changes) {
-        sum += change;
-        metrics.max_change = std::max(metrics.max_change, static_cast<double>(change));
-    }
-    metrics.mean_change = sum / static_cast<double>(changes.size());
     metrics.flicker_percent = 100.0 * static_cast<double>(flickering) / static_cast<double>(changes.size());
-    metrics.p99_change = percentile(std::move(changes), 0.99);
+    summarize_changes(std::move(changes), metrics.mean_change, metrics.p99_change, metrics.max_change);
     return metrics;
 }
 
@@ -205,14 +211,7 @@ SamplingNoise sampling_noise(std::span<const float> first, std::span<const float
         if (evaluated[pixel]) changes.push_back(std::abs(first[pixel] - rotated[pixel]));
     }
     noise.compared_pixels = changes.size();
-    if (changes.empty()) return noise;
-    double sum = 0.0;
-    for (const float change : changes) {
-        sum += change;
-        noise.max_change = std::max(noise.max_change, static_cast<double>(change));
-    }
-    noise.mean_change = sum / static_cast<double>(changes.size());
-    noise.p99_change = percentile(std::move(changes), 0.99);
+    if (!changes.empty()) summarize_changes(std::move(changes), noise.mean_change, noise.p99_change, noise.max_change);
     return noise;
 }
 
