@@ -13,24 +13,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-const char* strategy_name(ShadowStrategy strategy) {
-    return strategy == ShadowStrategy::Multiview ? "multiview" : "per-cascade";
-}
-
-const char* split_scheme_name(SplitScheme scheme) {
-    switch (scheme) {
-        case SplitScheme::Uniform:
-            return "uniform";
-        case SplitScheme::Logarithmic:
-            return "log";
-        case SplitScheme::Practical:
-            return "practical";
-        case SplitScheme::Manual:
-            return "manual";
-    }
-    return "unknown";
-}
-
 const char* ceiling_name(Ceiling ceiling) {
     switch (ceiling) {
         case Ceiling::None:
@@ -52,71 +34,39 @@ Json counts_json(const CountSummary& counts) {
     return Json{{"mean", counts.mean}, {"min", counts.min}, {"max", counts.max}};
 }
 
-const char* filter_name(ShadowFilter filter) {
-    switch (filter) {
-        case ShadowFilter::Hard:
-            return "hard";
-        case ShadowFilter::Pcf:
-            return "pcf";
-        case ShadowFilter::Poisson:
-            return "poisson";
-        case ShadowFilter::Pcss:
-            return "pcss";
-        case ShadowFilter::Vsm:
-            return "vsm";
-        case ShadowFilter::Evsm:
-            return "evsm";
-        case ShadowFilter::Msm:
-            return "msm";
-    }
-    return "unknown";
-}
-
-const char* pcss_quality_name(PcssQuality quality) {
-    return quality == PcssQuality::Low ? "low" : quality == PcssQuality::Medium ? "medium" : "high";
-}
-
 // The filter settings that change the cost of a frame.
 Json filter_json(const FilterSettings& filter) {
-    return Json{{"mode", filter_name(filter.mode)},
+    return Json{{"mode", choice_name(kShadowFilterChoices, filter.mode)},
                 {"pcf_radius", filter.pcf_radius},
                 {"poisson_taps", filter.poisson_taps},
                 {"pcss_blocker_taps", filter.pcss_blocker_taps},
-                {"pcss_quality", pcss_quality_name(filter.pcss_quality)},
+                {"pcss_quality", choice_name(kPcssQualityChoices, filter.pcss_quality)},
                 {"blur_radius", filter.blur_radius},
                 {"evsm_components", filter.evsm_components}};
 }
 
-std::string caster_culling_name(CasterCulling culling) {
-    for (const auto& [name, value] : caster_culling_names()) {
-        if (value == culling) return name;
-    }
-    return "none";
-}
-
 Json settings_json(const RenderSettings& settings) {
     const ShadowSettings& shadow = settings.shadow;
-    return Json{
-        {"width", settings.width},
-        {"height", settings.height},
-        {"cascades", shadow.cascades.count},
-        {"shadow_resolution", shadow.cascades.resolution},
-        {"strategy", strategy_name(shadow.strategy)},
-        {"cull_casters", shadow.cull_casters},
-        {"caster_culling", caster_culling_name(shadow.caster_culling)},
-        {"split_scheme", split_scheme_name(shadow.cascades.scheme)},
-        {"split_lambda", shadow.cascades.split_lambda},
-        {"max_distance", shadow.cascades.max_distance},
-        {"fit", shadow.cascades.fit == FitMode::Stable ? "stable" : "tight"},
-        {"slope_bias", shadow.bias.slope},
-        {"constant_bias", shadow.bias.constant},
-        {"bias_clamp", shadow.bias.clamp},
-        {"normal_offset", shadow.bias.normal_offset},
-        {"blend_width", shadow.blend_width},
-        {"filter", filter_json(shadow.filter)},
-        {"local_shadow_budget", settings.local_shadows.budget},
-        {"local_shadow_resolution", settings.local_shadows.resolution},
-        {"local_shadow_sizing", settings.local_shadows.sizing == LocalShadowSizing::Fixed ? "fixed" : "coverage"}};
+    return Json{{"width", settings.width},
+                {"height", settings.height},
+                {"cascades", shadow.cascades.count},
+                {"shadow_resolution", shadow.cascades.resolution},
+                {"strategy", choice_name(kShadowStrategyChoices, shadow.strategy)},
+                {"cull_casters", shadow.cull_casters},
+                {"caster_culling", choice_name(kCasterCullingChoices, shadow.caster_culling)},
+                {"split_scheme", choice_name(kSplitSchemeChoices, shadow.cascades.scheme)},
+                {"split_lambda", shadow.cascades.split_lambda},
+                {"max_distance", shadow.cascades.max_distance},
+                {"fit", choice_name(kFitModeChoices, shadow.cascades.fit)},
+                {"slope_bias", shadow.bias.slope},
+                {"constant_bias", shadow.bias.constant},
+                {"bias_clamp", shadow.bias.clamp},
+                {"normal_offset", shadow.bias.normal_offset},
+                {"blend_width", shadow.blend_width},
+                {"filter", filter_json(shadow.filter)},
+                {"local_shadow_budget", settings.local_shadows.budget},
+                {"local_shadow_resolution", settings.local_shadows.resolution},
+                {"local_shadow_sizing", choice_name(kLocalShadowSizingChoices, settings.local_shadows.sizing)}};
 }
 
 Json run_json(const BenchJob& job) {
@@ -181,10 +131,10 @@ std::string format_header(const BenchResult& result) {
                   "light %s\n",
                   result.scene.spec.c_str(), static_cast<unsigned long long>(result.scene.triangles),
                   result.scene.instances, result.device.name.c_str(), result.device.driver.c_str(), s.width, s.height,
-                  s.shadow.cascades.count, s.shadow.cascades.resolution, strategy_name(s.shadow.strategy),
-                  s.shadow.cull_casters ? "on" : "off", caster_culling_name(s.shadow.caster_culling).c_str(),
-                  result.job.frames, result.job.warmup, camera_path_name(result.job.camera_path),
-                  light_path_name(result.job.light_path));
+                  s.shadow.cascades.count, s.shadow.cascades.resolution,
+                  choice_name(kShadowStrategyChoices, s.shadow.strategy), s.shadow.cull_casters ? "on" : "off",
+                  choice_name(kCasterCullingChoices, s.shadow.caster_culling), result.job.frames, result.job.warmup,
+                  camera_path_name(result.job.camera_path), light_path_name(result.job.light_path));
     return line;
 }
 

@@ -23,19 +23,14 @@ constexpr const char* kErrorFile = "error.png";
 constexpr const char* kSoftErrorFile = "soft_error.png";
 constexpr const char* kSideBySideFile = "side_by_side.png";
 
-std::string filter_name(ShadowFilter filter) {
-    for (const auto& [name, value] : shadow_filter_names()) {
-        if (value == filter) return name;
-    }
-    return "unknown";
-}
+std::string filter_name(ShadowFilter filter) { return choice_name(kShadowFilterChoices, filter); }
 
 Json settings_json(const RenderSettings& settings) {
     const ShadowSettings& shadow = settings.shadow;
     return {{"width", settings.width},
             {"height", settings.height},
             {"filter", filter_name(shadow.filter.mode)},
-            {"fit", shadow.cascades.fit == FitMode::Stable ? "stable" : "tight"},
+            {"fit", choice_name(kFitModeChoices, shadow.cascades.fit)},
             {"cascades", shadow.cascades.count},
             {"shadow_resolution", shadow.cascades.resolution},
             {"split_lambda", shadow.cascades.split_lambda},

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "choice_help.hpp"
 #include "compare_options.hpp"
 #include "filter_options.hpp"
 #include "number_checks.hpp"
@@ -99,12 +100,12 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
                       "(front: render back faces, which hides acne on closed meshes)");
     render.add_option("--shadow-resolution", o.shadow_resolution, "Shadow map texels per side (512..8192)")
         ->check(CLI::Range(512u, 8192u));
-    render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: uniform|log|practical|manual");
+    render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: " + choice_list(kSplitSchemeChoices));
     render.add_option("--split-lambda", o.split_lambda, "Practical split blend: 0 uniform .. 1 log (default 0.75)")
         ->check(CLI::Range(0.0f, 1.0f));
     render.add_option("--splits", raw.splits, "Manual split distances a,b,c (cascades - 1 values)");
     render.add_option("--max-distance", o.max_distance, "Shadow distance in metres (> 0)");
-    render.add_option("--fit", raw.fit, "Cascade fitting: stable|tight");
+    render.add_option("--fit", raw.fit, "Cascade fitting: " + choice_list(kFitModeChoices));
     render.add_option("--slope-bias", o.slope_bias, "Slope-scaled depth bias factor (0..20)")
         ->check(CLI::Range(0.0f, 20.0f));
     render.add_option("--constant-bias", o.constant_bias, "Constant depth bias factor (>= 0)");
@@ -113,7 +114,7 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
         ->check(CLI::Range(0.0f, 10.0f));
     render.add_option("--blend-width", o.blend_width, "Cascade blend band as a fraction (0..0.5)")
         ->check(CLI::Range(0.0f, 0.5f));
-    render.add_option("--shadow-strategy", raw.strategy, "Shadow rendering: per-cascade|multiview");
+    render.add_option("--shadow-strategy", raw.strategy, "Shadow rendering: " + choice_list(kShadowStrategyChoices));
     add_filter_options(render, o, raw.filter);
     // Every floating-point option, whatever its own range: finite and within +-1e9.
     for (CLI::Option* option : render.get_options()) {
@@ -134,14 +135,10 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
                          "\"");
     }
     if (!raw.split_scheme.empty()) {
-        o.split_scheme = parse_choice<SplitScheme>(raw.split_scheme, "--split-scheme",
-                                                   {{"uniform", SplitScheme::Uniform},
-                                                    {"log", SplitScheme::Logarithmic},
-                                                    {"practical", SplitScheme::Practical},
-                                                    {"manual", SplitScheme::Manual}});
+        o.split_scheme = parse_choice(raw.split_scheme, "--split-scheme", split_scheme_names());
     }
     if (!raw.fit.empty()) {
-        o.fit = parse_choice<FitMode>(raw.fit, "--fit", {{"stable", FitMode::Stable}, {"tight", FitMode::Tight}});
+        o.fit = parse_choice(raw.fit, "--fit", fit_mode_names());
     }
     if (!raw.local_shadow_sizing.empty()) {
         o.local_shadow_sizing =
@@ -151,9 +148,7 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
         o.caster_culling = parse_choice(raw.caster_culling, "--caster-culling", caster_culling_names());
     }
     if (!raw.strategy.empty()) {
-        o.strategy = parse_choice<ShadowStrategy>(
-            raw.strategy, "--shadow-strategy",
-            {{"per-cascade", ShadowStrategy::PerCascade}, {"multiview", ShadowStrategy::Multiview}});
+        o.strategy = parse_choice(raw.strategy, "--shadow-strategy", shadow_strategy_names());
     }
     if (raw.aov.starts_with("shadow:")) {
         job.aov = Aov::Shadow;

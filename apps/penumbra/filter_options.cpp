@@ -1,5 +1,6 @@
 #include "filter_options.hpp"
 
+#include "choice_help.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/settings.hpp"
 
@@ -16,7 +17,8 @@ Enum parse_name(const std::string& text, const std::string& flag, const std::map
 }
 
 void add_comparison_options(CLI::App& command, FilterOverrides& f, RawFilterOptions& raw) {
-    command.add_option("--filter", raw.filter, "Shadow filter: hard (default)|pcf|poisson|pcss|vsm|evsm|msm");
+    command.add_option("--filter", raw.filter,
+                       "Shadow filter: " + choice_list(kShadowFilterChoices, FilterSettings{}.mode));
     command.add_flag("--no-receiver-plane-bias", raw.no_receiver_plane_bias,
                      "Disable the receiver-plane depth bias of pcf, poisson and pcss");
     command.add_option("--pcf-radius", f.pcf_radius, "pcf: grid radius R, (2R+1)^2 taps (0..5, default 1)")

@@ -4,6 +4,7 @@
 // scene files, config files and flags fill the same structs. validate_settings() rejects
 // out-of-range values with an InputError naming the setting; requires_recreation() tells
 // which changes need a new ShadowSystem (they size or specialise GPU resources).
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -147,7 +148,45 @@ struct Settings {
     LocalShadowSettings local_shadows;  // spot and point light shadow maps
 };
 
-// The names a user writes for each choice (--filter, [shadow] filter, ...).
+// The name a user writes for each value of a choice (--filter, [shadow] filter, ...): one
+// table per enum, in the order the tools list them, read by the config reader and writer,
+// the command line, the viewer's lists and the reports. A new enum value goes here once.
+template <typename Enum>
+struct ChoiceName {
+    const char* name;
+    Enum value;
+};
+inline constexpr ChoiceName<SplitScheme> kSplitSchemeChoices[] = {{"uniform", SplitScheme::Uniform},
+                                                                  {"log", SplitScheme::Logarithmic},
+                                                                  {"practical", SplitScheme::Practical},
+                                                                  {"manual", SplitScheme::Manual}};
+inline constexpr ChoiceName<FitMode> kFitModeChoices[] = {{"stable", FitMode::Stable}, {"tight", FitMode::Tight}};
+inline constexpr ChoiceName<ShadowStrategy> kShadowStrategyChoices[] = {{"per-cascade", ShadowStrategy::PerCascade},
+                                                                        {"multiview", ShadowStrategy::Multiview}};
+inline constexpr ChoiceName<ShadowFilter> kShadowFilterChoices[] = {
+    {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"poisson", ShadowFilter::Poisson},
+    {"pcss", ShadowFilter::Pcss}, {"vsm", ShadowFilter::Vsm}, {"evsm", ShadowFilter::Evsm},
+    {"msm", ShadowFilter::Msm}};
+inline constexpr ChoiceName<PcssQuality> kPcssQualityChoices[] = {
+    {"low", PcssQuality::Low}, {"medium", PcssQuality::Medium}, {"high", PcssQuality::High}};
+inline constexpr ChoiceName<CasterCulling> kCasterCullingChoices[] = {
+    {"none", CasterCulling::None}, {"back", CasterCulling::BackFaces}, {"front", CasterCulling::FrontFaces}};
+inline constexpr ChoiceName<LocalShadowSizing> kLocalShadowSizingChoices[] = {{"coverage", LocalShadowSizing::Coverage},
+                                                                              {"fixed", LocalShadowSizing::Fixed}};
+
+// The name of `value` in `choices` ("unknown" for a value the table lacks).
+template <typename Enum, std::size_t N>
+constexpr const char* choice_name(const ChoiceName<Enum> (&choices)[N], Enum value) {
+    for (const ChoiceName<Enum>& choice : choices) {
+        if (choice.value == value) return choice.name;
+    }
+    return "unknown";
+}
+
+// The same tables as name -> value maps (in name order, as error messages list them).
+const std::map<std::string, SplitScheme>& split_scheme_names();
+const std::map<std::string, FitMode>& fit_mode_names();
+const std::map<std::string, ShadowStrategy>& shadow_strategy_names();
 const std::map<std::string, ShadowFilter>& shadow_filter_names();
 const std::map<std::string, PcssQuality>& pcss_quality_names();
 const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names();

@@ -117,29 +117,49 @@ void validate_settings(const Settings& settings, const std::string& origin) {
     validate_local_shadow_settings(settings.local_shadows, origin);
 }
 
+namespace {
+
+template <typename Enum, std::size_t N>
+std::map<std::string, Enum> choice_map(const ChoiceName<Enum> (&choices)[N]) {
+    std::map<std::string, Enum> names;
+    for (const ChoiceName<Enum>& choice : choices) names.emplace(choice.name, choice.value);
+    return names;
+}
+
+}  // namespace
+
+const std::map<std::string, SplitScheme>& split_scheme_names() {
+    static const std::map<std::string, SplitScheme> names = choice_map(kSplitSchemeChoices);
+    return names;
+}
+
+const std::map<std::string, FitMode>& fit_mode_names() {
+    static const std::map<std::string, FitMode> names = choice_map(kFitModeChoices);
+    return names;
+}
+
+const std::map<std::string, ShadowStrategy>& shadow_strategy_names() {
+    static const std::map<std::string, ShadowStrategy> names = choice_map(kShadowStrategyChoices);
+    return names;
+}
+
 const std::map<std::string, ShadowFilter>& shadow_filter_names() {
-    static const std::map<std::string, ShadowFilter> names{
-        {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"poisson", ShadowFilter::Poisson},
-        {"pcss", ShadowFilter::Pcss}, {"vsm", ShadowFilter::Vsm}, {"evsm", ShadowFilter::Evsm},
-        {"msm", ShadowFilter::Msm}};
+    static const std::map<std::string, ShadowFilter> names = choice_map(kShadowFilterChoices);
     return names;
 }
 
 const std::map<std::string, PcssQuality>& pcss_quality_names() {
-    static const std::map<std::string, PcssQuality> names{
-        {"low", PcssQuality::Low}, {"medium", PcssQuality::Medium}, {"high", PcssQuality::High}};
+    static const std::map<std::string, PcssQuality> names = choice_map(kPcssQualityChoices);
     return names;
 }
 
 const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
-    static const std::map<std::string, LocalShadowSizing> names{{"coverage", LocalShadowSizing::Coverage},
-                                                                {"fixed", LocalShadowSizing::Fixed}};
+    static const std::map<std::string, LocalShadowSizing> names = choice_map(kLocalShadowSizingChoices);
     return names;
 }
 
 const std::map<std::string, CasterCulling>& caster_culling_names() {
-    static const std::map<std::string, CasterCulling> names{
-        {"none", CasterCulling::None}, {"back", CasterCulling::BackFaces}, {"front", CasterCulling::FrontFaces}};
+    static const std::map<std::string, CasterCulling> names = choice_map(kCasterCullingChoices);
     return names;
 }
 

@@ -44,21 +44,17 @@ void read_filter_keys(TomlTableReader& reader, FilterOverrides& f) {
 void read_shadow_table(TomlTableReader& reader, SettingsOverrides& o) {
     o.cascades = reader.optional_integer_as<int>("cascades", 1, 8);
     o.shadow_resolution = reader.optional_integer_as<uint32_t>("resolution", 512, 8192);
-    o.split_scheme = reader.optional_choice<SplitScheme>("split_scheme", {{"uniform", SplitScheme::Uniform},
-                                                                          {"log", SplitScheme::Logarithmic},
-                                                                          {"practical", SplitScheme::Practical},
-                                                                          {"manual", SplitScheme::Manual}});
+    o.split_scheme = reader.optional_choice<SplitScheme>("split_scheme", split_scheme_names());
     o.split_lambda = reader.optional_float("split_lambda");
     o.splits = reader.optional_number_list("splits");
     o.max_distance = reader.optional_float("max_distance");
-    o.fit = reader.optional_choice<FitMode>("fit", {{"stable", FitMode::Stable}, {"tight", FitMode::Tight}});
+    o.fit = reader.optional_choice<FitMode>("fit", fit_mode_names());
     o.constant_bias = reader.optional_float("constant_bias");
     o.slope_bias = reader.optional_float("slope_bias");
     o.bias_clamp = reader.optional_float("bias_clamp");
     o.normal_offset = reader.optional_float("normal_offset");
     o.blend_width = reader.optional_float("blend_width");
-    o.strategy = reader.optional_choice<ShadowStrategy>(
-        "strategy", {{"per-cascade", ShadowStrategy::PerCascade}, {"multiview", ShadowStrategy::Multiview}});
+    o.strategy = reader.optional_choice<ShadowStrategy>("strategy", shadow_strategy_names());
     o.cull_casters = reader.optional_boolean("cull_casters");
     o.caster_culling = reader.optional_choice<CasterCulling>("caster_culling", caster_culling_names());
     // Spot and point lights (docs/local-lights.md); the ranges of the flags of the same names.

@@ -30,33 +30,17 @@ std::string vec3(const glm::vec3& value) {
 
 std::string boolean(bool value) { return value ? "true" : "false"; }
 
-template <typename Enum>
-std::string name_of(Enum value, const std::map<std::string, Enum>& names) {
-    for (const auto& [name, candidate] : names) {
-        if (candidate == value) return "\"" + name + "\"";
-    }
-    return "\"\"";
-}
-
-const char* split_scheme_name(SplitScheme scheme) {
-    switch (scheme) {
-        case SplitScheme::Uniform:
-            return "\"uniform\"";
-        case SplitScheme::Logarithmic:
-            return "\"log\"";
-        case SplitScheme::Practical:
-            return "\"practical\"";
-        case SplitScheme::Manual:
-            return "\"manual\"";
-    }
-    return "\"practical\"";
+// A choice as TOML writes it: its name, quoted.
+template <typename Enum, std::size_t N>
+std::string quoted(const ChoiceName<Enum> (&choices)[N], Enum value) {
+    return std::string("\"") + choice_name(choices, value) + "\"";
 }
 
 void write_cascades(std::ostream& out, const ShadowSettings& shadow) {
     const CascadeSettings& c = shadow.cascades;
     out << "cascades = " << c.count << "\n";
     out << "resolution = " << c.resolution << "\n";
-    out << "split_scheme = " << split_scheme_name(c.scheme) << "\n";
+    out << "split_scheme = " << quoted(kSplitSchemeChoices, c.scheme) << "\n";
     out << "split_lambda = " << real(c.split_lambda) << "\n";
     if (!c.manual_splits.empty()) {
         out << "splits = [";
@@ -64,27 +48,26 @@ void write_cascades(std::ostream& out, const ShadowSettings& shadow) {
         out << "]\n";
     }
     out << "max_distance = " << real(c.max_distance) << "\n";
-    out << "fit = " << (c.fit == FitMode::Stable ? "\"stable\"" : "\"tight\"") << "\n";
+    out << "fit = " << quoted(kFitModeChoices, c.fit) << "\n";
     out << "constant_bias = " << real(shadow.bias.constant) << "\n";
     out << "slope_bias = " << real(shadow.bias.slope) << "\n";
     out << "bias_clamp = " << real(shadow.bias.clamp) << "\n";
     out << "normal_offset = " << real(shadow.bias.normal_offset) << "\n";
     out << "blend_width = " << real(shadow.blend_width) << "\n";
-    out << "strategy = " << (shadow.strategy == ShadowStrategy::PerCascade ? "\"per-cascade\"" : "\"multiview\"")
-        << "\n";
+    out << "strategy = " << quoted(kShadowStrategyChoices, shadow.strategy) << "\n";
     out << "cull_casters = " << boolean(shadow.cull_casters) << "\n";
-    out << "caster_culling = " << name_of(shadow.caster_culling, caster_culling_names()) << "\n";
+    out << "caster_culling = " << quoted(kCasterCullingChoices, shadow.caster_culling) << "\n";
 }
 
 void write_filter(std::ostream& out, const FilterSettings& f) {
     namespace k = shadow_keys;
-    out << k::kFilter << " = " << name_of(f.mode, shadow_filter_names()) << "\n";
+    out << k::kFilter << " = " << quoted(kShadowFilterChoices, f.mode) << "\n";
     out << k::kReceiverPlaneBias << " = " << boolean(f.receiver_plane_bias) << "\n";
     out << k::kPcfRadius << " = " << f.pcf_radius << "\n";
     out << k::kPoissonTaps << " = " << f.poisson_taps << "\n";
     out << k::kPoissonRadius << " = " << real(f.poisson_radius) << "\n";
     out << k::kPcssBlockerTaps << " = " << f.pcss_blocker_taps << "\n";
-    out << k::kPcssQuality << " = " << name_of(f.pcss_quality, pcss_quality_names()) << "\n";
+    out << k::kPcssQuality << " = " << quoted(kPcssQualityChoices, f.pcss_quality) << "\n";
     out << k::kPcssEarlyOut << " = " << boolean(f.pcss_early_out) << "\n";
     out << k::kPcssMaxPenumbra << " = " << real(f.pcss_max_penumbra) << "\n";
     out << k::kLightBleeding << " = " << real(f.light_bleeding_reduction) << "\n";
@@ -101,7 +84,7 @@ void write_filter(std::ostream& out, const FilterSettings& f) {
 void write_local_shadows(std::ostream& out, const LocalShadowSettings& local) {
     out << "local_shadow_budget = " << local.budget << "\n";
     out << "local_shadow_resolution = " << local.resolution << "\n";
-    out << "local_shadow_sizing = \"" << (local.sizing == LocalShadowSizing::Fixed ? "fixed" : "coverage") << "\"\n";
+    out << "local_shadow_sizing = " << quoted(kLocalShadowSizingChoices, local.sizing) << "\n";
 }
 
 }  // namespace

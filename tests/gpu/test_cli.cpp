@@ -7,6 +7,7 @@
 
 #include "cli_runner.hpp"
 #include "image/png_io.hpp"
+#include "penumbra/settings.hpp"
 
 namespace fs = std::filesystem;
 using penumbra::testing::RunResult;
@@ -83,6 +84,24 @@ TEST_F(Cli, DevicesListsAtLeastOneDevice) {
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.out.find("index"), std::string::npos);
     EXPECT_NE(result.out.find("1.3"), std::string::npos);
+}
+
+// The help of each choice flag lists every name of its table (penumbra/settings.hpp).
+TEST_F(Cli, HelpListsEveryNameOfTheChoiceTables) {
+    const RunResult result = run("render --help");
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto expect_listed = [&](const auto& choices) {
+        for (const auto& choice : choices) {
+            EXPECT_NE(result.out.find(choice.name), std::string::npos) << choice.name << " is not in render --help";
+        }
+    };
+    expect_listed(penumbra::kSplitSchemeChoices);
+    expect_listed(penumbra::kFitModeChoices);
+    expect_listed(penumbra::kShadowStrategyChoices);
+    expect_listed(penumbra::kShadowFilterChoices);
+    expect_listed(penumbra::kPcssQualityChoices);
+    expect_listed(penumbra::kCasterCullingChoices);
+    expect_listed(penumbra::kLocalShadowSizingChoices);
 }
 
 TEST_F(Cli, MissingSceneFile) { expect_failure(run("render missing.toml -o out.png"), 2, "missing.toml"); }

@@ -2,6 +2,8 @@
 // reads back bit-exact, so `penumbra render --config` reproduces what `view` saved.
 #include <gtest/gtest.h>
 
+#include <cstddef>
+
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/settings_files.hpp"
 
@@ -150,6 +152,41 @@ TEST(SettingsText, ErrorsNameTheOrigin) {
         EXPECT_NE(std::string(error.what()).find("script.txt:3: nope: unknown table"), std::string::npos)
             << error.what();
     }
+}
+
+// Every name of every choice table (penumbra/settings.hpp) is written and read back as its
+// value: the reader, the writer and the tables cannot drift apart.
+template <typename Enum, std::size_t N, typename Field>
+void expect_every_choice_round_trips(const ChoiceName<Enum> (&choices)[N], Field field) {
+    for (const ChoiceName<Enum>& choice : choices) {
+        SCOPED_TRACE(choice.name);
+        RenderSettings written;
+        written.shadow.cascades.scheme = SplitScheme::Manual;  // manual splits need splits
+        written.shadow.cascades.manual_splits = {10.0f, 30.0f, 60.0f};
+        field(written) = choice.value;
+        const SettingsOverrides read =
+            parse_settings_text(format_settings_file(written, Camera{}, nullptr), "saved.toml");
+        RenderSettings settings;
+        apply_overrides(read, settings);
+        EXPECT_EQ(field(settings), choice.value);
+    }
+}
+
+TEST(SettingsWriter, EveryChoiceOfEveryTableRoundTrips) {
+    expect_every_choice_round_trips(kSplitSchemeChoices,
+                                    [](RenderSettings& s) -> SplitScheme& { return s.shadow.cascades.scheme; });
+    expect_every_choice_round_trips(kFitModeChoices,
+                                    [](RenderSettings& s) -> FitMode& { return s.shadow.cascades.fit; });
+    expect_every_choice_round_trips(kShadowStrategyChoices,
+                                    [](RenderSettings& s) -> ShadowStrategy& { return s.shadow.strategy; });
+    expect_every_choice_round_trips(kShadowFilterChoices,
+                                    [](RenderSettings& s) -> ShadowFilter& { return s.shadow.filter.mode; });
+    expect_every_choice_round_trips(kPcssQualityChoices,
+                                    [](RenderSettings& s) -> PcssQuality& { return s.shadow.filter.pcss_quality; });
+    expect_every_choice_round_trips(kCasterCullingChoices,
+                                    [](RenderSettings& s) -> CasterCulling& { return s.shadow.caster_culling; });
+    expect_every_choice_round_trips(kLocalShadowSizingChoices,
+                                    [](RenderSettings& s) -> LocalShadowSizing& { return s.local_shadows.sizing; });
 }
 
 }  // namespace

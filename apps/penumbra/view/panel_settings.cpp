@@ -17,6 +17,19 @@ void combo(const char* label, Enum& value, const std::array<const char*, N>& nam
     if (ImGui::Combo(label, &index, names.data(), static_cast<int>(N))) value = static_cast<Enum>(index);
 }
 
+// A setting's choice from its table (penumbra/settings.hpp), matched by value, not by the
+// enum's numbering, so the list cannot drift from the values.
+template <typename Enum, size_t N>
+void combo(const char* label, Enum& value, const ChoiceName<Enum> (&choices)[N]) {
+    std::array<const char*, N> names{};
+    int index = 0;
+    for (size_t i = 0; i < N; ++i) {
+        names[i] = choices[i].name;
+        if (choices[i].value == value) index = static_cast<int>(i);
+    }
+    if (ImGui::Combo(label, &index, names.data(), static_cast<int>(N))) value = choices[index].value;
+}
+
 // A choice between two integer values (tap counts, component counts).
 void two_choice(const char* label, int& value, int first, int second) {
     const std::string a = std::to_string(first);
@@ -58,12 +71,12 @@ void cascade_section(CascadeSettings& cascades, const renderer::FrameInfo* frame
     if (!ImGui::CollapsingHeader("Cascades", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ImGui::SliderInt("cascades", &cascades.count, 1, 8);
     resolution_combo(cascades.resolution);
-    combo("split scheme", cascades.scheme, std::array<const char*, 4>{"uniform", "log", "practical", "manual"});
+    combo("split scheme", cascades.scheme, kSplitSchemeChoices);
     if (cascades.scheme == SplitScheme::Practical)
         ImGui::SliderFloat("split lambda", &cascades.split_lambda, 0.0f, 1.0f);
     if (cascades.scheme == SplitScheme::Manual) manual_splits(cascades, frame);
     ImGui::DragFloat("max distance (m)", &cascades.max_distance, 0.5f, 1.0f, 10000.0f, "%.1f");
-    combo("fit", cascades.fit, std::array<const char*, 2>{"stable", "tight"});
+    combo("fit", cascades.fit, kFitModeChoices);
 }
 
 void bias_section(ShadowSettings& shadow) {
@@ -73,9 +86,9 @@ void bias_section(ShadowSettings& shadow) {
     ImGui::SliderFloat("bias clamp", &shadow.bias.clamp, 0.0f, 0.1f, "%.4f");
     ImGui::SliderFloat("normal offset (texels)", &shadow.bias.normal_offset, 0.0f, 10.0f);
     ImGui::SliderFloat("blend width", &shadow.blend_width, 0.0f, 0.5f);
-    combo("strategy", shadow.strategy, std::array<const char*, 2>{"per-cascade", "multiview"});
+    combo("strategy", shadow.strategy, kShadowStrategyChoices);
     ImGui::Checkbox("cull casters", &shadow.cull_casters);
-    combo("caster face culling", shadow.caster_culling, std::array<const char*, 3>{"none", "back", "front"});
+    combo("caster face culling", shadow.caster_culling, kCasterCullingChoices);
 }
 
 void comparison_filter_controls(FilterSettings& filter) {
@@ -85,7 +98,7 @@ void comparison_filter_controls(FilterSettings& filter) {
         ImGui::SliderFloat("Poisson radius (texels)", &filter.poisson_radius, 0.5f, 32.0f);
     }
     if (filter.mode == ShadowFilter::Pcss) {
-        combo("PCSS quality", filter.pcss_quality, std::array<const char*, 3>{"low", "medium", "high"});
+        combo("PCSS quality", filter.pcss_quality, kPcssQualityChoices);
         two_choice("blocker taps", filter.pcss_blocker_taps, 16, 32);
         ImGui::Checkbox("PCSS early out", &filter.pcss_early_out);
         ImGui::SliderFloat("max penumbra (texels)", &filter.pcss_max_penumbra, 1.0f, 128.0f);
@@ -114,7 +127,7 @@ void moment_filter_controls(FilterSettings& filter) {
 
 void filter_section(FilterSettings& filter) {
     if (!ImGui::CollapsingHeader("Filter", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    combo("filter", filter.mode, std::array<const char*, 7>{"hard", "pcf", "poisson", "pcss", "vsm", "evsm", "msm"});
+    combo("filter", filter.mode, kShadowFilterChoices);
     comparison_filter_controls(filter);
     moment_filter_controls(filter);
 }
