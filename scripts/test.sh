@@ -8,7 +8,7 @@ bash scripts/setup.sh
 bash scripts/build.sh
 bash scripts/check-format.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
-# Unit, library and a few GPU tests again under ASan + UBSan (build-sanitize/).
+# Unit and library tests again under ASan + UBSan (build-sanitize/).
 bash scripts/sanitize.sh
-# Every fuzz harness for 30 s (clang, ASan + UBSan) from its seed corpus: tests/fuzz/README.md.
-bash tests/fuzz/run.sh 30
+# Every fuzz harness for 15 s (clang, ASan + UBSan) from its seed corpus: tests/fuzz/README.md.
+bash tests/fuzz/run.sh 15
