@@ -119,49 +119,29 @@ void validate_settings(const Settings& settings, const std::string& origin) {
 
 namespace {
 
+// The name -> value map of a choice table, built once (one table per enum, so one map per
+// instantiation).
 template <typename Enum, std::size_t N>
-std::map<std::string, Enum> choice_map(const ChoiceName<Enum> (&choices)[N]) {
-    std::map<std::string, Enum> names;
-    for (const ChoiceName<Enum>& choice : choices) names.emplace(choice.name, choice.value);
+const std::map<std::string, Enum>& choice_map(const ChoiceName<Enum> (&choices)[N]) {
+    static const std::map<std::string, Enum> names = [&] {
+        std::map<std::string, Enum> built;
+        for (const ChoiceName<Enum>& choice : choices) built.emplace(choice.name, choice.value);
+        return built;
+    }();
     return names;
 }
 
 }  // namespace
 
-const std::map<std::string, SplitScheme>& split_scheme_names() {
-    static const std::map<std::string, SplitScheme> names = choice_map(kSplitSchemeChoices);
-    return names;
-}
-
-const std::map<std::string, FitMode>& fit_mode_names() {
-    static const std::map<std::string, FitMode> names = choice_map(kFitModeChoices);
-    return names;
-}
-
-const std::map<std::string, ShadowStrategy>& shadow_strategy_names() {
-    static const std::map<std::string, ShadowStrategy> names = choice_map(kShadowStrategyChoices);
-    return names;
-}
-
-const std::map<std::string, ShadowFilter>& shadow_filter_names() {
-    static const std::map<std::string, ShadowFilter> names = choice_map(kShadowFilterChoices);
-    return names;
-}
-
-const std::map<std::string, PcssQuality>& pcss_quality_names() {
-    static const std::map<std::string, PcssQuality> names = choice_map(kPcssQualityChoices);
-    return names;
-}
-
+const std::map<std::string, SplitScheme>& split_scheme_names() { return choice_map(kSplitSchemeChoices); }
+const std::map<std::string, FitMode>& fit_mode_names() { return choice_map(kFitModeChoices); }
+const std::map<std::string, ShadowStrategy>& shadow_strategy_names() { return choice_map(kShadowStrategyChoices); }
+const std::map<std::string, ShadowFilter>& shadow_filter_names() { return choice_map(kShadowFilterChoices); }
+const std::map<std::string, PcssQuality>& pcss_quality_names() { return choice_map(kPcssQualityChoices); }
 const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {
-    static const std::map<std::string, LocalShadowSizing> names = choice_map(kLocalShadowSizingChoices);
-    return names;
+    return choice_map(kLocalShadowSizingChoices);
 }
-
-const std::map<std::string, CasterCulling>& caster_culling_names() {
-    static const std::map<std::string, CasterCulling> names = choice_map(kCasterCullingChoices);
-    return names;
-}
+const std::map<std::string, CasterCulling>& caster_culling_names() { return choice_map(kCasterCullingChoices); }
 
 bool is_moment_filter(ShadowFilter filter) {
     return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
