@@ -58,9 +58,31 @@ def matrix(scenes_dir):
               ["--ceiling", "triangles"]) for count in (100, 1000, 10000)]
     runs += [("ceiling taps", f"{taps} taps 1080p", None, ["--ceiling", "taps", "--taps", str(taps)])
              for taps in (1, 16, 64)]
+    runs += [("ceiling compute taps", f"{taps} taps {label}", None,
+              ["--ceiling", "compute-taps", "--taps", str(taps)] + size)
+             for taps in (1, 16, 64) for label, size in (("1080p", []), ("4K", UHD))]
+    runs += resolve_runs()
     runs += [("camera path", "flythrough", None, ["--camera-path", "flythrough"]),
              ("light path", "rotate", None, ["--light-path", "rotate"])]
     runs += local_light_runs()
+    return runs
+
+
+UHD = ["--width", "3840", "--height", "2160"]
+RESOLVE_FILTERS = ("hard", "pcf r=2", "poisson", "pcss high", "vsm", "msm")
+
+
+def resolve_runs():
+    """Forward shading against the deferred compute resolve (--resolve), at 1080p and 4K, for
+    the filters whose cost the resolve changes, and with spot and point lights."""
+    runs = []
+    for label, size in (("1080p", []), ("4K", UHD)):
+        runs += [(f"resolve {label}", f"{resolve}, {name}", None, ["--resolve", resolve] + size + args)
+                 for name, args in FILTERS if name in RESOLVE_FILTERS for resolve in ("forward", "deferred")]
+    forest = f"{BASELINE_SCENE}&spots=8&points=8"
+    runs += [("resolve local lights", f"{resolve}, 8 spots + 8 points, {name}", forest,
+              ["--resolve", resolve, "--local-shadow-budget", "16"] + args)
+             for name, args in FILTERS if name in ("hard", "pcf r=2", "pcss high") for resolve in ("forward", "deferred")]
     return runs
 
 
@@ -160,7 +182,7 @@ def fmt(value, digits=3):
 def report_row(entry):
     r = entry["report"]
     if r is None:
-        return f"| {entry['variant']} | {entry['status']}: {entry['reason']} | | | | | | | | |"
+        return f"| {entry['variant']} | {entry['status']}: {entry['reason']} | | | | | | | | | | |"
     gpu, cpu = r["gpu_ms"], r["cpu_ms"]
     frame = gpu.get("frame", {})
     lighting = gpu.get("lighting", {}).get("median")
@@ -169,8 +191,11 @@ def report_row(entry):
     ceiling = r.get("ceiling")
     extra = f"{ceiling['per_second']:.4g} {ceiling['unit']}/s" if ceiling else f"{triangles / 1e6:.2f}M"
     local = gpu.get("shadow_local", {}).get("median")
+    prepass = gpu.get("prepass", {}).get("median")
+    resolve = gpu.get("visibility", {}).get("median")
     return (f"| {entry['variant']} | {fmt(frame.get('median'))} | {fmt(frame.get('p95'))} | {fmt(shadow_ms(r))} | "
-            f"{fmt(moments)} | {fmt(local)} | {local_summary(r)} | {fmt(lighting)} | "
+            f"{fmt(moments)} | {fmt(local)} | {local_summary(r)} | {fmt(prepass)} | {fmt(resolve)} | "
+            f"{fmt(lighting)} | "
             f"{fmt(cpu.get('recording', {}).get('median'))} | {extra} |")
 
 
@@ -179,6 +204,7 @@ def write_report(path, entries, header):
              "Times are medians over the measured frames in milliseconds (frame: also p95). "
              "Shadow = sum of the sun's shadow-pass scopes; local = the spot/point lights' pass "
              "(depth, and moments with a moment filter), with shadowed lights / layers / mean map size; "
+             "prepass and resolve: the depth and normal pre-pass and the compute resolve of `--resolve deferred`; "
              "last column: the sun's shadow triangles submitted per frame (sum over cascades), or the "
              "ceiling rate.", ""]
     axis = None
@@ -186,9 +212,9 @@ def write_report(path, entries, header):
         if entry["axis"] != axis:
             axis = entry["axis"]
             lines += ["", f"## {axis}", "",
-                      "| variant | frame | frame p95 | shadow | moments | local | local lights | lighting | "
-                      "CPU recording | triangles / rate |",
-                      "|---|---|---|---|---|---|---|---|---|---|"]
+                      "| variant | frame | frame p95 | shadow | moments | local | local lights | prepass | resolve | "
+                      "lighting | CPU recording | triangles / rate |",
+                      "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         lines.append(report_row(entry))
     with open(path, "w") as file:
         file.write("\n".join(lines) + "\n")

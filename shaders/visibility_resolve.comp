@@ -10,7 +10,11 @@
 // axis the neighbour whose view depth is closer (so that a silhouette does not count as a
 // slope, as in Turanszki's normal reconstruction), giving the receiver-plane gradients of
 // the sun's cascades and the geometric normal (the shading normal too, without a normal
-// buffer). Pixels without geometry are lit in every slot.
+// buffer). With the caller's face normals (ScreenInputs::face_normals) the plane is the
+// surface's own instead: the neighbours are where their pixels' rays meet it, as a
+// fragment shader's derivatives see its own triangle, so thin objects and silhouettes get
+// the receiver plane that forward shading gives them. Pixels without geometry are lit in
+// every slot.
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 #define PENUMBRA_SHADOW_SET 0
@@ -21,17 +25,20 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 0) uniform sampler2D screen_depth;
 layout(set = 1, binding = 1) uniform sampler2D screen_normals;  // the depth again when there are none
 layout(set = 1, binding = 2, rgba8) uniform writeonly image2DArray visibility;
+layout(set = 1, binding = 3) uniform sampler2D screen_face_normals;  // the depth again when there are none
 layout(push_constant) uniform PushBlock { ResolvePushConstants resolve; };
 
 bool has_geometry(float depth) { return depth != resolve.background_depth; }
 
 float depth_at(ivec2 pixel) { return texelFetch(screen_depth, pixel, 0).r; }
 
-vec3 world_position(ivec2 pixel, float depth) {
-    const vec2 ndc = (vec2(pixel) + 0.5) / vec2(resolve.width, resolve.height) * 2.0 - 1.0;
+vec3 unproject(vec2 pixel_centre, float depth) {
+    const vec2 ndc = pixel_centre / vec2(resolve.width, resolve.height) * 2.0 - 1.0;
     const vec4 world = resolve.inverse_view_projection * vec4(ndc, depth, 1.0);
     return world.xyz / world.w;
 }
+
+vec3 world_position(ivec2 pixel, float depth) { return unproject(vec2(pixel) + 0.5, depth); }
 
 // The neighbour along `axis` (+1 or -1 steps) that continues this pixel's surface best, as
 // the signed step and its world position; step 0 when neither has geometry.
@@ -63,10 +70,29 @@ vec3 camera_position() {
     return -(transpose(mat3(view)) * view[3].xyz);
 }
 
-vec3 decode_normal(ivec2 pixel) {
-    const vec3 stored = texelFetch(screen_normals, pixel, 0).xyz;
-    const vec3 normal = resolve.normal_encoding == 1u ? stored * 2.0 - 1.0 : stored;
-    return normalize(normal);
+vec3 decode(vec3 stored) { return resolve.normal_encoding == 1u ? stored * 2.0 - 1.0 : stored; }
+
+vec3 decode_normal(ivec2 pixel) { return normalize(decode(texelFetch(screen_normals, pixel, 0).xyz)); }
+
+// The caller's face normal at `pixel`, unit length, or 0 where it gave none (a degenerate
+// triangle: the shading normal stands in, as in penumbra_geometric_normal()).
+vec3 decode_face_normal(ivec2 pixel) {
+    const vec3 n = decode(texelFetch(screen_face_normals, pixel, 0).xyz);
+    const float length_squared = dot(n, n);
+    return length_squared > 1e-12 ? n * inversesqrt(length_squared) : vec3(0.0);
+}
+
+// The neighbour `axis` pixels away on the plane through `position` with normal `n`: where
+// that pixel's ray meets the plane (step 0 where the ray runs along it). Depth and half
+// the depth give two points of the ray whatever the projection (reverse-Z depth 0 is at
+// infinity, so the pixel's own depth is the safe end).
+Neighbour neighbour_on_plane(ivec2 pixel, ivec2 axis, float depth, vec3 position, vec3 n) {
+    const vec2 centre = vec2(pixel + axis) + 0.5;  // may lie outside the image: it is only a ray
+    const vec3 a = unproject(centre, depth);
+    const vec3 direction = unproject(centre, 0.5 * depth) - a;
+    const float along = dot(direction, n);
+    if (abs(along) < 1e-12 * dot(direction, direction)) return Neighbour(0, vec3(0.0));
+    return Neighbour(1, a + direction * (dot(position - a, n) / along));
 }
 
 void write_slot(ivec2 pixel, uint slot, float value, inout vec4 texel) {
@@ -75,6 +101,31 @@ void write_slot(ivec2 pixel, uint slot, float value, inout vec4 texel) {
         imageStore(visibility, ivec3(pixel, int(slot / 4u)), texel);
         texel = vec4(1.0);
     }
+}
+
+// Forward shading drops the sun's receiver-plane gradients where the pixel's 2 x 2 quad
+// spans two cascades (fwidth of the cascade index): the same quads here, their pixels on
+// the receiver's plane when it is known (as a triangle's helper invocations are), else
+// where the depth puts them.
+bool quad_spans_cascades(ivec2 pixel, float depth, vec3 position, vec3 face_normal, bool on_face, int cascade) {
+    const ivec2 quad = pixel & ~1;
+    for (int i = 0; i < 4; ++i) {
+        const ivec2 other = quad + ivec2(i & 1, i >> 1);
+        if (other == pixel) continue;
+        vec3 other_position;
+        if (on_face) {
+            const Neighbour n = neighbour_on_plane(pixel, other - pixel, depth, position, face_normal);
+            if (n.step == 0) continue;
+            other_position = n.position;
+        } else {
+            if (any(greaterThanEqual(other, ivec2(resolve.width, resolve.height)))) continue;
+            const float other_depth = depth_at(other);
+            if (!has_geometry(other_depth)) continue;
+            other_position = world_position(other, other_depth);
+        }
+        if (penumbra_select_cascade(penumbra_view_depth(other_position)) != cascade) return true;
+    }
+    return false;
 }
 
 void main() {
@@ -88,13 +139,17 @@ void main() {
     }
     const vec3 position = world_position(pixel, depth);
     const float view_depth = penumbra_view_depth(position);
-    const Neighbour x = neighbour_along(pixel, ivec2(1, 0), view_depth);
-    const Neighbour y = neighbour_along(pixel, ivec2(0, 1), view_depth);
+    const vec3 face_normal = resolve.has_face_normals != 0u ? decode_face_normal(pixel) : vec3(0.0);
+    const bool on_face = dot(face_normal, face_normal) > 0.0;
+    const Neighbour x = on_face ? neighbour_on_plane(pixel, ivec2(1, 0), depth, position, face_normal)
+                                : neighbour_along(pixel, ivec2(1, 0), view_depth);
+    const Neighbour y = on_face ? neighbour_on_plane(pixel, ivec2(0, 1), depth, position, face_normal)
+                                : neighbour_along(pixel, ivec2(0, 1), view_depth);
     const vec3 to_camera = camera_position() - position;
 
-    // The geometric normal from the neighbours, facing the camera.
-    vec3 plane_normal = vec3(0.0);
-    if (x.step != 0 && y.step != 0) {
+    // The geometric normal: the caller's, or from the neighbours, facing the camera.
+    vec3 plane_normal = face_normal;
+    if (!on_face && x.step != 0 && y.step != 0) {
         const vec3 n = cross(float(x.step) * (x.position - position), float(y.step) * (y.position - position));
         if (dot(n, n) > 1e-20) plane_normal = normalize(n);
     }
@@ -105,6 +160,9 @@ void main() {
 
     const vec2 centre = vec2(pixel) + 0.5;
     PenumbraSunReceiver receiver = penumbra_sun_receiver(position, normal, centre);
+    // The sun's face test by the surface's own plane, as penumbra_sun_receiver_fragment() in
+    // forward shading: a smooth normal alone lets faces turned from the sun pass (leaves).
+    receiver.face_normal = plane_normal;
     if (x.step != 0 && y.step != 0) {
         const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
         vec3 coord_dx[2];
@@ -114,8 +172,7 @@ void main() {
             coord_dx[i] = float(x.step) * (penumbra_project_to_cascade(cascades[i], x.position, normal) - coord);
             coord_dy[i] = float(y.step) * (penumbra_project_to_cascade(cascades[i], y.position, normal) - coord);
         }
-        const bool seam = penumbra_select_cascade(penumbra_view_depth(x.position)) != receiver.cascade ||
-                          penumbra_select_cascade(penumbra_view_depth(y.position)) != receiver.cascade;
+        const bool seam = quad_spans_cascades(pixel, depth, position, face_normal, on_face, receiver.cascade);
         penumbra_set_receiver_plane(receiver, coord_dx, coord_dy, seam);
     }
     write_slot(pixel, 0u, penumbra_sun_visibility(receiver, normal), texel);

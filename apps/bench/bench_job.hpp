@@ -22,9 +22,17 @@ namespace penumbra::bench {
 
 enum class Ceiling {
     None,
-    Triangles,  // shadow pass at kCeilingShadowResolution, every caster in every cascade
-    Taps,       // full-screen pass of `taps` comparison taps per pixel
+    Triangles,    // shadow pass at kCeilingShadowResolution, every caster in every cascade
+    Taps,         // full-screen fragment pass of `taps` comparison taps per pixel
+    ComputeTaps,  // the same taps in a compute dispatch, one thread per pixel
 };
+
+inline constexpr ChoiceName<Ceiling> kCeilingChoices[] = {{"none", Ceiling::None},
+                                                          {"triangles", Ceiling::Triangles},
+                                                          {"taps", Ceiling::Taps},
+                                                          {"compute-taps", Ceiling::ComputeTaps}};
+
+constexpr bool is_tap_ceiling(Ceiling ceiling) { return ceiling == Ceiling::Taps || ceiling == Ceiling::ComputeTaps; }
 
 // The smallest cascade map the library accepts: rasterisation costs little next to the
 // triangles themselves.
@@ -38,7 +46,7 @@ struct BenchJob {
     CameraPath camera_path = CameraPath::Orbit;
     LightPath light_path = LightPath::Fixed;
     Ceiling ceiling = Ceiling::None;
-    uint32_t taps = 16;     // per pixel, for Ceiling::Taps
+    uint32_t taps = 16;     // per pixel, for Ceiling::Taps and Ceiling::ComputeTaps
     bool readback = false;  // read the images back every frame, as `render` does
     std::optional<std::filesystem::path> json;
     // Called after every frame (warm-up included) with frames done and the total.

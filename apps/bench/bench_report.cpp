@@ -13,18 +13,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-const char* ceiling_name(Ceiling ceiling) {
-    switch (ceiling) {
-        case Ceiling::None:
-            return "none";
-        case Ceiling::Triangles:
-            return "triangles";
-        case Ceiling::Taps:
-            return "taps";
-    }
-    return "unknown";
-}
-
 Json summary_json(const Summary& summary) {
     return Json{{"median", summary.median}, {"p95", summary.p95},   {"min", summary.min},
                 {"max", summary.max},       {"mean", summary.mean}, {"samples", summary.samples}};
@@ -49,6 +37,7 @@ Json settings_json(const RenderSettings& settings) {
     const ShadowSettings& shadow = settings.shadow;
     return Json{{"width", settings.width},
                 {"height", settings.height},
+                {"resolve", choice_name(kShadowResolveChoices, settings.resolve)},
                 {"cascades", shadow.cascades.count},
                 {"shadow_resolution", shadow.cascades.resolution},
                 {"strategy", choice_name(kShadowStrategyChoices, shadow.strategy)},
@@ -75,8 +64,8 @@ Json run_json(const BenchJob& job) {
                 {"camera_path", camera_path_name(job.camera_path)},
                 {"light_path", light_path_name(job.light_path)},
                 {"readback", job.readback},
-                {"ceiling", ceiling_name(job.ceiling)},
-                {"taps", job.ceiling == Ceiling::Taps ? Json(job.taps) : Json(nullptr)},
+                {"ceiling", choice_name(kCeilingChoices, job.ceiling)},
+                {"taps", is_tap_ceiling(job.ceiling) ? Json(job.taps) : Json(nullptr)},
                 {"validation", job.render.device.validation}};
 }
 

@@ -84,7 +84,7 @@ CountSummary summarize_counts(const std::vector<uint64_t>& counts) {
 
 void validate_job(const BenchJob& job) {
     if (job.frames == 0) throw InputError("--frames: must be at least 1, got 0");
-    if (job.ceiling == Ceiling::Taps && (job.taps == 0 || job.taps > kMaxTaps)) {
+    if (is_tap_ceiling(job.ceiling) && (job.taps == 0 || job.taps > kMaxTaps)) {
         throw InputError("--taps: must be between 1 and " + std::to_string(kMaxTaps) + ", got " +
                          std::to_string(job.taps));
     }
@@ -179,11 +179,13 @@ FrameSamples run_renderer_frames(const renderer::AppContext& context, const Benc
     return samples;
 }
 
-// The sampling-rate ceiling: no scene rendering, only the full-screen tap pass.
+// The sampling-rate ceilings: no scene rendering, only the tap pass (fragment or compute).
 FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob& job, const RenderSettings& settings,
                             BenchResult& result) {
+    const TapCeilingUnits units =
+        job.ceiling == Ceiling::ComputeTaps ? TapCeilingUnits::Compute : TapCeilingUnits::Fragment;
     const TapCeilingPass pass(context, {settings.width, settings.height, settings.shadow.cascades.resolution,
-                                        static_cast<uint32_t>(settings.shadow.cascades.count), job.taps});
+                                        static_cast<uint32_t>(settings.shadow.cascades.count), job.taps, units});
     gpu::FrameCommands commands(context);
     gpu::GpuTimer timer(context, 2);
     result.device = describe_device(context, timer);
@@ -211,7 +213,8 @@ FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob&
         }
         if (job.progress) job.progress(index + 1, total);
     }
-    result.ceiling = CeilingReport{"taps", "texture taps", pass.taps_per_frame(), 0.0};
+    result.ceiling = CeilingReport{units == TapCeilingUnits::Compute ? "compute-taps" : "taps", "texture taps",
+                                   pass.taps_per_frame(), 0.0};
     return samples;
 }
 
@@ -264,7 +267,7 @@ void finish_ceiling(const BenchJob& job, const Scene& scene, const RenderSetting
         const uint64_t work = scene.triangle_count() * static_cast<uint64_t>(settings.shadow.cascades.count);
         const double ms = cascade_shadow_median_ms(result);
         result.ceiling = CeilingReport{"triangles", "cascade triangles", work, ms > 0.0 ? work / (ms * 1e-3) : 0.0};
-    } else if (job.ceiling == Ceiling::Taps && result.ceiling) {
+    } else if (is_tap_ceiling(job.ceiling) && result.ceiling) {
         const double ms = result.gpu_ms.contains("taps") ? result.gpu_ms.at("taps").median : 0.0;
         result.ceiling->per_second = ms > 0.0 ? static_cast<double>(result.ceiling->work_per_frame) / (ms * 1e-3) : 0.0;
     }
@@ -288,7 +291,7 @@ BenchResult run_bench_job(const BenchJob& job) {
     device_options.validation_log = std::make_shared<ValidationLog>();
     {
         renderer::AppContext context(device_options);
-        const FrameSamples samples = job.ceiling == Ceiling::Taps
+        const FrameSamples samples = is_tap_ceiling(job.ceiling)
                                          ? run_tap_frames(context, job, prepared.settings, result)
                                          : run_renderer_frames(context, job, prepared, result);
         summarize_samples(samples, prepared.scene, result);

@@ -20,7 +20,7 @@ namespace {
 // Raw option values as typed; converted after parsing so errors can name the flag.
 struct RawRenderOptions {
     std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits, local_shadow_sizing;
-    std::string caster_culling;
+    std::string caster_culling, resolve;
     std::string config;
     bool no_cull = false;
     RawFilterOptions filter;
@@ -76,6 +76,10 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
         ->check(CLI::Range(1u, kMaxImageSize));
     render.add_option("--height", o.height, "Image height in pixels (1..16384, default 720)")
         ->check(CLI::Range(1u, kMaxImageSize));
+    render.add_option("--resolve", raw.resolve,
+                      "Where shadows are evaluated: " + choice_list(kShadowResolveChoices, RenderSettings{}.resolve) +
+                          " (forward: in the lighting pass per fragment; deferred: a depth and normal pre-pass, "
+                          "then once per pixel in a compute pass)");
     render.add_option("--eye", raw.eye, "Camera position x,y,z (overrides the scene)");
     render.add_option("--target", raw.target, "Camera target x,y,z");
     render.add_option("--up", raw.up, "Camera up vector x,y,z");
@@ -147,6 +151,7 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     if (!raw.caster_culling.empty()) {
         o.caster_culling = parse_choice(raw.caster_culling, "--caster-culling", caster_culling_names());
     }
+    if (!raw.resolve.empty()) o.resolve = parse_choice(raw.resolve, "--resolve", shadow_resolve_names());
     if (!raw.strategy.empty()) {
         o.strategy = parse_choice(raw.strategy, "--shadow-strategy", shadow_strategy_names());
     }
@@ -193,8 +198,9 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--json", raw.json, "Also write the results (and device, settings, scene) as JSON");
     bench.add_option("--ceiling", raw.ceiling,
                      "Measure a ceiling instead: triangles (shadow pass at 512x512, no culling) | taps (full-screen "
-                     "shadow-map taps)");
-    bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps (default 16)")
+                     "shadow-map taps in a fragment shader) | compute-taps (the same taps in a compute shader, one "
+                     "thread per pixel)");
+    bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps and compute-taps (default 16)")
         ->check(CLI::Range(1u, bench::kMaxTaps));
     bench.add_flag("--readback", job.readback, "Read the images back every frame, as `render` does");
 }
@@ -212,8 +218,7 @@ void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_
                                            {{"fixed", bench::LightPath::Fixed}, {"rotate", bench::LightPath::Rotate}});
     }
     if (!bench_raw.ceiling.empty()) {
-        job.ceiling = parse_choice<bench::Ceiling>(
-            bench_raw.ceiling, "--ceiling", {{"triangles", bench::Ceiling::Triangles}, {"taps", bench::Ceiling::Taps}});
+        job.ceiling = parse_choice(bench_raw.ceiling, "--ceiling", choice_map(bench::kCeilingChoices));
     }
     if (!bench_raw.json.empty()) job.json = bench_raw.json;
 }

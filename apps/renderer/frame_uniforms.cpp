@@ -62,7 +62,8 @@ shader::FrameUniforms build_frame_uniforms(const ViewDesc& view, const Scene& sc
     return frame;
 }
 
-shader::LocalLights build_local_lights(const std::vector<Light>& lights) {
+shader::LocalLights build_local_lights(const std::vector<Light>& lights,
+                                       const std::vector<LocalShadowInfo>& local_shadows) {
     shader::LocalLights result{};
     const std::vector<uint32_t> lit = lit_local_lights(lights);
     for (size_t slot = 0; slot < lit.size(); ++slot) {
@@ -77,6 +78,9 @@ shader::LocalLights build_local_lights(const std::vector<Light>& lights) {
         out.cos_outer = spot ? std::cos(glm::radians(light.outer_angle_degrees)) : -1.0f;
         out.cos_inner = spot ? std::cos(glm::radians(light.inner_angle_degrees)) : -1.0f;
         out.shadow_index = lit[slot];
+        for (const LocalShadowInfo& shadow : local_shadows) {
+            if (shadow.light == lit[slot]) out.visibility_slot = shadow.slot;
+        }
     }
     return result;
 }

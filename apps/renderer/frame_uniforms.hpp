@@ -20,8 +20,10 @@ gpu::UniqueDescriptorSetLayout create_frame_set_layout(const gpu::Device& device
 shader::FrameUniforms build_frame_uniforms(const ViewDesc& view, const Scene& scene, const RenderSettings& settings);
 
 // The lit spot and point lights (lit_local_lights()); each names its index in the
-// ShadowSystem's light list, which is the scene's.
-shader::LocalLights build_local_lights(const std::vector<Light>& lights);
+// ShadowSystem's light list, which is the scene's, and its slot in the deferred visibility
+// image (from this frame's `local_shadows`; 0 without a shadow map).
+shader::LocalLights build_local_lights(const std::vector<Light>& lights,
+                                       const std::vector<LocalShadowInfo>& local_shadows);
 
 // The scene's lights for ShadowSystem::set_lights(), in the same order (so that indices
 // agree); lights past the lit ones cast no shadow, as nothing lights them.

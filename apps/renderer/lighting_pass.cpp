@@ -1,6 +1,7 @@
 #include "renderer/lighting_pass.hpp"
 
 #include <array>
+#include <stdexcept>
 #include <vector>
 
 #include "penumbra/gpu/barriers.hpp"
@@ -39,38 +40,74 @@ std::vector<gpu::SpecializationValue> shadow_specialization(const ShadowSystem& 
 }
 
 gpu::UniquePipeline create_lighting_pipeline(const gpu::Device& device, VkPipelineLayout layout,
-                                             VkCullModeFlags cull_mode, const ShadowSystem& shadows) {
+                                             VkCullModeFlags cull_mode, const ShadowSystem& shadows,
+                                             ShadowResolve resolve) {
+    const bool deferred = resolve == ShadowResolve::Deferred;
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
-    desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::lighting_frag(), shadow_specialization(shadows)});
+    desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT,
+                           deferred ? shaders::lighting_deferred_frag() : shaders::lighting_frag(),
+                           shadow_specialization(shadows)});
     desc.vertex_layout = scene_vertex_layout();
     desc.layout = layout;
     desc.color_formats = {kColorFormat, kVisibilityFormat, kCascadeFormat};
     desc.depth_format = kDepthFormat;
-    desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z
+    // Deferred: only the surface the pre-pass kept at each pixel is shaded, once.
+    desc.depth_compare = deferred ? VK_COMPARE_OP_EQUAL : VK_COMPARE_OP_GREATER;  // reverse-Z
+    desc.depth_write = !deferred;
     desc.cull_mode = cull_mode;
     return gpu::create_graphics_pipeline(device, desc);
+}
+
+gpu::UniqueDescriptorSetLayout create_screen_set_layout(const gpu::Device& device) {
+    const VkDescriptorSetLayoutBinding binding{RENDERER_BINDING_SHADOW_VISIBILITY,
+                                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    return gpu::create_descriptor_set_layout(device, {&binding, 1});
 }
 
 }  // namespace
 
 LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                            VkDescriptorSetLayout material_set_layout, const ShadowSystem& shadows, uint32_t width,
-                           uint32_t height)
-    : device_(device), width_(width), height_(height) {
+                           uint32_t height, ShadowResolve resolve, const gpu::Image* prepass_depth)
+    : device_(device), width_(width), height_(height), resolve_(resolve), prepass_depth_(prepass_depth) {
+    const bool deferred = resolve == ShadowResolve::Deferred;
+    if (deferred && prepass_depth == nullptr) {
+        throw std::invalid_argument("LightingPass: the deferred resolve needs the pre-pass's depth");
+    }
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     targets_.color = create_target(device, kColorFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     targets_.visibility =
         create_target(device, kVisibilityFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     targets_.cascade = create_target(device, kCascadeFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.depth = create_target(device, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                   VK_IMAGE_ASPECT_DEPTH_BIT);
-    const VkDescriptorSetLayout set_layouts[] = {frame_set_layout, material_set_layout,
-                                                 shadows.descriptor_set_layout()};
+    std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, material_set_layout,
+                                                   shadows.descriptor_set_layout()};
+    if (deferred) {
+        screen_set_layout_ = create_screen_set_layout(device);
+        const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+        screen_pool_ = gpu::create_descriptor_pool(device, 1, {&size, 1});
+        screen_set_ = gpu::allocate_descriptor_set(device, screen_pool_, screen_set_layout_);
+        gpu::SamplerDesc sampler;
+        sampler.filter = VK_FILTER_NEAREST;
+        sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        nearest_ = gpu::create_sampler(device, sampler);
+        set_layouts.push_back(screen_set_layout_);
+    } else {
+        targets_.depth = create_target(device, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                       VK_IMAGE_ASPECT_DEPTH_BIT);
+    }
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
-    single_sided_ = create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_BACK_BIT, shadows);
-    double_sided_ = create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_NONE, shadows);
+    single_sided_ = create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_BACK_BIT, shadows, resolve);
+    double_sided_ = create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_NONE, shadows, resolve);
+}
+
+void LightingPass::use_visibility_image(const VisibilityImage& visibility) {
+    if (resolve_ != ShadowResolve::Deferred || visibility.view == visibility_view_) return;
+    gpu::write_combined_image_sampler(device_, screen_set_, RENDERER_BINDING_SHADOW_VISIBILITY, visibility.view,
+                                      nearest_);
+    visibility_view_ = visibility.view;
 }
 
 void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
@@ -79,7 +116,23 @@ void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
         cleared_color_attachment(targets_.visibility.view, {{1.0f, 0.0f, 0.0f, 0.0f}}),  // no geometry = fully lit
         cleared_color_attachment(targets_.cascade.view, VkClearColorValue{.uint32 = {RENDERER_NO_CASCADE, 0, 0, 0}}),
     };
-    begin_camera_rendering(device_, cmd, colors, targets_.depth.view, width_, height_);
+    if (resolve_ == ShadowResolve::Forward) {
+        begin_camera_rendering(device_, cmd, colors, targets_.depth.view, width_, height_);
+        return;
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = prepass_depth_->view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;  // read only: nothing to store
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {width_, height_}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = &depth;
+    device_->vkCmdBeginRendering(cmd, &info);
+    set_viewport_and_scissor(device_, cmd, width_, height_);
 }
 
 void LightingPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, VkDescriptorSet shadow_set,
@@ -87,13 +140,19 @@ void LightingPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, VkDesc
     for (const gpu::Image* target : {&targets_.color, &targets_.visibility, &targets_.cascade}) {
         gpu::transition(device_, cmd, *target, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
     }
-    gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+    if (resolve_ == ShadowResolve::Forward) {
+        gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+    }
 
     begin_rendering(cmd);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, RENDERER_SET_FRAME, 1,
                                      &frame_set, 0, nullptr);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, RENDERER_SET_SHADOWS, 1,
                                      &shadow_set, 0, nullptr);
+    if (resolve_ == ShadowResolve::Deferred) {
+        device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, RENDERER_SET_SCREEN, 1,
+                                         &screen_set_, 0, nullptr);
+    }
     record_camera_draws(device_, cmd, pipeline_layout_, data, single_sided_, double_sided_);
     device_->vkCmdEndRendering(cmd);
 

@@ -1,8 +1,11 @@
 #pragma once
-// Forward lighting pass of the tools' renderer: shades the scene with the sun, spot and
-// point lights and ambient, every shadow sampled through Penumbra's descriptor set and
-// GLSL library (set 2), writing three colour targets (tone-mapped sRGB colour, one
-// light's exact visibility, the cascade index) and a reverse-Z depth buffer.
+// Lighting pass of the tools' renderer: shades the scene with the sun, spot and point
+// lights and ambient, writing three colour targets (tone-mapped sRGB colour, one light's
+// exact visibility, the cascade index). With ShadowResolve::Forward every shadow is
+// sampled here through Penumbra's descriptor set and GLSL library (set 2), over a
+// reverse-Z depth buffer of its own; with ShadowResolve::Deferred it draws over the
+// ScreenPrepass's depth with an equal test and reads each light's shadow from the
+// ShadowSystem's visibility image (set 3).
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -10,6 +13,7 @@
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "penumbra/settings.hpp"
 #include "penumbra/shadow_system.hpp"
 #include "renderer/draw_data.hpp"
@@ -20,21 +24,28 @@ struct LightingTargets {
     gpu::Image color;       // R8G8B8A8_SRGB
     gpu::Image visibility;  // R16_UNORM, 1 where no geometry
     gpu::Image cascade;     // R8_UINT, RENDERER_NO_CASCADE where none applies
-    gpu::Image depth;       // D32_SFLOAT, reverse-Z
+    gpu::Image depth;       // D32_SFLOAT, reverse-Z (forward only: deferred tests the pre-pass's)
 };
 
 class LightingPass {
 public:
     // Set 0 is `frame_set_layout` (the renderer's frame uniforms and lights), set 1 the
-    // materials, set 2 the ShadowSystem's descriptor set; the fragment shader is specialized
-    // with the ShadowSystem's filter constants.
+    // materials, set 2 the ShadowSystem's descriptor set (set 3 the visibility image when
+    // deferred); the fragment shader is specialized with the ShadowSystem's filter constants.
+    // Deferred, `prepass_depth` is the ScreenPrepass's depth, which the pass tests against.
     LightingPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                  VkDescriptorSetLayout material_set_layout, const ShadowSystem& shadows, uint32_t width,
-                 uint32_t height);
+                 uint32_t height, ShadowResolve resolve, const gpu::Image* prepass_depth);
 
     const LightingTargets& targets() const { return targets_; }
 
-    // Renders every draw; leaves the colour targets in TRANSFER_SRC for readback.
+    // Deferred: points set 3 at the ShadowSystem's visibility image (after record_visibility(),
+    // before record(); the descriptor is rewritten only when the image changed, and the
+    // previous frame must have completed).
+    void use_visibility_image(const VisibilityImage& visibility);
+
+    // Renders every draw; leaves the colour targets in TRANSFER_SRC for readback. Deferred,
+    // the pre-pass's depth is in gpu::ImageState::DepthReadOnly and stays there.
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, VkDescriptorSet shadow_set, const DrawData& data) const;
 
 private:
@@ -43,7 +54,14 @@ private:
 
     uint32_t width_;
     uint32_t height_;
+    ShadowResolve resolve_;
+    const gpu::Image* prepass_depth_;
     LightingTargets targets_;
+    gpu::UniqueDescriptorSetLayout screen_set_layout_;  // deferred: set 3
+    gpu::UniqueDescriptorPool screen_pool_;
+    VkDescriptorSet screen_set_ = VK_NULL_HANDLE;
+    VkImageView visibility_view_ = VK_NULL_HANDLE;  // what screen_set_ points at
+    gpu::UniqueSampler nearest_;
     gpu::UniquePipelineLayout pipeline_layout_;
     gpu::UniquePipeline single_sided_;  // back faces culled
     gpu::UniquePipeline double_sided_;  // no culling

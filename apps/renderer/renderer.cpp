@@ -15,6 +15,7 @@
 #include "renderer/geometry_aov_pass.hpp"
 #include "renderer/gpu_scene.hpp"
 #include "renderer/lighting_pass.hpp"
+#include "renderer/screen_prepass.hpp"
 #include "renderer/shader_interface.hpp"
 
 namespace penumbra::renderer {
@@ -73,8 +74,8 @@ double milliseconds_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Scopes of the renderer's own: the frame and the lighting (the shadow passes' are the
-// ShadowSystem's).
+// Scopes of the renderer's own: the frame, the deferred path's pre-pass and the lighting
+// (the shadow passes' and the resolve's are the ShadowSystem's).
 constexpr uint32_t kMaxTimedScopes = 4;
 
 template <typename T>
@@ -116,7 +117,9 @@ struct Renderer::Resources {
     gpu::Buffer lights;
     gpu::UniqueDescriptorPool descriptor_pool;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
+    std::unique_ptr<ScreenPrepass> prepass;  // only with ShadowResolve::Deferred
     LightingPass lighting_pass;
+    glm::mat4 view_projection{1.0f};  // the frame's camera, for the resolve
     Readback readback;
     std::optional<GeometryAovPass> geometry_aovs;  // only with RenderSettings::geometry_aovs
     gpu::FrameCommands commands;
@@ -131,8 +134,13 @@ struct Renderer::Resources {
                                             gpu::MemoryKind::HostUpload)),
           lights(gpu::create_buffer(context, sizeof(shader::LocalLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                     gpu::MemoryKind::HostUpload)),
+          prepass(settings.resolve == ShadowResolve::Deferred
+                      ? std::make_unique<ScreenPrepass>(context, frame_set_layout,
+                                                        gpu_scene.draw_data().material_set_layout, settings.width,
+                                                        settings.height)
+                      : nullptr),
           lighting_pass(context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
-                        settings.height),
+                        settings.height, settings.resolve, prepass ? &prepass->targets().depth : nullptr),
           readback(create_readback(context, settings)),
           commands(context),
           timer(context, kMaxTimedScopes) {
@@ -167,7 +175,7 @@ const gpu::Image& Renderer::color_target() const { return resources_->lighting_p
 
 bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next) {
     const auto is_shadow_map = [](DebugView view) { return view == DebugView::ShadowMap; };
-    return current.width != next.width || current.height != next.height ||
+    return current.width != next.width || current.height != next.height || current.resolve != next.resolve ||
            requires_recreation({current.shadow, current.local_shadows}, {next.shadow, next.local_shadows}) ||
            is_shadow_map(current.debug) != is_shadow_map(next.debug);
 }
@@ -258,7 +266,8 @@ void Renderer::prepare_frame(const Camera& camera) {
 
     const shader::FrameUniforms uniforms = build_frame_uniforms(view, scene_, settings_);
     std::memcpy(resources_->frame_uniforms.mapped, &uniforms, sizeof(uniforms));
-    const shader::LocalLights lights = build_local_lights(scene_.lights);
+    resources_->view_projection = uniforms.view_projection;
+    const shader::LocalLights lights = build_local_lights(scene_.lights, frame.local_shadows);
     std::memcpy(resources_->lights.mapped, &lights, sizeof(lights));
 }
 
@@ -269,6 +278,14 @@ void Renderer::record_frame(VkCommandBuffer cmd, ReadbackMode readback) {
     {
         gpu::TimedScope frame_scope(&r.timer, cmd, "frame");
         r.shadows.record_shadow_maps(cmd);
+        if (r.prepass) {
+            {
+                gpu::TimedScope prepass_scope(&r.timer, cmd, "prepass");
+                r.prepass->record(cmd, r.frame_set, draw_data);
+            }
+            r.shadows.record_visibility(cmd, r.prepass->screen_inputs(r.view_projection));
+            r.lighting_pass.use_visibility_image(r.shadows.visibility_image());
+        }
         gpu::TimedScope lighting_scope(&r.timer, cmd, "lighting");
         r.lighting_pass.record(cmd, r.frame_set, shadow_set_, draw_data);
         if (r.geometry_aovs) r.geometry_aovs->record(cmd, r.frame_set, draw_data);

@@ -1,10 +1,12 @@
 #pragma once
-// The penumbra tools' renderer: renders frames of a Scene headlessly with a forward
-// lighting pass of its own and Penumbra's ShadowSystem for every shadow, as any renderer
-// that adopts the library would (docs/library.md). It uploads the scene into its own
-// buffers, gives the ShadowSystem those buffers, the instances and the lights, and per
-// frame calls prepare(), records the shadow maps and its lighting into one command
-// buffer, submits it, waits and reads the results back.
+// The penumbra tools' renderer: renders frames of a Scene headlessly with a lighting pass
+// of its own and Penumbra's ShadowSystem for every shadow, as any renderer that adopts the
+// library would (docs/library.md). It uploads the scene into its own buffers, gives the
+// ShadowSystem those buffers, the instances and the lights, and per frame calls prepare(),
+// records the shadow maps and its lighting (forward; or deferred: a depth and normal
+// pre-pass, the ShadowSystem's compute resolve, lighting over the pre-pass's depth; see
+// RenderSettings::resolve) into one command buffer, submits it, waits and reads the
+// results back.
 //
 //   Renderer renderer(context, scene, settings);
 //   FrameImages images = renderer.render(scene.camera);
@@ -62,7 +64,9 @@ struct FrameInfo {
     std::vector<uint32_t> unshadowed_lights;     // shadow-casting local lights beyond the budget
     // GPU time of each timed scope, in recording order: "frame", then "shadow_cascade_<i>"
     // (or "shadow_multiview", or "shadow_moments" for the moment filters), "shadow_local"
-    // (only with shadowed spot/point lights) and "lighting". Empty without timestamps.
+    // (only with shadowed spot/point lights), "visibility" (the compute resolve, deferred
+    // only), then the renderer's "prepass" (deferred only; recorded before "visibility") and
+    // "lighting". Empty without timestamps.
     std::vector<gpu::ScopeTime> gpu_times;
     CpuTimes cpu_times;
 };

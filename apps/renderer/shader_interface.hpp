@@ -24,6 +24,8 @@ static_assert(sizeof(FrameUniforms) == 144);
 static_assert(offsetof(LocalLight, direction) == 16);
 static_assert(offsetof(LocalLight, radiance) == 32);
 static_assert(offsetof(LocalLight, cos_inner) == 48);
+static_assert(offsetof(LocalLight, shadow_index) == 52);
+static_assert(offsetof(LocalLight, visibility_slot) == 56);
 static_assert(sizeof(LocalLight) == 64);
 static_assert(sizeof(LocalLights) == 64 * RENDERER_MAX_LOCAL_LIGHTS);
 static_assert(offsetof(DrawPushConstants, base_color) == 64);

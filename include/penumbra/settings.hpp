@@ -183,7 +183,19 @@ constexpr const char* choice_name(const ChoiceName<Enum> (&choices)[N], Enum val
     return "unknown";
 }
 
-// The same tables as name -> value maps (in name order, as error messages list them).
+// A choice table as a name -> value map (in name order, as error messages list them),
+// built once per table.
+template <typename Enum, std::size_t N>
+const std::map<std::string, Enum>& choice_map(const ChoiceName<Enum> (&choices)[N]) {
+    static const std::map<std::string, Enum> names = [&] {
+        std::map<std::string, Enum> built;
+        for (const ChoiceName<Enum>& choice : choices) built.emplace(choice.name, choice.value);
+        return built;
+    }();
+    return names;
+}
+
+// The tables above as name -> value maps.
 const std::map<std::string, SplitScheme>& split_scheme_names();
 const std::map<std::string, FitMode>& fit_mode_names();
 const std::map<std::string, ShadowStrategy>& shadow_strategy_names();

@@ -191,7 +191,15 @@ struct ScreenInputs {
     // World-space normals; VK_NULL_HANDLE: reconstructed from the depth (the geometric normal).
     VkImageView normals = VK_NULL_HANDLE;
     VkImageLayout normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    NormalEncoding normal_encoding = NormalEncoding::SignedFloat;
+    NormalEncoding normal_encoding = NormalEncoding::SignedFloat;  // of normals and face_normals
+    // Optional: each pixel's face (geometric) normal in world space, either orientation, as
+    // a fragment shader gets it from cross(dFdx(position), dFdy(position)). With it the
+    // resolve takes the receiver's plane (face tests, receiver-plane bias) from the surface
+    // itself, exactly as penumbra_sun_receiver_fragment() in forward shading; without it,
+    // from the neighbouring pixels' depths, which is wrong on objects one or two pixels
+    // wide and at silhouettes.
+    VkImageView face_normals = VK_NULL_HANDLE;
+    VkImageLayout face_normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     uint32_t width = 0;  // pixels: the images' extent
     uint32_t height = 0;
     // world -> clip of the projection the depth was rendered with (any convention: reverse

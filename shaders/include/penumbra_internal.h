@@ -49,12 +49,12 @@ struct ResolvePushConstants {
     mat4 inverse_view_projection;  // the caller's clip -> world
     PENUMBRA_UINT width;
     PENUMBRA_UINT height;
-    PENUMBRA_UINT has_normals;      // 0: normals from the depth
-    PENUMBRA_UINT normal_encoding;  // 0: signed float, 1: unsigned normalized
-    float background_depth;         // no geometry: visibility 1
-    PENUMBRA_UINT slot_count;       // 1 (the sun) + the shadowed local lights
-    PENUMBRA_UINT padding0;
-    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT has_normals;       // 0: normals from the depth
+    PENUMBRA_UINT normal_encoding;   // 0: signed float, 1: unsigned normalized
+    float background_depth;          // no geometry: visibility 1
+    PENUMBRA_UINT slot_count;        // 1 (the sun) + the shadowed local lights
+    PENUMBRA_UINT has_face_normals;  // 0: each pixel's plane from its neighbours' depths
+    PENUMBRA_UINT padding;
 };
 
 #endif

@@ -117,22 +117,6 @@ void validate_settings(const Settings& settings, const std::string& origin) {
     validate_local_shadow_settings(settings.local_shadows, origin);
 }
 
-namespace {
-
-// The name -> value map of a choice table, built once (one table per enum, so one map per
-// instantiation).
-template <typename Enum, std::size_t N>
-const std::map<std::string, Enum>& choice_map(const ChoiceName<Enum> (&choices)[N]) {
-    static const std::map<std::string, Enum> names = [&] {
-        std::map<std::string, Enum> built;
-        for (const ChoiceName<Enum>& choice : choices) built.emplace(choice.name, choice.value);
-        return built;
-    }();
-    return names;
-}
-
-}  // namespace
-
 const std::map<std::string, SplitScheme>& split_scheme_names() { return choice_map(kSplitSchemeChoices); }
 const std::map<std::string, FitMode>& fit_mode_names() { return choice_map(kFitModeChoices); }
 const std::map<std::string, ShadowStrategy>& shadow_strategy_names() { return choice_map(kShadowStrategyChoices); }

@@ -39,7 +39,7 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
     : device_(device) {
     const std::array<VkDescriptorPoolSize, 4> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * count},
                                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * count},
-                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * count},
+                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 9 * count},
                                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, count}}};
     pool_ = gpu::create_descriptor_pool(device, 3 * count, sizes);
     // Hardware depth comparison with bilinear filtering. Clamp-to-edge rather than a

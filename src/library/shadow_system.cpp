@@ -341,8 +341,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
     impl.ensure_visibility_image(screen.width, screen.height, slot_count);
     impl.visibility_slots = slot_count;
-    impl.resolve.write_screen_set(slot.screen_set, screen.depth, screen.depth_layout, screen.normals,
-                                  screen.normals_layout, *impl.visibility);
+    impl.resolve.write_screen_set(slot.screen_set, screen, *impl.visibility);
     shader::ResolvePushConstants constants{};
     constants.inverse_view_projection = glm::inverse(view_projection);
     constants.width = screen.width;
@@ -351,6 +350,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     constants.normal_encoding = screen.normal_encoding == NormalEncoding::UnsignedNormalized ? 1u : 0u;
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
+    constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
     gpu::TimedScope scope(&slot.timer, cmd, "visibility");
     impl.resolve.record(cmd, slot.sampling_set, slot.screen_set, *impl.visibility, constants);
     slot.visibility_recorded = true;

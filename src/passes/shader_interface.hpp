@@ -65,6 +65,7 @@ static_assert(offsetof(LocalMomentsPushConstants, depth_range) == 16);
 static_assert(sizeof(LocalMomentsPushConstants) == 32);
 static_assert(offsetof(ResolvePushConstants, width) == 64);
 static_assert(offsetof(ResolvePushConstants, background_depth) == 80);
+static_assert(offsetof(ResolvePushConstants, has_face_normals) == 88);
 static_assert(sizeof(ResolvePushConstants) == 96);
 static_assert(sizeof(ResolvePushConstants) <= 128, "Vulkan guarantees only 128 bytes of push constants");
 

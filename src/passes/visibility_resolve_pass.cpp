@@ -12,10 +12,11 @@ namespace {
 constexpr uint32_t kGroupSize = 8;  // local_size_x and _y of visibility_resolve.comp
 
 gpu::UniqueDescriptorSetLayout create_screen_set_layout(const gpu::Device& device) {
-    const std::array<VkDescriptorSetLayoutBinding, 3> bindings{{
+    const std::array<VkDescriptorSetLayoutBinding, 4> bindings{{
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
     }};
     return gpu::create_descriptor_set_layout(device, bindings);
 }
@@ -48,16 +49,20 @@ VisibilityResolvePass::VisibilityResolvePass(const gpu::Device& device, VkDescri
     nearest_ = gpu::create_sampler(device, sampler);
 }
 
-void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, VkImageView depth, VkImageLayout depth_layout,
-                                             VkImageView normals, VkImageLayout normals_layout,
+void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, const ScreenInputs& screen,
                                              const gpu::Image& target) const {
-    gpu::write_combined_image_sampler(device_, set, 0, depth, nearest_, depth_layout);
-    if (normals != VK_NULL_HANDLE) {
-        gpu::write_combined_image_sampler(device_, set, 1, normals, nearest_, normals_layout);
-    } else {
-        gpu::write_combined_image_sampler(device_, set, 1, depth, nearest_, depth_layout);
-    }
+    // An absent normal image is bound to the depth again: the shader does not read it.
+    const auto write_or_depth = [&](uint32_t binding, VkImageView view, VkImageLayout layout) {
+        if (view != VK_NULL_HANDLE) {
+            gpu::write_combined_image_sampler(device_, set, binding, view, nearest_, layout);
+        } else {
+            gpu::write_combined_image_sampler(device_, set, binding, screen.depth, nearest_, screen.depth_layout);
+        }
+    };
+    gpu::write_combined_image_sampler(device_, set, 0, screen.depth, nearest_, screen.depth_layout);
+    write_or_depth(1, screen.normals, screen.normals_layout);
     gpu::write_storage_image(device_, set, 2, target.view);
+    write_or_depth(3, screen.face_normals, screen.face_normals_layout);
 }
 
 void VisibilityResolvePass::record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set,

@@ -9,6 +9,7 @@
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
 #include "penumbra/settings.hpp"
+#include "penumbra/shadow_system.hpp"
 
 namespace penumbra::passes {
 
@@ -20,10 +21,10 @@ public:
                           const FilterSettings& filter);
 
     VkDescriptorSetLayout screen_set_layout() const { return screen_set_layout_; }
-    // Writes set 1: the depth and the normals (the depth again when there are none) sampled
-    // with a nearest sampler in the given layouts, and `target` as the storage image.
-    void write_screen_set(VkDescriptorSet set, VkImageView depth, VkImageLayout depth_layout, VkImageView normals,
-                          VkImageLayout normals_layout, const gpu::Image& target) const;
+    // Writes set 1: the depth, the normals and the face normals (the depth again for those
+    // absent) sampled with a nearest sampler in the given layouts, and `target` as the
+    // storage image.
+    void write_screen_set(VkDescriptorSet set, const ScreenInputs& screen, const gpu::Image& target) const;
 
     // Dispatches one thread per pixel of `constants.width` x `constants.height`; takes
     // `target` from ShaderSampled (or unused) to ComputeStorageWrite and back to ShaderSampled.

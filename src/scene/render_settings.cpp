@@ -14,6 +14,8 @@ void check_image_size(uint32_t value, const char* name, const std::string& origi
 
 }  // namespace
 
+const std::map<std::string, ShadowResolve>& shadow_resolve_names() { return choice_map(kShadowResolveChoices); }
+
 void validate_render_settings(const RenderSettings& settings, const std::string& origin) {
     check_image_size(settings.width, "width", origin);
     check_image_size(settings.height, "height", origin);

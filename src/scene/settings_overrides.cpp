@@ -23,6 +23,7 @@ std::string format_number(float value) {
 
 void apply_overrides(const SettingsOverrides& overrides, RenderSettings& settings) {
     assign_if(overrides.width, settings.width);
+    assign_if(overrides.resolve, settings.resolve);
     assign_if(overrides.height, settings.height);
     CascadeSettings& cascades = settings.shadow.cascades;
     assign_if(overrides.cascades, cascades.count);

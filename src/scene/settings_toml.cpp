@@ -15,6 +15,7 @@ namespace {
 void read_output_table(TomlTableReader& reader, SettingsOverrides& o) {
     o.width = reader.optional_integer_as<uint32_t>("width", 1, kMaxImageSize);
     o.height = reader.optional_integer_as<uint32_t>("height", 1, kMaxImageSize);
+    o.resolve = reader.optional_choice<ShadowResolve>("resolve", shadow_resolve_names());
     reader.reject_unknown_keys();
 }
 

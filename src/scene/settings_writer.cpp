@@ -92,7 +92,8 @@ void write_local_shadows(std::ostream& out, const LocalShadowSettings& local) {
 std::string format_settings_file(const RenderSettings& settings, const Camera& camera, const Light* sun) {
     std::ostringstream out;
     out << "# Written by penumbra view; `penumbra render SCENE --config THIS_FILE` reproduces the view.\n";
-    out << "[output]\nwidth = " << settings.width << "\nheight = " << settings.height << "\n\n[shadow]\n";
+    out << "[output]\nwidth = " << settings.width << "\nheight = " << settings.height
+        << "\nresolve = " << quoted(kShadowResolveChoices, settings.resolve) << "\n\n[shadow]\n";
     write_cascades(out, settings.shadow);
     write_filter(out, settings.shadow.filter);
     write_local_shadows(out, settings.local_shadows);

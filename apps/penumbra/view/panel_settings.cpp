@@ -6,6 +6,7 @@
 #include <string>
 
 #include "panel.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::view {
@@ -125,9 +126,10 @@ void moment_filter_controls(FilterSettings& filter) {
     }
 }
 
-void filter_section(FilterSettings& filter) {
+void filter_section(FilterSettings& filter, ShadowResolve& resolve) {
     if (!ImGui::CollapsingHeader("Filter", ImGuiTreeNodeFlags_DefaultOpen)) return;
     combo("filter", filter.mode, kShadowFilterChoices);
+    combo("resolve", resolve, kShadowResolveChoices);
     comparison_filter_controls(filter);
     moment_filter_controls(filter);
 }
@@ -137,7 +139,7 @@ void filter_section(FilterSettings& filter) {
 void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* frame) {
     cascade_section(settings.shadow.cascades, frame);
     bias_section(settings.shadow);
-    filter_section(settings.shadow.filter);
+    filter_section(settings.shadow.filter, settings.resolve);
     if (ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) {
         combo("debug view", settings.debug, std::array<const char*, 3>{"none", "cascade colours", "shadow-map layers"});
     }

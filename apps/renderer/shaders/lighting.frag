@@ -5,6 +5,12 @@
 // the tone-mapped colour it writes two exact outputs used by tests and tools: a light's
 // visibility (R16_UNORM: the sun's, or light N's with `--aov shadow:N`) and the index of
 // the cascade that shadowed the pixel (R8_UINT).
+//
+// Compiled twice. Forward (the default): every shadow is filtered here, once per shaded
+// fragment. With RENDERER_DEFERRED_SHADOWS (`--resolve deferred`): Penumbra's compute
+// resolve has filtered every light's shadow once per pixel of the depth pre-pass
+// (ShadowSystem::record_visibility), and this pass, drawn with an equal depth test over
+// that pre-pass, reads the pixel's slots of the visibility image instead.
 #extension GL_GOOGLE_include_directive : require
 #include "renderer_shared.h"
 
@@ -24,6 +30,15 @@ layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_EMISSIVE_TEXTURE)
 #include "shading.glsl"
 #include "local_lighting.glsl"
 
+#ifdef RENDERER_DEFERRED_SHADOWS
+layout(set = RENDERER_SET_SCREEN, binding = RENDERER_BINDING_SHADOW_VISIBILITY) uniform sampler2DArray shadow_visibility;
+
+// Slot s of this pixel: layer s / 4, channel s % 4 (penumbra::VisibilityImage).
+float resolved_visibility(uint slot) {
+    return texelFetch(shadow_visibility, ivec3(ivec2(gl_FragCoord.xy), int(slot / 4u)), 0)[slot % 4u];
+}
+#endif
+
 layout(location = 0) in vec3 in_world_position;
 layout(location = 1) in vec3 in_world_normal;
 layout(location = 2) in vec2 in_uv;
@@ -40,7 +55,9 @@ void main() {
     vec3 normal = normalize(in_world_normal);
     if (!gl_FrontFacing) normal = -normal;  // double-sided materials are lit from both sides
     // Before the discard and every per-pixel branch: they take screen-space derivatives.
+#ifndef RENDERER_DEFERRED_SHADOWS
     const PenumbraSunReceiver receiver = penumbra_sun_receiver_fragment(in_world_position, normal);
+#endif
     const vec3 plane_normal = penumbra_geometric_normal(in_world_position, normal);
 
     vec4 base_color = draw.base_color;
@@ -50,7 +67,11 @@ void main() {
     // An instance that does not receive shadows (scene files' receive_shadows = false) is
     // lit as if nothing were in the way; the lookups stay in uniform control flow.
     const bool receives = draw.flags.w != 0u;
+#ifdef RENDERER_DEFERRED_SHADOWS
+    float visibility = receives ? resolved_visibility(0u) : 1.0;
+#else
     float visibility = receives ? penumbra_sun_visibility(receiver, normal) : 1.0;
+#endif
     const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
     vec3 color = shade_sun(base_color.rgb, normal, to_view, frame.to_sun.xyz, frame.sun_radiance.rgb * visibility,
                            draw.material.y, draw.material.z);
@@ -70,9 +91,13 @@ void main() {
             continue;
         }
         const LocalLight light = local.lights[i];
+#ifdef RENDERER_DEFERRED_SHADOWS
+        const float shadow = receives && light.visibility_slot != 0u ? resolved_visibility(light.visibility_slot) : 1.0;
+#else
         const float shadow =
             receives ? penumbra_light_shadow(light.shadow_index, in_world_position, normal, plane_normal, gl_FragCoord.xy)
                      : 1.0;
+#endif
         if (int(i) == frame.visibility_light) visibility = shadow * cone;
         const float falloff = distance_falloff(distance, light.range);
         color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance * (falloff * cone * shadow),
@@ -83,7 +108,11 @@ void main() {
     vec3 emission = draw.emissive.rgb;
     if (draw.flags.x != 0u) emission *= texture(emissive_texture, in_uv).rgb;
     color += emission;
+#ifdef RENDERER_DEFERRED_SHADOWS
+    const int cascade = penumbra_select_cascade(penumbra_view_depth(in_world_position));
+#else
     const int cascade = receiver.cascade;
+#endif
     if (frame.debug_view == RENDERER_DEBUG_VIEW_CASCADES && cascade >= 0) color *= kCascadeTints[cascade];
 
     out_color = vec4(tone_map(color), 1.0);

@@ -14,6 +14,9 @@ enum class ImageState {
     TransferSrc,
     ColorAttachment,
     DepthAttachment,
+    // A finished depth buffer, read-only: tested by later passes (depth writes off) and
+    // sampled by fragment and compute shaders (a depth pre-pass that a compute pass reads).
+    DepthReadOnly,
     FragmentSampled,  // read by fragment shaders (textures, shadow maps)
     // Read by fragment and compute shaders: a ShadowSystem's maps between frames (the
     // caller's forward shading or the compute resolve reads them).

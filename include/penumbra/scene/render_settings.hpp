@@ -3,6 +3,7 @@
 // scene): output size, the ShadowSystem's settings and debug views. Filled from (in increasing priority) the scene
 // file's [output]/[shadow] tables, a --config file, and command-line flags.
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "penumbra/settings.hpp"
@@ -15,6 +16,18 @@ enum class DebugView {
     ShadowMap,  // also read back the shadow map so its layers can be written side by side
 };
 
+// Where the tools' renderer evaluates the shadows it shades with (docs/library.md has both
+// paths): in its lighting pass, once per shaded fragment (penumbra/shadow.glsl), or once
+// per pixel in Penumbra's compute resolve (ShadowSystem::record_visibility) after a depth
+// and normal pre-pass, the lighting pass then reading the visibility image.
+enum class ShadowResolve {
+    Forward,
+    Deferred,
+};
+inline constexpr ChoiceName<ShadowResolve> kShadowResolveChoices[] = {{"forward", ShadowResolve::Forward},
+                                                                      {"deferred", ShadowResolve::Deferred}};
+const std::map<std::string, ShadowResolve>& shadow_resolve_names();
+
 constexpr uint32_t kMaxImageSize = 16384;
 // Spot and point lights the tools' renderer lights (the first ones of a scene's list).
 inline constexpr uint32_t kMaxLocalLights = 64;
@@ -22,6 +35,7 @@ inline constexpr uint32_t kMaxLocalLights = 64;
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
+    ShadowResolve resolve = ShadowResolve::Forward;  // [output] resolve, --resolve
     ShadowSettings shadow;
     DebugView debug = DebugView::None;
     // Also render and read back each pixel's world position and normal (FrameImages::

@@ -36,6 +36,7 @@ struct SettingsOverrides {
     // [output]
     std::optional<uint32_t> width;
     std::optional<uint32_t> height;
+    std::optional<ShadowResolve> resolve;
     // [shadow]
     std::optional<int> cascades;
     std::optional<uint32_t> shadow_resolution;

@@ -20,6 +20,10 @@
 #define RENDERER_BINDING_EMISSIVE_TEXTURE 1
 // The ShadowSystem's descriptor set (the shaders define PENUMBRA_SHADOW_SET to this).
 #define RENDERER_SET_SHADOWS 2
+// The deferred resolve's output (ShadowSystem::visibility_image()), read by the lighting
+// pass with `--resolve deferred`.
+#define RENDERER_SET_SCREEN 3
+#define RENDERER_BINDING_SHADOW_VISIBILITY 0
 
 #define RENDERER_DEBUG_VIEW_NONE 0u
 #define RENDERER_DEBUG_VIEW_CASCADES 1u
@@ -52,9 +56,9 @@ struct LocalLight {
     vec3 radiance;       // colour * intensity
     float cos_outer;     // spot cone (-1 for points)
     float cos_inner;
-    RENDERER_UINT shadow_index;  // the light's index in the ShadowSystem's set_lights() list
-    float padding0;
-    float padding1;
+    RENDERER_UINT shadow_index;     // the light's index in the ShadowSystem's set_lights() list
+    RENDERER_UINT visibility_slot;  // its slot in the deferred visibility image; 0: no shadow map
+    float padding;
 };
 
 struct LocalLights {

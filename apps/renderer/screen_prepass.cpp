@@ -1,0 +1,120 @@
+#include "renderer/screen_prepass.hpp"
+
+#include <array>
+
+#include "penumbra/gpu/barriers.hpp"
+#include "renderer/draw_recording.hpp"
+#include "renderer/shader_interface.hpp"
+#include "renderer_shaders.hpp"
+
+namespace penumbra::renderer {
+namespace {
+
+constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+gpu::Image create_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
+                         VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+    gpu::ImageDesc desc;
+    desc.format = format;
+    desc.width = width;
+    desc.height = height;
+    desc.usage = usage;
+    desc.aspect = aspect;
+    return gpu::create_image(device, desc);
+}
+
+gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout layout, VkCullModeFlags cull_mode) {
+    gpu::GraphicsPipelineDesc desc;
+    desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
+    desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::screen_prepass_frag(), {}});
+    desc.vertex_layout = scene_vertex_layout();
+    desc.layout = layout;
+    desc.color_formats = {kNormalFormat, kNormalFormat};
+    desc.depth_format = kDepthFormat;
+    desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z, as the forward lighting pass
+    desc.cull_mode = cull_mode;
+    return gpu::create_graphics_pipeline(device, desc);
+}
+
+Mat4 to_mat4(const glm::mat4& m) {
+    Mat4 result;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) result(row, column) = m[column][row];
+    }
+    return result;
+}
+
+}  // namespace
+
+ScreenPrepass::ScreenPrepass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                             VkDescriptorSetLayout material_set_layout, uint32_t width, uint32_t height)
+    : device_(device), width_(width), height_(height) {
+    for (gpu::Image* normal : {&targets_.normal, &targets_.face_normal}) {
+        *normal =
+            create_target(device, kNormalFormat, width, height,
+                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    }
+    targets_.depth = create_target(device, kDepthFormat, width, height,
+                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                   VK_IMAGE_ASPECT_DEPTH_BIT);
+    const VkDescriptorSetLayout set_layouts[] = {frame_set_layout, material_set_layout};
+    const VkPushConstantRange push_range = draw_push_constant_range();
+    pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+    single_sided_ = create_pipeline(device, pipeline_layout_, VK_CULL_MODE_BACK_BIT);
+    double_sided_ = create_pipeline(device, pipeline_layout_, VK_CULL_MODE_NONE);
+}
+
+void ScreenPrepass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const {
+    // The previous frame's reads (resolve and lighting) finished before this submission:
+    // render() waits for every frame.
+    for (const gpu::Image* normal : {&targets_.normal, &targets_.face_normal}) {
+        gpu::transition(device_, cmd, *normal, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
+    }
+    gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
+
+    const std::array<VkRenderingAttachmentInfo, 2> normals{
+        cleared_color_attachment(targets_.normal.view, {{0.0f, 0.0f, 0.0f, 0.0f}}),
+        cleared_color_attachment(targets_.face_normal.view, {{0.0f, 0.0f, 0.0f, 0.0f}})};
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = targets_.depth.view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;  // read by the resolve and tested by the lighting pass
+    depth.clearValue.depthStencil = {0.0f, 0};
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {width_, height_}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = static_cast<uint32_t>(normals.size());
+    info.pColorAttachments = normals.data();
+    info.pDepthAttachment = &depth;
+    device_->vkCmdBeginRendering(cmd, &info);
+    set_viewport_and_scissor(device_, cmd, width_, height_);
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, RENDERER_SET_FRAME, 1,
+                                     &frame_set, 0, nullptr);
+    record_camera_draws(device_, cmd, pipeline_layout_, data, single_sided_, double_sided_);
+    device_->vkCmdEndRendering(cmd);
+
+    for (const gpu::Image* normal : {&targets_.normal, &targets_.face_normal}) {
+        gpu::transition(device_, cmd, *normal, gpu::ImageState::ColorAttachment, gpu::ImageState::ShaderSampled);
+    }
+    gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::DepthAttachment, gpu::ImageState::DepthReadOnly);
+}
+
+ScreenInputs ScreenPrepass::screen_inputs(const glm::mat4& view_projection) const {
+    ScreenInputs screen;
+    screen.depth = targets_.depth.view;
+    screen.depth_layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    screen.normals = targets_.normal.view;
+    screen.normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    screen.normal_encoding = NormalEncoding::SignedFloat;
+    screen.face_normals = targets_.face_normal.view;
+    screen.face_normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    screen.width = width_;
+    screen.height = height_;
+    screen.view_projection = to_mat4(view_projection);
+    screen.background_depth = 0.0f;  // reverse-Z far
+    return screen;
+}
+
+}  // namespace penumbra::renderer
