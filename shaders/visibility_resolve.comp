@@ -70,14 +70,27 @@ vec3 camera_position() {
     return -(transpose(mat3(view)) * view[3].xyz);
 }
 
-vec3 decode(vec3 stored) { return resolve.normal_encoding == 1u ? stored * 2.0 - 1.0 : stored; }
+const uint kEncodingUnsignedNormalized = 1u;
+const uint kEncodingOctahedral = 2u;
 
-vec3 decode_normal(ivec2 pixel) { return normalize(decode(texelFetch(screen_normals, pixel, 0).xyz)); }
+// Octahedral decoding (Cigolle et al. 2014; NormalEncoding::Octahedral).
+vec3 decode_octahedral(vec2 e) {
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return n;
+}
 
-// The caller's face normal at `pixel`, unit length, or 0 where it gave none (a degenerate
-// triangle: the shading normal stands in, as in penumbra_geometric_normal()).
+vec3 decode(vec4 stored, bool face) {
+    if (resolve.normal_encoding == kEncodingOctahedral) return decode_octahedral(face ? stored.zw : stored.xy);
+    return resolve.normal_encoding == kEncodingUnsignedNormalized ? stored.xyz * 2.0 - 1.0 : stored.xyz;
+}
+
+vec3 decode_normal(ivec2 pixel) { return normalize(decode(texelFetch(screen_normals, pixel, 0), false)); }
+
+// The caller's face normal at `pixel`, unit length, or 0 where it gave none (where a
+// triangle is degenerate the shading normal stands in, as in penumbra_geometric_normal()).
 vec3 decode_face_normal(ivec2 pixel) {
-    const vec3 n = decode(texelFetch(screen_face_normals, pixel, 0).xyz);
+    const vec3 n = decode(texelFetch(screen_face_normals, pixel, 0), true);
     const float length_squared = dot(n, n);
     return length_squared > 1e-12 ? n * inversesqrt(length_squared) : vec3(0.0);
 }

@@ -1,7 +1,5 @@
 #include "renderer/screen_prepass.hpp"
 
-#include <array>
-
 #include "penumbra/gpu/barriers.hpp"
 #include "renderer/draw_recording.hpp"
 #include "renderer/shader_interface.hpp"
@@ -30,7 +28,7 @@ gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout 
     desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::screen_prepass_frag(), {}});
     desc.vertex_layout = scene_vertex_layout();
     desc.layout = layout;
-    desc.color_formats = {kNormalFormat, kNormalFormat};
+    desc.color_formats = {kNormalFormat};
     desc.depth_format = kDepthFormat;
     desc.depth_compare = VK_COMPARE_OP_GREATER;  // reverse-Z, as the forward lighting pass
     desc.cull_mode = cull_mode;
@@ -50,11 +48,9 @@ Mat4 to_mat4(const glm::mat4& m) {
 ScreenPrepass::ScreenPrepass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                              VkDescriptorSetLayout material_set_layout, uint32_t width, uint32_t height)
     : device_(device), width_(width), height_(height) {
-    for (gpu::Image* normal : {&targets_.normal, &targets_.face_normal}) {
-        *normal =
-            create_target(device, kNormalFormat, width, height,
-                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-    }
+    targets_.normals =
+        create_target(device, kNormalFormat, width, height,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     targets_.depth = create_target(device, kDepthFormat, width, height,
                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT);
@@ -68,14 +64,12 @@ ScreenPrepass::ScreenPrepass(const gpu::Device& device, VkDescriptorSetLayout fr
 void ScreenPrepass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const {
     // The previous frame's reads (resolve and lighting) finished before this submission:
     // render() waits for every frame.
-    for (const gpu::Image* normal : {&targets_.normal, &targets_.face_normal}) {
-        gpu::transition(device_, cmd, *normal, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
-    }
+    gpu::transition(device_, cmd, targets_.normals, gpu::ImageState::Undefined, gpu::ImageState::ColorAttachment);
     gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
 
-    const std::array<VkRenderingAttachmentInfo, 2> normals{
-        cleared_color_attachment(targets_.normal.view, {{0.0f, 0.0f, 0.0f, 0.0f}}),
-        cleared_color_attachment(targets_.face_normal.view, {{0.0f, 0.0f, 0.0f, 0.0f}})};
+    // Pixels without geometry keep the clear value: the resolve does not read them.
+    const VkRenderingAttachmentInfo normals =
+        cleared_color_attachment(targets_.normals.view, {{0.0f, 0.0f, 0.0f, 0.0f}});
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = targets_.depth.view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -85,8 +79,8 @@ void ScreenPrepass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {width_, height_}};
     info.layerCount = 1;
-    info.colorAttachmentCount = static_cast<uint32_t>(normals.size());
-    info.pColorAttachments = normals.data();
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &normals;
     info.pDepthAttachment = &depth;
     device_->vkCmdBeginRendering(cmd, &info);
     set_viewport_and_scissor(device_, cmd, width_, height_);
@@ -95,9 +89,7 @@ void ScreenPrepass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const
     record_camera_draws(device_, cmd, pipeline_layout_, data, single_sided_, double_sided_);
     device_->vkCmdEndRendering(cmd);
 
-    for (const gpu::Image* normal : {&targets_.normal, &targets_.face_normal}) {
-        gpu::transition(device_, cmd, *normal, gpu::ImageState::ColorAttachment, gpu::ImageState::ShaderSampled);
-    }
+    gpu::transition(device_, cmd, targets_.normals, gpu::ImageState::ColorAttachment, gpu::ImageState::ShaderSampled);
     gpu::transition(device_, cmd, targets_.depth, gpu::ImageState::DepthAttachment, gpu::ImageState::DepthReadOnly);
 }
 
@@ -105,10 +97,10 @@ ScreenInputs ScreenPrepass::screen_inputs(const glm::mat4& view_projection) cons
     ScreenInputs screen;
     screen.depth = targets_.depth.view;
     screen.depth_layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-    screen.normals = targets_.normal.view;
+    screen.normals = targets_.normals.view;
     screen.normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    screen.normal_encoding = NormalEncoding::SignedFloat;
-    screen.face_normals = targets_.face_normal.view;
+    screen.normal_encoding = NormalEncoding::Octahedral;
+    screen.face_normals = targets_.normals.view;  // its zw
     screen.face_normals_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     screen.width = width_;
     screen.height = height_;

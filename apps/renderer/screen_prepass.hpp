@@ -19,9 +19,10 @@
 namespace penumbra::renderer {
 
 struct ScreenPrepassTargets {
-    gpu::Image normal;       // R16G16B16A16_SFLOAT, world space, signed: the shading normal
-    gpu::Image face_normal;  // the same format: the geometric normal of the triangle
-    gpu::Image depth;        // D32_SFLOAT, reverse-Z (0: no geometry)
+    // R16G16B16A16_SFLOAT, world space, octahedral (NormalEncoding::Octahedral): xy the
+    // shading normal, zw the face normal (the triangle's plane).
+    gpu::Image normals;
+    gpu::Image depth;  // D32_SFLOAT, reverse-Z (0: no geometry)
 };
 
 class ScreenPrepass {

@@ -180,6 +180,12 @@ struct FrameInfo {
 enum class NormalEncoding {
     SignedFloat,         // xyz in [-1, 1] (e.g. R16G16B16A16_SFLOAT), world space
     UnsignedNormalized,  // xyz * 0.5 + 0.5 (e.g. R8G8B8A8_UNORM, A2B10G10R10_UNORM), world space
+    // Octahedral (Cigolle et al. 2014, "A Survey of Efficient Representations for
+    // Independent Unit Vectors"), signed: the normal in .xy and, where face_normals names an
+    // image, the face normal in that image's .zw, so one four-channel target (e.g.
+    // R16G16B16A16_SFLOAT, 8 bytes a pixel) carries both. n / (|x| + |y| + |z|) gives xy
+    // where z >= 0; where z < 0 xy is folded: (1 - |yx|) * sign(xy), sign(0) = +1.
+    Octahedral,
 };
 
 // The caller's screen inputs of record_visibility(). Both images are sampled by a compute

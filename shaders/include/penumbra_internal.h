@@ -50,7 +50,7 @@ struct ResolvePushConstants {
     PENUMBRA_UINT width;
     PENUMBRA_UINT height;
     PENUMBRA_UINT has_normals;       // 0: normals from the depth
-    PENUMBRA_UINT normal_encoding;   // 0: signed float, 1: unsigned normalized
+    PENUMBRA_UINT normal_encoding;   // NormalEncoding: 0 signed float, 1 unsigned normalized, 2 octahedral
     float background_depth;          // no geometry: visibility 1
     PENUMBRA_UINT slot_count;        // 1 (the sun) + the shadowed local lights
     PENUMBRA_UINT has_face_normals;  // 0: each pixel's plane from its neighbours' depths

@@ -347,7 +347,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     constants.width = screen.width;
     constants.height = screen.height;
     constants.has_normals = screen.normals != VK_NULL_HANDLE ? 1u : 0u;
-    constants.normal_encoding = screen.normal_encoding == NormalEncoding::UnsignedNormalized ? 1u : 0u;
+    constants.normal_encoding = static_cast<uint32_t>(screen.normal_encoding);
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;

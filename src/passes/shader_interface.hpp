@@ -8,6 +8,7 @@
 
 #include "core/glm_config.hpp"
 #include "penumbra/settings.hpp"
+#include "penumbra/shadow_system.hpp"
 
 namespace penumbra::shader {
 
@@ -22,6 +23,10 @@ using uvec4 = glm::uvec4;
 static_assert(sizeof(mat4) == 64 && sizeof(vec4) == 16 && sizeof(vec3) == 12 && sizeof(vec2) == 8);
 
 static_assert(PENUMBRA_MAX_CASCADES == kMaxCascades);
+// ResolvePushConstants::normal_encoding is the enum's value.
+static_assert(static_cast<int>(NormalEncoding::SignedFloat) == 0 &&
+              static_cast<int>(NormalEncoding::UnsignedNormalized) == 1 &&
+              static_cast<int>(NormalEncoding::Octahedral) == 2);
 static_assert(PENUMBRA_MAX_LIGHTS == kMaxLights);
 static_assert(PENUMBRA_MAX_LOCAL_SHADOW_LAYERS == kMaxLocalShadowLayers);
 static_assert(PENUMBRA_MAX_SHADOWED_LIGHTS == kMaxLocalShadowBudget);

@@ -249,7 +249,7 @@ glm::vec3 LibraryTest::ground_point(uint32_t x, uint32_t y) {
 }
 
 void LibraryTest::record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& shadows, const TestImage* normals,
-                                           NormalEncoding encoding) {
+                                           NormalEncoding encoding, const TestImage* face_normals) {
     const ViewDesc view = top_down_view();
     const glm::mat4 view_projection = to_glm(reverse_z_projection(view)) * to_glm(view.view);
     const glm::vec4 clip = view_projection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
@@ -274,15 +274,16 @@ void LibraryTest::record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& sh
         screen.normals = normals->view;
         screen.normal_encoding = encoding;
     }
+    if (face_normals) screen.face_normals = face_normals->view;
     shadows.record_visibility(cmd, screen);
 }
 
 VisibilityImage2D LibraryTest::render_visibility(ShadowSystem& shadows, uint32_t slot, const TestImage* normals,
-                                                 NormalEncoding encoding) {
+                                                 NormalEncoding encoding, const TestImage* face_normals) {
     shadows.prepare(top_down_view());
     submit([&](VkCommandBuffer cmd) {
         shadows.record_shadow_maps(cmd);
-        record_ground_visibility(cmd, shadows, normals, encoding);
+        record_ground_visibility(cmd, shadows, normals, encoding, face_normals);
     });
     return read_visibility(shadows, slot);
 }

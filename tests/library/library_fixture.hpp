@@ -103,10 +103,11 @@ protected:
     // One whole frame: prepare, record_shadow_maps, the depth of the ground, record_visibility
     // (with `normals` when given), then read the visibility image's `slot`.
     VisibilityImage2D render_visibility(ShadowSystem& shadows, uint32_t slot = 0, const TestImage* normals = nullptr,
-                                        NormalEncoding encoding = NormalEncoding::SignedFloat);
+                                        NormalEncoding encoding = NormalEncoding::SignedFloat,
+                                        const TestImage* face_normals = nullptr);
     // Records the ground depth (cleared) into depth_ and hands it to record_visibility.
     void record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& shadows, const TestImage* normals,
-                                  NormalEncoding encoding);
+                                  NormalEncoding encoding, const TestImage* face_normals = nullptr);
     // Copies the visibility image's layer holding `slot` and extracts its channel.
     VisibilityImage2D read_visibility(const ShadowSystem& shadows, uint32_t slot);
     // Every layer of the cascades' depth map after the last recorded frame, as floats.

@@ -89,7 +89,7 @@ TEST_F(ShadowSystemFrames, ChangedSunShowsInTheNextFrame) {
 
 // The caller's normal buffer replaces the normals reconstructed from depth: up gives the
 // same answer, either encoding; down (facing away from the sun) gives 0 everywhere.
-TEST_F(ShadowSystemFrames, CallerNormalsInBothEncodings) {
+TEST_F(ShadowSystemFrames, CallerNormalsInEveryEncodingAndFaceNormals) {
     ShadowSystem shadows(system_desc());
     const MeshArrays box = box_mesh();
     const MeshArrays ground = ground_mesh();
@@ -131,6 +131,21 @@ TEST_F(ShadowSystemFrames, CallerNormalsInBothEncodings) {
     const auto down = normals_image(VK_FORMAT_R16G16B16A16_SFLOAT, {{0.0f, -1.0f, 0.0f, 0.0f}});
     const VisibilityImage2D away = render_visibility(shadows, 0, down.get(), NormalEncoding::SignedFloat);
     EXPECT_EQ(*std::max_element(away.values.begin(), away.values.end()), 0.0f);
+
+    // Octahedral: (0, 1, 0) encodes as (0, 1). The same image as the face normals (zw): the
+    // ground's own plane, which its depth gives too, so the same visibility.
+    const auto up_octahedral = normals_image(VK_FORMAT_R16G16B16A16_SFLOAT, {{0.0f, 1.0f, 0.0f, 1.0f}});
+    EXPECT_EQ(render_visibility(shadows, 0, up_octahedral.get(), NormalEncoding::Octahedral).values,
+              reconstructed.values);
+    EXPECT_EQ(
+        render_visibility(shadows, 0, up_octahedral.get(), NormalEncoding::Octahedral, up_octahedral.get()).values,
+        reconstructed.values);
+    // A face turned from the sun is unlit whatever the shading normal: its normal (-1, 0, 0),
+    // (-1, 0) in zw, against the sun toward +x.
+    const auto face_down = normals_image(VK_FORMAT_R16G16B16A16_SFLOAT, {{0.0f, 1.0f, -1.0f, 0.0f}});
+    const VisibilityImage2D face_away =
+        render_visibility(shadows, 0, face_down.get(), NormalEncoding::Octahedral, face_down.get());
+    EXPECT_EQ(*std::max_element(face_away.values.begin(), face_away.values.end()), 0.0f);
 }
 
 // The caller's own buffers (interleaved position + normal, an index offset and a vertex

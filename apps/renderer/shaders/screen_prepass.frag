@@ -16,8 +16,17 @@ layout(location = 0) in vec3 in_world_position;
 layout(location = 1) in vec3 in_world_normal;
 layout(location = 2) in vec2 in_uv;
 
-layout(location = 0) out vec4 out_normal;       // world space, signed (NormalEncoding::SignedFloat)
-layout(location = 1) out vec4 out_face_normal;  // the triangle's plane; 0 where it is degenerate
+// xy: the shading normal, zw: the triangle's plane (the shading normal where the triangle
+// is degenerate), world space, octahedral (NormalEncoding::Octahedral): one 8-byte target.
+layout(location = 0) out vec4 out_normals;
+
+// Octahedral encoding (Cigolle et al. 2014, "A Survey of Efficient Representations for
+// Independent Unit Vectors"): the unit sphere onto [-1, 1]^2.
+vec2 encode_octahedral(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    if (n.z >= 0.0) return n.xy;
+    return (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+}
 
 void main() {
     vec3 normal = normalize(in_world_normal);
@@ -31,6 +40,6 @@ void main() {
         if (draw.flags.y != 0u) alpha *= texture(base_color_texture, in_uv).a;
         if (alpha < draw.material.x) discard;
     }
-    out_normal = vec4(normal, 0.0);
-    out_face_normal = vec4(face_length_squared > 1e-20 ? face * inversesqrt(face_length_squared) : vec3(0.0), 0.0);
+    const vec3 face_normal = face_length_squared > 1e-20 ? face * inversesqrt(face_length_squared) : normal;
+    out_normals = vec4(encode_octahedral(normal), encode_octahedral(face_normal));
 }
