@@ -24,7 +24,7 @@ enum class SplitScheme { Uniform, Logarithmic, Practical, Manual };
 enum class FitMode { Stable, Tight };
 enum class ShadowStrategy { PerCascade, Multiview };
 // Shadow filters (docs/filters.md): comparison filters over the depth map, and moment
-// filters over a prefilterable moments map rendered by the moments pass.
+// filters over a prefilterable moments map converted from the depth pass.
 enum class ShadowFilter { Hard, Pcf, Poisson, Pcss, Vsm, Evsm, Msm };
 enum class PcssQuality { Low, Medium, High };  // 16, 25 or 49 filter taps
 // Which faces of casters the shadow passes skip, seen from the light. None draws every

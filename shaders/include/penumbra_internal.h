@@ -31,17 +31,14 @@ struct CasterPushConstants {
 };
 
 // The moments blur pass (shaders/moments_blur.frag).
-struct BlurPushConstants {
-    // x: layer, y: radius in texels, z: 1 horizontal / 0 vertical, w: texels per side the
-    // layer uses from its top-left corner (0: all)
-    uvec4 params;
-};
-
-// The local lights' moments pass (shaders/local_moments.frag): one layer of the local
-// shadow map's reverse-Z depth converted to moments of the normalised linear distance.
-struct LocalMomentsPushConstants {
-    uvec4 layer;       // x: layer
-    vec4 depth_range;  // x: near plane, y: far plane (range), zw: EVSM exponents (positive, negative)
+// The moments compute passes (shaders/moments_convert.comp, moments_blur.comp), per layer.
+struct MomentsPushConstants {
+    // x: layer, y: texels per side the layer uses from its top-left corner, z: blur radius
+    // in texels, w: blur direction (1 horizontal, 0 vertical)
+    uvec4 layer;
+    // x: near plane, y: far plane (the light's range; 0: orthographic, distance = 1 - depth),
+    // zw: EVSM exponents (positive, negative)
+    vec4 depth_range;
 };
 
 // The screen-space resolve (shaders/visibility_resolve.comp).

@@ -30,11 +30,19 @@ UniqueMemory allocate(const Device& device, const VkMemoryRequirements& requirem
 }
 
 UniqueImageView create_view(const Device& device, VkImage image, const ImageDesc& desc, VkImageViewType type,
-                            uint32_t base_layer, uint32_t layer_count) {
+                            uint32_t base_layer, uint32_t layer_count, bool storage_view = false) {
     VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    // A mutable image's views: the storage view alone is a storage view (its format is the
+    // one that supports it).
+    VkImageViewUsageCreateInfo usage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+    if (desc.storage_view_format != VK_FORMAT_UNDEFINED) {
+        usage.usage = storage_view ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT}
+                                   : desc.usage & ~VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT};
+        info.pNext = &usage;
+    }
     info.image = image;
     info.viewType = type;
-    info.format = desc.format;
+    info.format = storage_view ? desc.storage_view_format : desc.format;
     info.subresourceRange = {desc.aspect, 0, 1, base_layer, layer_count};
     VkImageView view = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateImageView(device, &info, nullptr, &view));
@@ -90,6 +98,9 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = desc.usage;
+    if (desc.storage_view_format != VK_FORMAT_UNDEFINED) {
+        info.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+    }
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image = VK_NULL_HANDLE;
@@ -109,6 +120,9 @@ Image create_image(const Device& device, const ImageDesc& desc) {
         for (uint32_t layer = 0; layer < desc.layers; ++layer) {
             result.layer_views.push_back(create_view(device, image, desc, VK_IMAGE_VIEW_TYPE_2D, layer, 1));
         }
+    }
+    if (desc.storage_view_format != VK_FORMAT_UNDEFINED) {
+        result.storage_view = create_view(device, image, desc, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, desc.layers, true);
     }
     return result;
 }

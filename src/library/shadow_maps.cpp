@@ -10,54 +10,68 @@ namespace {
 // The map is at least 16 x 16 with one layer, so the descriptor set always binds a valid image.
 constexpr uint32_t kPlaceholderResolution = 16;
 
+gpu::UniqueSampler create_nearest_sampler(const gpu::Device& device) {
+    gpu::SamplerDesc sampler;
+    sampler.filter = VK_FILTER_NEAREST;
+    sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    return gpu::create_sampler(device, sampler);
+}
+
+// The moment filters store each texel's occluder distance itself: their variance, not a
+// depth offset, keeps receivers from shadowing themselves.
+BiasSettings depth_bias_of(const ShadowSettings& settings) {
+    if (!is_moment_filter(settings.filter.mode)) return settings.bias;
+    BiasSettings none = settings.bias;
+    none.constant = 0.0f;
+    none.slope = 0.0f;
+    return none;
+}
+
 }  // namespace
 
+// Every filter renders the cascades' depth; the moment filters convert it to moments.
 CascadeMaps::CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                         VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings) {
-    const auto count = static_cast<uint32_t>(settings.cascades.count);
+                         VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings)
+    : depth_pass_(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution,
+                  static_cast<uint32_t>(settings.cascades.count), settings.strategy),
+      depth_sampler_(create_nearest_sampler(device)) {
     if (is_moment_filter(settings.filter.mode)) {
-        moments_pass_.emplace(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution, count,
-                              settings.filter);
-    } else {
-        depth_pass_.emplace(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution, count,
-                            settings.strategy);
+        moments_.emplace(device, depth_pass_.shadow_map(), depth_sampler_, settings.filter);
     }
 }
 
-void CascadeMaps::prepare_pipelines(const passes::VertexFormats& formats) {
-    if (depth_pass_) depth_pass_->prepare_pipelines(formats);
-    if (moments_pass_) moments_pass_->prepare_pipelines(formats);
-}
+void CascadeMaps::prepare_pipelines(const passes::VertexFormats& formats) { depth_pass_.prepare_pipelines(formats); }
 
 SampledMaps CascadeMaps::sampled() const {
-    if (moments_pass_) {
-        return {&moments_pass_->depth(), &moments_pass_->moments(), moments_pass_->moments_sampler()};
-    }
-    return {&depth_pass_->shadow_map(), nullptr, VK_NULL_HANDLE};
+    if (moments_) return {&depth_pass_.shadow_map(), &moments_->moments(), moments_->sampler()};
+    return {&depth_pass_.shadow_map(), nullptr, VK_NULL_HANDLE};
 }
 
 uint64_t CascadeMaps::memory_bytes() const {
-    return moments_pass_ ? moments_pass_->memory_bytes() : depth_pass_->shadow_map().memory_size;
+    return depth_pass_.shadow_map().memory_size + (moments_ ? moments_->memory_bytes() : 0u);
 }
 
 void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                          const std::vector<passes::DrawList>& lists, const ShadowSettings& settings,
                          const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
-    if (moments_pass_) {
-        gpu::TimedScope scope(timer, cmd, "shadow_moments");
-        moments_pass_->record(cmd, frame_set, scene, lists, culling);
-        return;
+    depth_pass_.record(cmd, frame_set, scene, lists, depth_bias_of(settings), culling, timer);
+    if (!moments_) return;
+    gpu::TimedScope scope(timer, cmd, "shadow_moments");
+    const gpu::ImageDesc& map = depth_pass_.shadow_map().desc;
+    std::vector<passes::MomentsLayer> layers;
+    for (uint32_t cascade = 0; cascade < map.layers; ++cascade) {
+        layers.push_back({cascade, map.width, 0.0f, 0.0f});  // orthographic
     }
-    depth_pass_->record(cmd, frame_set, scene, lists, settings.bias, culling, timer);
+    moments_->record(cmd, layers, clamped_evsm_exponents(settings.filter));
 }
 
 LocalMaps::LocalMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                      VkDescriptorSetLayout alpha_mask_set_layout, const FilterSettings& filter, RetiredObjects& retired)
-    : device_(device), filter_(filter), retired_(retired), pass_(device, frame_set_layout, alpha_mask_set_layout) {
-    gpu::SamplerDesc sampler;
-    sampler.filter = VK_FILTER_NEAREST;
-    sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    depth_sampler_ = gpu::create_sampler(device, sampler);
+    : device_(device),
+      filter_(filter),
+      retired_(retired),
+      pass_(device, frame_set_layout, alpha_mask_set_layout),
+      depth_sampler_(create_nearest_sampler(device)) {
     map_ = std::make_unique<gpu::Image>(passes::create_depth_map(device, kPlaceholderResolution, 1));
 }
 
@@ -72,7 +86,7 @@ void LocalMaps::fit(const LocalShadowPlan& plan, uint64_t frame) {
     map_ = std::make_unique<gpu::Image>(
         passes::create_depth_map(device_, std::max(resolution, kPlaceholderResolution), std::max(layers, 1u)));
     if (is_moment_filter(filter_.mode) && layers > 0) {
-        moments_ = std::make_unique<passes::LocalMomentsPass>(device_, *map_, depth_sampler_, filter_);
+        moments_ = std::make_unique<passes::MomentsConversion>(device_, *map_, depth_sampler_, filter_);
     }
 }
 
@@ -97,7 +111,7 @@ void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const pas
     gpu::TimedScope scope(timer, cmd, "shadow_local");
     pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling);
     if (!moments_) return;
-    std::vector<passes::LocalMomentsLayer> moments_layers;
+    std::vector<passes::MomentsLayer> moments_layers;
     for (const LocalShadowSlot& slot : plan.slots) {
         for (uint32_t face = 0; face < slot.view_projection.size(); ++face) {
             moments_layers.push_back({slot.first_layer + face, slot.resolution, slot.near_plane, slot.far_plane});

@@ -1,7 +1,7 @@
 #pragma once
-// The maps a ShadowSystem renders and their passes: the sun's cascades (a depth pass, or a
-// moments pass for the moment filters) and the spot/point lights' layered map (resized to
-// what the frame's lights need, with a moments conversion for the moment filters).
+// The maps a ShadowSystem renders and their passes: the sun's cascades (a depth pass, with
+// a moments conversion for the moment filters) and the spot/point lights' layered map
+// (resized to what the frame's lights need, with a moments conversion for the moment filters).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -10,9 +10,8 @@
 #include "core/local_lights.hpp"
 #include "library/retired.hpp"
 #include "passes/casters.hpp"
-#include "passes/local_moments_pass.hpp"
 #include "passes/local_shadow_pass.hpp"
-#include "passes/moments_pass.hpp"
+#include "passes/moments_conversion.hpp"
 #include "passes/shadow_pass.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/resources.hpp"
@@ -43,8 +42,9 @@ public:
                 const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
 
 private:
-    std::optional<passes::ShadowPass> depth_pass_;     // comparison filters
-    std::optional<passes::MomentsPass> moments_pass_;  // vsm, evsm, msm
+    passes::ShadowPass depth_pass_;
+    gpu::UniqueSampler depth_sampler_;                  // nearest: the moments conversion reads raw depth
+    std::optional<passes::MomentsConversion> moments_;  // vsm, evsm, msm
 };
 
 class LocalMaps {
@@ -70,8 +70,8 @@ private:
     passes::LocalShadowPass pass_;
     gpu::UniqueSampler depth_sampler_;  // nearest: the moments conversion reads raw depth
     std::unique_ptr<gpu::Image> map_;
-    std::unique_ptr<passes::LocalMomentsPass> moments_;  // moment filters with shadowed lights only
-    uint32_t layers_ = 0;                                // 0: the placeholder
+    std::unique_ptr<passes::MomentsConversion> moments_;  // moment filters with shadowed lights only
+    uint32_t layers_ = 0;                                 // 0: the placeholder
     uint32_t resolution_ = 0;
 };
 

@@ -65,9 +65,8 @@ static_assert(sizeof(PenumbraLocalShadows) ==
 static_assert(offsetof(CasterPushConstants, layer) == 64);
 static_assert(offsetof(CasterPushConstants, alpha_scale) == 72);
 static_assert(sizeof(CasterPushConstants) == 80);
-static_assert(sizeof(BlurPushConstants) == 16);
-static_assert(offsetof(LocalMomentsPushConstants, depth_range) == 16);
-static_assert(sizeof(LocalMomentsPushConstants) == 32);
+static_assert(offsetof(MomentsPushConstants, depth_range) == 16);
+static_assert(sizeof(MomentsPushConstants) == 32);
 static_assert(offsetof(ResolvePushConstants, width) == 64);
 static_assert(offsetof(ResolvePushConstants, background_depth) == 80);
 static_assert(offsetof(ResolvePushConstants, has_face_normals) == 88);

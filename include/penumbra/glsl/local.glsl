@@ -3,7 +3,7 @@
 // point light or a wider spot: six cube-face layers, face chosen by the major axis). The
 // filters mirror the sun's for perspective layers: hard, pcf, poisson and pcss compare
 // against the depth map (with receiver-plane bias), vsm, evsm and msm read the moments of
-// the linear distance that Penumbra's local moments pass made.
+// the linear distance that Penumbra's moments conversion made.
 #ifndef PENUMBRA_GLSL_LOCAL
 #define PENUMBRA_GLSL_LOCAL
 
@@ -187,7 +187,7 @@ vec4 penumbra_local_fetch_moments(PenumbraLocalShadow light, PenumbraLocalCoord 
 }
 
 // vsm, evsm, msm: the receiver's linear distance over the range, the scale of the stored
-// moments (shaders/local_moments.frag).
+// moments (shaders/moments_convert.comp).
 float penumbra_local_moment_filter(PenumbraLocalShadow light, PenumbraLocalCoord coord, vec2 pixel) {
     const float receiver = clamp(coord.distance / light.range, 0.0, 1.0);
     return penumbra_moments_visibility(penumbra_local_fetch_moments(light, coord, pixel), receiver);

@@ -1,5 +1,5 @@
 // Moment encodings of an occluder distance for the prefiltered shadow filters, shared
-// by Penumbra's moments passes (which write them) and the shadow library (which reads them).
+// by Penumbra's moments conversion (which writes them) and the shadow library (which reads them).
 // The distance is d = 1 - reverse-Z depth, in [0, 1], larger = farther from the light.
 //
 //   VSM:  (d, d^2), Donnelly & Lauritzen 2006, "Variance Shadow Maps".
@@ -36,7 +36,7 @@ vec4 penumbra_msm_quantize(vec4 moments) { return kPenumbraMsmQuantization * mom
 vec4 penumbra_msm_dequantize(vec4 stored) { return kPenumbraMsmDequantization * (stored - kPenumbraMsmQuantizationOffset); }
 
 // The moments stored for an occluder at `distance`. `distance_dx`, `distance_dy` are its
-// screen-space derivatives in the moments pass: VSM adds the variance of the plane over
+// slopes per texel (from the neighbouring texels of the depth map): VSM adds the variance of the plane over
 // the texel, 1/4 (dx^2 + dy^2) (Donnelly & Lauritzen 2006, section 3.2), against acne.
 vec4 penumbra_encode_moments(uint filter_mode, float distance, float distance_dx, float distance_dy, vec2 evsm_exponents,
                     bool msm_quantized) {

@@ -1,7 +1,7 @@
 // Filters of the sun's cascades (included by penumbra/glsl/sun.glsl). Comparison filters
 // over the depth map: hard, PCF grid, rotated Poisson PCF and PCSS; each hardware
 // comparison tap is itself a bilinear 2x2 percentage-closer filter (Reeves et al. 1987).
-// Moment filters: VSM, EVSM and MSM read the moments map that Penumbra's moments pass
+// Moment filters: VSM, EVSM and MSM read the moments map that Penumbra's moments conversion
 // rendered (and blurred) per cascade; the receiver's distance is 1 - its reverse-Z depth,
 // as in the moments (penumbra/glsl/moments.glsl).
 #ifndef PENUMBRA_GLSL_SUN_FILTERS

@@ -25,6 +25,7 @@ enum class ImageState {
     // frame): the contents are discarded, the reads of earlier frames still come first.
     DiscardAfterShaderReads,
     ComputeStorageWrite,  // written by a compute shader as a storage image
+    ComputeStorage,       // read and written by compute shaders as a storage image
     BlitSrc,              // read by vkCmdBlitImage
     BlitDst,              // written by vkCmdBlitImage
     // A swapchain image just acquired: undefined contents, and the submission waits for

@@ -45,6 +45,10 @@ struct ImageDesc {
     VkImageUsageFlags usage = 0;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     bool array_view = false;  // view the image as a 2D array even with one layer
+    // A size-compatible format to write the image through as a storage image (e.g.
+    // R32G32_UINT for R16G16B16A16_UNORM): the image is created mutable, Image::storage_view
+    // views every layer in it, and the other views are not storage views.
+    VkFormat storage_view_format = VK_FORMAT_UNDEFINED;
 };
 
 struct Image {
@@ -52,6 +56,7 @@ struct Image {
     UniqueMemory memory;
     UniqueImageView view;                      // all layers
     std::vector<UniqueImageView> layer_views;  // one 2D view per layer (when layers > 1 or array_view)
+    UniqueImageView storage_view;              // with ImageDesc::storage_view_format: a 2D array view in it
     ImageDesc desc;
     VkDeviceSize memory_size = 0;  // bytes of its allocation (what it costs in GPU memory)
 
