@@ -198,6 +198,23 @@ def axis_plot(runs, axis, title, x_label, x_of, log_x=False, series=("frame", "s
     return plot if plot.series else None
 
 
+def resolve_plot(runs):
+    """Frame time against output size, forward against deferred, for hard, pcf r=2 and pcss
+    high (the "resolve 1080p" and "resolve 4K" axes)."""
+    reports = [(r["variant"], r["report"]) for r in runs if r["axis"].startswith("resolve ") and
+               r["axis"] != "resolve local lights" and r["report"]]
+    if not reports:
+        return None
+    plot = Plot("Frame time: forward vs deferred resolve", "MEGAPIXELS", False)
+    for resolve in ("forward", "deferred"):
+        for filter_name in ("hard", "pcf r=2", "pcss high"):
+            points = [(r["settings"]["width"] * r["settings"]["height"] / 1e6, gpu_median(r, "frame"))
+                      for variant, r in reports if variant == f"{resolve}, {filter_name}"]
+            if points:
+                plot.add(f"{resolve} {filter_name}", sorted(points))
+    return plot if plot.series else None
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     here = os.path.dirname(os.path.abspath(__file__))
@@ -217,6 +234,7 @@ def main():
                                                lambda r: r["settings"]["width"] * r["settings"]["height"] / 1e6),
         "time_vs_cascades": axis_plot(runs, "cascades", "Time vs cascade count", "CASCADES",
                                       lambda r: r["settings"]["cascades"]),
+        "frame_forward_vs_deferred": resolve_plot(runs),
     }
     os.makedirs(out, exist_ok=True)
     for name, plot in plots.items():

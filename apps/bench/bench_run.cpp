@@ -157,6 +157,7 @@ Light* find_sun(Scene& scene) {
 FrameSamples run_renderer_frames(const renderer::AppContext& context, const BenchJob& job, PreparedJob& prepared,
                                  BenchResult& result) {
     renderer::Renderer renderer(context, prepared.scene, prepared.settings);
+    result.settings.resolve = renderer.resolve();  // the report names the path measured, not "auto"
     result.device = describe_device(context, renderer.gpu_timer());
     const Camera start_camera = prepared.scene.camera;
     Light* sun = find_sun(prepared.scene);

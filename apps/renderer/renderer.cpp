@@ -99,6 +99,14 @@ ViewDesc view_of(const Camera& camera, const RenderSettings& settings) {
                         camera.near_plane, camera.far_plane, settings.width, settings.height);
 }
 
+// Spot or point lights that cast shadows and are lit (lit_local_lights()).
+bool casts_local_shadows(const Scene& scene) {
+    for (const uint32_t light : lit_local_lights(scene.lights)) {
+        if (scene.lights[light].cast_shadows) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 std::vector<uint32_t> lit_local_lights(const std::vector<Light>& lights) {
@@ -117,6 +125,7 @@ struct Renderer::Resources {
     gpu::Buffer lights;
     gpu::UniqueDescriptorPool descriptor_pool;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
+    ShadowResolve resolve;                   // Forward or Deferred: settings.resolve made effective
     std::unique_ptr<ScreenPrepass> prepass;  // only with ShadowResolve::Deferred
     LightingPass lighting_pass;
     glm::mat4 view_projection{1.0f};  // the frame's camera, for the resolve
@@ -134,13 +143,14 @@ struct Renderer::Resources {
                                             gpu::MemoryKind::HostUpload)),
           lights(gpu::create_buffer(context, sizeof(shader::LocalLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                     gpu::MemoryKind::HostUpload)),
-          prepass(settings.resolve == ShadowResolve::Deferred
+          resolve(effective_resolve(settings.resolve, settings.shadow.filter.mode, casts_local_shadows(scene))),
+          prepass(resolve == ShadowResolve::Deferred
                       ? std::make_unique<ScreenPrepass>(context, frame_set_layout,
                                                         gpu_scene.draw_data().material_set_layout, settings.width,
                                                         settings.height)
                       : nullptr),
           lighting_pass(context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
-                        settings.height, settings.resolve, prepass ? &prepass->targets().depth : nullptr),
+                        settings.height, resolve, prepass ? &prepass->targets().depth : nullptr),
           readback(create_readback(context, settings)),
           commands(context),
           timer(context, kMaxTimedScopes) {
@@ -170,6 +180,8 @@ Renderer::~Renderer() {
 }
 
 const gpu::GpuTimer& Renderer::gpu_timer() const { return resources_->timer; }
+
+ShadowResolve Renderer::resolve() const { return resources_->resolve; }
 
 const gpu::Image& Renderer::color_target() const { return resources_->lighting_pass.targets().color; }
 

@@ -91,6 +91,9 @@ public:
     FrameImages render(const Camera& camera, ReadbackMode readback = ReadbackMode::Images);
     const FrameInfo& last_frame() const { return last_frame_; }
     const RenderSettings& settings() const { return settings_; }
+    // The path this renderer resolves shadows with: RenderSettings::resolve made effective
+    // (effective_resolve()), Forward or Deferred.
+    ShadowResolve resolve() const;
     // The last frame's tone-mapped colour target (R8G8B8A8_SRGB, settings().width x
     // height), left in gpu::ImageState::TransferSrc by render(); a presenter copies or
     // blits it (the window viewer) after render() has returned.

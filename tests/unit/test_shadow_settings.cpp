@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra {
@@ -213,6 +214,23 @@ TEST(SettingsRecreation, StructuralFieldsNeedANewSystemOthersDoNot) {
         Settings next = base;
         per_frame[i](next);
         EXPECT_FALSE(requires_recreation(base, next)) << "change " << i;
+    }
+}
+
+// --resolve auto: deferred where shadows take many taps per fragment or local lights cast
+// shadows, forward otherwise; an explicit choice is kept.
+TEST(ShadowResolve, AutoPicksTheMeasuredFasterPath) {
+    for (const ChoiceName<ShadowFilter>& filter : kShadowFilterChoices) {
+        const bool many_taps = filter.value == ShadowFilter::Pcf || filter.value == ShadowFilter::Poisson ||
+                               filter.value == ShadowFilter::Pcss;
+        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, false),
+                  many_taps ? ShadowResolve::Deferred : ShadowResolve::Forward)
+            << filter.name;
+        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, true), ShadowResolve::Deferred) << filter.name;
+        for (const ShadowResolve explicit_choice : {ShadowResolve::Forward, ShadowResolve::Deferred}) {
+            EXPECT_EQ(effective_resolve(explicit_choice, filter.value, true), explicit_choice);
+            EXPECT_EQ(effective_resolve(explicit_choice, filter.value, false), explicit_choice);
+        }
     }
 }
 
