@@ -61,6 +61,9 @@ def matrix(scenes_dir):
     runs += [("ceiling compute taps", f"{taps} taps {label}", None,
               ["--ceiling", "compute-taps", "--taps", str(taps)] + size)
              for taps in (1, 16, 64) for label, size in (("1080p", []), ("4K", UHD))]
+    runs += [("ceiling layer start", f"{count} x {resolution}²", None,
+              ["--ceiling", "layer-start", "--cascades", str(count), "--shadow-resolution", str(resolution)])
+             for count, resolution in ((4, 2048), (4, 4096))]
     runs += resolve_runs()
     runs += [("camera path", "flythrough", None, ["--camera-path", "flythrough"]),
              ("light path", "rotate", None, ["--light-path", "rotate"])]

@@ -25,12 +25,14 @@ enum class Ceiling {
     Triangles,    // shadow pass at kCeilingShadowResolution, every caster in every cascade
     Taps,         // full-screen fragment pass of `taps` comparison taps per pixel
     ComputeTaps,  // the same taps in a compute dispatch, one thread per pixel
+    LayerStart,   // the ways to start (clear) the cascades' layers, timed side by side
 };
 
 inline constexpr ChoiceName<Ceiling> kCeilingChoices[] = {{"none", Ceiling::None},
                                                           {"triangles", Ceiling::Triangles},
                                                           {"taps", Ceiling::Taps},
-                                                          {"compute-taps", Ceiling::ComputeTaps}};
+                                                          {"compute-taps", Ceiling::ComputeTaps},
+                                                          {"layer-start", Ceiling::LayerStart}};
 
 constexpr bool is_tap_ceiling(Ceiling ceiling) { return ceiling == Ceiling::Taps || ceiling == Ceiling::ComputeTaps; }
 

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "bench/bench_job.hpp"
+#include "bench/layer_start_pass.hpp"
 #include "bench/tap_ceiling_pass.hpp"
 #include "image/output_files.hpp"
 #include "penumbra/errors.hpp"
@@ -219,6 +220,43 @@ FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob&
     return samples;
 }
 
+// The ways to start a layer (bench/layer_start_pass.hpp): no scene, the cascades' layers
+// started four ways per frame.
+FrameSamples run_layer_start_frames(const renderer::AppContext& context, const BenchJob& job,
+                                    const RenderSettings& settings, BenchResult& result) {
+    const LayerStartPass pass(context, settings.shadow.cascades.resolution,
+                              static_cast<uint32_t>(settings.shadow.cascades.count));
+    gpu::FrameCommands commands(context);
+    gpu::GpuTimer timer(context, 5);
+    result.device = describe_device(context, timer);
+    result.shadow_map_bytes = pass.map_bytes();
+    context.submit_and_wait([&](VkCommandBuffer cmd) { pass.record_setup(cmd); });
+
+    FrameSamples samples;
+    const uint32_t total = job.warmup + job.frames;
+    for (uint32_t index = 0; index < total; ++index) {
+        double recording_ms = 0.0;
+        const Clock::time_point start = Clock::now();
+        commands.submit_and_wait([&](VkCommandBuffer cmd) {
+            const Clock::time_point record_start = Clock::now();
+            timer.begin_frame(cmd);
+            gpu::TimedScope frame_scope(&timer, cmd, "frame");
+            pass.record(cmd, timer);
+            recording_ms = milliseconds_since(record_start);
+        });
+        const double wall_ms = milliseconds_since(start);
+        if (index >= job.warmup) {
+            samples.add_gpu_times(timer.read().value_or(std::vector<gpu::ScopeTime>{}));
+            samples.cpu.add("recording", recording_ms);
+            samples.cpu.add("frame_wall", wall_ms);
+        }
+        if (job.progress) job.progress(index + 1, total);
+    }
+    result.ceiling =
+        CeilingReport{"layer-start", "depth texels cleared by a render-pass clear", pass.texels_per_way(), 0.0};
+    return samples;
+}
+
 // The triangle-rate ceiling renders the same casters with the same pipelines into a map so
 // small that rasterisation costs nothing, with every caster in every cascade.
 void apply_triangle_ceiling(RenderSettings& settings) {
@@ -268,8 +306,9 @@ void finish_ceiling(const BenchJob& job, const Scene& scene, const RenderSetting
         const uint64_t work = scene.triangle_count() * static_cast<uint64_t>(settings.shadow.cascades.count);
         const double ms = cascade_shadow_median_ms(result);
         result.ceiling = CeilingReport{"triangles", "cascade triangles", work, ms > 0.0 ? work / (ms * 1e-3) : 0.0};
-    } else if (is_tap_ceiling(job.ceiling) && result.ceiling) {
-        const double ms = result.gpu_ms.contains("taps") ? result.gpu_ms.at("taps").median : 0.0;
+    } else if ((is_tap_ceiling(job.ceiling) || job.ceiling == Ceiling::LayerStart) && result.ceiling) {
+        const char* scope = job.ceiling == Ceiling::LayerStart ? "start_render_pass_clear" : "taps";
+        const double ms = result.gpu_ms.contains(scope) ? result.gpu_ms.at(scope).median : 0.0;
         result.ceiling->per_second = ms > 0.0 ? static_cast<double>(result.ceiling->work_per_frame) / (ms * 1e-3) : 0.0;
     }
 }
@@ -292,9 +331,10 @@ BenchResult run_bench_job(const BenchJob& job) {
     device_options.validation_log = std::make_shared<ValidationLog>();
     {
         renderer::AppContext context(device_options);
-        const FrameSamples samples = is_tap_ceiling(job.ceiling)
-                                         ? run_tap_frames(context, job, prepared.settings, result)
-                                         : run_renderer_frames(context, job, prepared, result);
+        const FrameSamples samples =
+            is_tap_ceiling(job.ceiling)          ? run_tap_frames(context, job, prepared.settings, result)
+            : job.ceiling == Ceiling::LayerStart ? run_layer_start_frames(context, job, prepared.settings, result)
+                                                 : run_renderer_frames(context, job, prepared, result);
         summarize_samples(samples, prepared.scene, result);
     }
     // Checked after the device and instance are gone, so leak reports count too.

@@ -199,7 +199,7 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--ceiling", raw.ceiling,
                      "Measure a ceiling instead: triangles (shadow pass at 512x512, no culling) | taps (full-screen "
                      "shadow-map taps in a fragment shader) | compute-taps (the same taps in a compute shader, one "
-                     "thread per pixel)");
+                     "thread per pixel) | layer-start (the cascades' layers cleared four ways, each timed)");
     bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps and compute-taps (default 16)")
         ->check(CLI::Range(1u, bench::kMaxTaps));
     bench.add_flag("--readback", job.readback, "Read the images back every frame, as `render` does");

@@ -148,6 +148,33 @@ TEST_F(BenchCli, TapCeilingTimesTheFullScreenPass) {
     EXPECT_GT(report["ceiling"]["per_second"].get<double>(), 0.0);
 }
 
+TEST_F(BenchCli, ComputeTapCeilingTimesTheSameTapsInCompute) {
+    const json report = run_json(std::string(kForest) + kSmall + " --ceiling compute-taps --taps 8");
+    ASSERT_FALSE(report.empty());
+    expect_positive_timings(report["gpu_ms"], {"taps", "frame"});
+    EXPECT_EQ(report["ceiling"]["mode"], "compute-taps");
+    EXPECT_EQ(report["ceiling"]["work_per_frame"].get<uint64_t>(), uint64_t{96} * 64 * 8);
+    EXPECT_GT(report["ceiling"]["per_second"].get<double>(), 0.0);
+}
+
+TEST_F(BenchCli, LayerStartCeilingTimesEveryWayToClearTheCascades) {
+    const json report = run_json(std::string(kForest) + kSmall + " --ceiling layer-start --cascades 2");
+    ASSERT_FALSE(report.empty());
+    expect_positive_timings(report["gpu_ms"], {"start_render_pass_clear", "start_clear_image", "start_copy_cleared",
+                                               "start_clear_quarter", "frame"});
+    EXPECT_EQ(report["ceiling"]["mode"], "layer-start");
+    EXPECT_EQ(report["ceiling"]["work_per_frame"].get<uint64_t>(), uint64_t{2} * 512 * 512);
+}
+
+TEST_F(BenchCli, DeferredResolveTimesThePrepassAndTheResolve) {
+    const json report = run_json(std::string(kForest) + kSmall + " --resolve deferred");
+    ASSERT_FALSE(report.empty());
+    expect_positive_timings(report["gpu_ms"], {"prepass", "visibility", "lighting", "frame"});
+    EXPECT_EQ(report["settings"]["resolve"], "deferred");
+    // auto names the path it took: forward for the default hard filter without local lights.
+    EXPECT_EQ(run_json(std::string(kForest) + kSmall)["settings"]["resolve"], "forward");
+}
+
 TEST_F(BenchCli, BadInputIsOneLineAndExitTwo) {
     expect_usage_error(std::string(kForest) + " --frames 0", "--frames");
     expect_usage_error(std::string(kForest) + " --camera-path spiral", "--camera-path: unknown value \"spiral\"");

@@ -109,6 +109,7 @@ namespace penumbra::gpu {
     X(vkCmdCopyBufferToImage)           \
     X(vkCmdCopyImageToBuffer)           \
     X(vkCmdBlitImage)                   \
+    X(vkCmdCopyImage)                   \
     X(vkCmdClearDepthStencilImage)      \
     X(vkCmdClearColorImage)             \
     X(vkCmdResetQueryPool)              \
