@@ -32,6 +32,7 @@ struct Draw {
     uint32_t material = 0;  // index into DrawData::materials
     glm::mat4 model{1.0f};
     bool receive_shadows = true;
+    glm::vec3 centre{0.0f};  // world space: the centre of the mesh's bounds, for sorting
 };
 
 struct DrawData {
@@ -39,6 +40,10 @@ struct DrawData {
     VkBuffer index_buffer = VK_NULL_HANDLE;   // uint32
     std::vector<MaterialBinding> materials;
     std::vector<Draw> draws;
+    // The order the camera passes draw in (indices into draws), nearest first, so that the
+    // depth test rejects what lies behind before it is shaded; every camera pass of a frame
+    // uses the same order.
+    std::vector<uint32_t> order;
     VkDescriptorSetLayout material_set_layout = VK_NULL_HANDLE;
 };
 

@@ -83,7 +83,8 @@ void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipel
     for (const bool double_sided_pass : {false, true}) {
         device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                                   double_sided_pass ? double_sided : single_sided);
-        for (const Draw& draw : data.draws) {
+        for (size_t i = 0; i < data.draws.size(); ++i) {
+            const Draw& draw = data.draws[data.order.empty() ? i : data.order[i]];
             if (data.materials[draw.material].double_sided != double_sided_pass) continue;
             record_draw(device, cmd, layout, data, draw);
         }

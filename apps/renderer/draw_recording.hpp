@@ -35,8 +35,8 @@ void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
                             uint32_t height);
 
 // Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
-// passes do: single-sided materials with `single_sided` (back faces culled), then
-// double-sided ones with `double_sided`. Passes that must cover the same fragments (the
+// passes do, in DrawData::order (nearest first): single-sided materials with
+// `single_sided` (back faces culled), then double-sided ones with `double_sided`. Passes that must cover the same fragments (the
 // lighting and geometry-AOV passes) share this order, so depth ties resolve identically.
 void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
                          VkPipeline single_sided, VkPipeline double_sided);

@@ -51,7 +51,37 @@ std::vector<GpuScene::MeshRange> GpuScene::upload_geometry(const AppContext& con
     return ranges;
 }
 
+namespace {
+
+// The centre of a mesh's bounds in its own space.
+glm::vec3 bounds_centre(const Mesh& mesh) {
+    if (mesh.vertices.empty()) return glm::vec3(0.0f);
+    glm::vec3 low = mesh.vertices.front().position;
+    glm::vec3 high = low;
+    for (const Vertex& vertex : mesh.vertices) {
+        low = glm::min(low, vertex.position);
+        high = glm::max(high, vertex.position);
+    }
+    return 0.5f * (low + high);
+}
+
+}  // namespace
+
+void GpuScene::order_draws_front_to_back(const glm::vec3& eye) {
+    std::vector<std::pair<float, uint32_t>> keyed;
+    keyed.reserve(draw_data_.draws.size());
+    for (uint32_t i = 0; i < draw_data_.draws.size(); ++i) {
+        const glm::vec3 to_draw = draw_data_.draws[i].centre - eye;
+        keyed.emplace_back(glm::dot(to_draw, to_draw), i);
+    }
+    std::sort(keyed.begin(), keyed.end());  // ties keep the scene's order
+    draw_data_.order.clear();
+    for (const auto& [distance, index] : keyed) draw_data_.order.push_back(index);
+}
+
 void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& ranges) {
+    std::vector<glm::vec3> centres;
+    for (const Mesh& mesh : scene.meshes) centres.push_back(bounds_centre(mesh));
     for (const Instance& instance : scene.instances) {
         const MeshRange& range = ranges.at(instance.mesh);
         if (range.index_count == 0) continue;
@@ -62,6 +92,7 @@ void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& range
         draw.material = scene.meshes[instance.mesh].material;
         draw.model = instance.world;
         draw.receive_shadows = instance.receive_shadows;
+        draw.centre = glm::vec3(instance.world * glm::vec4(centres.at(instance.mesh), 1.0f));
         draw_data_.draws.push_back(draw);
     }
 }

@@ -20,6 +20,8 @@ public:
     GpuScene(const AppContext& context, const Scene& scene, ShadowSystem& shadows);
 
     const DrawData& draw_data() const { return draw_data_; }
+    // Sorts DrawData::order by the distance of each draw's centre from `eye`, nearest first.
+    void order_draws_front_to_back(const glm::vec3& eye);
 
 private:
     struct MeshRange {

@@ -279,6 +279,7 @@ void Renderer::prepare_frame(const Camera& camera) {
     const shader::FrameUniforms uniforms = build_frame_uniforms(view, scene_, settings_);
     std::memcpy(resources_->frame_uniforms.mapped, &uniforms, sizeof(uniforms));
     resources_->view_projection = uniforms.view_projection;
+    resources_->gpu_scene.order_draws_front_to_back(camera.eye);
     const shader::LocalLights lights = build_local_lights(scene_.lights, frame.local_shadows);
     std::memcpy(resources_->lights.mapped, &lights, sizeof(lights));
 }
