@@ -1,6 +1,7 @@
 #include "renderer/draw_recording.hpp"
 
 #include <cstddef>
+#include <cstdint>
 
 #include "penumbra/scene/scene.hpp"
 
@@ -35,10 +36,12 @@ void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, ui
 }
 
 void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
-                 const Draw& draw) {
+                 const Draw& draw, bool bind_material) {
     const MaterialBinding& material = data.materials[draw.material];
-    device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, RENDERER_SET_MATERIAL, 1,
-                                    &material.descriptor_set, 0, nullptr);
+    if (bind_material) {
+        device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, RENDERER_SET_MATERIAL, 1,
+                                        &material.descriptor_set, 0, nullptr);
+    }
     const shader::DrawPushConstants constants = draw_push_constants(draw, material);
     device->vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(constants), &constants);
@@ -83,10 +86,12 @@ void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipel
     for (const bool double_sided_pass : {false, true}) {
         device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                                   double_sided_pass ? double_sided : single_sided);
+        uint32_t bound_material = UINT32_MAX;  // a pipeline change keeps the set (same layout)
         for (size_t i = 0; i < data.draws.size(); ++i) {
             const Draw& draw = data.draws[data.order.empty() ? i : data.order[i]];
             if (data.materials[draw.material].double_sided != double_sided_pass) continue;
-            record_draw(device, cmd, layout, data, draw);
+            record_draw(device, cmd, layout, data, draw, draw.material != bound_material);
+            bound_material = draw.material;
         }
     }
 }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <span>
+#include <tuple>
 
 #include "renderer/shader_interface.hpp"
 
@@ -67,16 +69,34 @@ glm::vec3 bounds_centre(const Mesh& mesh) {
 
 }  // namespace
 
+// Front to back by distance bands (each twice as far as the one before, from 1 m), and by
+// material within a band: the depth test still rejects most hidden fragments, and
+// consecutive draws mostly keep their material, so recording rebinds it rarely (ordering
+// by exact distance alternated the forest's trunk and crown materials at every draw, and
+// recording 30,001 draws took 2.5x as long).
 void GpuScene::order_draws_front_to_back(const glm::vec3& eye) {
-    std::vector<std::pair<float, uint32_t>> keyed;
-    keyed.reserve(draw_data_.draws.size());
+    struct Key {
+        int band;
+        uint32_t material;
+        float distance_squared;
+        uint32_t index;
+        bool operator<(const Key& other) const {
+            return std::tie(band, material, distance_squared, index) <
+                   std::tie(other.band, other.material, other.distance_squared, other.index);
+        }
+    };
+    std::vector<Key> keys;
+    keys.reserve(draw_data_.draws.size());
     for (uint32_t i = 0; i < draw_data_.draws.size(); ++i) {
-        const glm::vec3 to_draw = draw_data_.draws[i].centre - eye;
-        keyed.emplace_back(glm::dot(to_draw, to_draw), i);
+        const Draw& draw = draw_data_.draws[i];
+        const glm::vec3 to_draw = draw.centre - eye;
+        const float distance_squared = glm::dot(to_draw, to_draw);
+        const int band = static_cast<int>(std::floor(0.5f * std::log2(std::max(distance_squared, 1.0f))));
+        keys.push_back({band, draw.material, distance_squared, i});
     }
-    std::sort(keyed.begin(), keyed.end());  // ties keep the scene's order
+    std::sort(keys.begin(), keys.end());
     draw_data_.order.clear();
-    for (const auto& [distance, index] : keyed) draw_data_.order.push_back(index);
+    for (const Key& key : keys) draw_data_.order.push_back(key.index);
 }
 
 void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& ranges) {

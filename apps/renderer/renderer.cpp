@@ -143,7 +143,8 @@ struct Renderer::Resources {
                                             gpu::MemoryKind::HostUpload)),
           lights(gpu::create_buffer(context, sizeof(shader::LocalLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                     gpu::MemoryKind::HostUpload)),
-          resolve(effective_resolve(settings.resolve, settings.shadow.filter.mode, casts_local_shadows(scene))),
+          resolve(effective_resolve(settings.resolve, settings.shadow.filter.mode, casts_local_shadows(scene),
+                                    uint64_t{settings.width} * settings.height)),
           prepass(resolve == ShadowResolve::Deferred
                       ? std::make_unique<ScreenPrepass>(context, frame_set_layout,
                                                         gpu_scene.draw_data().material_set_layout, settings.width,

@@ -16,11 +16,13 @@ void check_image_size(uint32_t value, const char* name, const std::string& origi
 
 const std::map<std::string, ShadowResolve>& shadow_resolve_names() { return choice_map(kShadowResolveChoices); }
 
-ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters) {
+ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters,
+                                uint64_t pixels) {
     if (resolve != ShadowResolve::Auto) return resolve;
     const bool many_taps =
         filter == ShadowFilter::Pcf || filter == ShadowFilter::Poisson || filter == ShadowFilter::Pcss;
-    return many_taps || local_shadow_casters ? ShadowResolve::Deferred : ShadowResolve::Forward;
+    return many_taps && (pixels >= kDeferredMinPixels || local_shadow_casters) ? ShadowResolve::Deferred
+                                                                               : ShadowResolve::Forward;
 }
 
 void validate_render_settings(const RenderSettings& settings, const std::string& origin) {

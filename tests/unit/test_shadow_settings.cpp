@@ -217,19 +217,22 @@ TEST(SettingsRecreation, StructuralFieldsNeedANewSystemOthersDoNot) {
     }
 }
 
-// --resolve auto: deferred where shadows take many taps per fragment or local lights cast
-// shadows, forward otherwise; an explicit choice is kept.
+// --resolve auto: deferred where a filter takes many taps and the image is large or local
+// lights cast shadows, forward otherwise; an explicit choice is kept.
 TEST(ShadowResolve, AutoPicksTheMeasuredFasterPath) {
+    constexpr uint64_t k1080p = 1920 * 1080;
+    constexpr uint64_t k4K = 3840 * 2160;
     for (const ChoiceName<ShadowFilter>& filter : kShadowFilterChoices) {
         const bool many_taps = filter.value == ShadowFilter::Pcf || filter.value == ShadowFilter::Poisson ||
                                filter.value == ShadowFilter::Pcss;
-        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, false),
-                  many_taps ? ShadowResolve::Deferred : ShadowResolve::Forward)
+        const ShadowResolve multi_tap_path = many_taps ? ShadowResolve::Deferred : ShadowResolve::Forward;
+        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, false, k1080p), ShadowResolve::Forward)
             << filter.name;
-        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, true), ShadowResolve::Deferred) << filter.name;
+        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, false, k4K), multi_tap_path) << filter.name;
+        EXPECT_EQ(effective_resolve(ShadowResolve::Auto, filter.value, true, k1080p), multi_tap_path) << filter.name;
         for (const ShadowResolve explicit_choice : {ShadowResolve::Forward, ShadowResolve::Deferred}) {
-            EXPECT_EQ(effective_resolve(explicit_choice, filter.value, true), explicit_choice);
-            EXPECT_EQ(effective_resolve(explicit_choice, filter.value, false), explicit_choice);
+            EXPECT_EQ(effective_resolve(explicit_choice, filter.value, true, k4K), explicit_choice);
+            EXPECT_EQ(effective_resolve(explicit_choice, filter.value, false, k1080p), explicit_choice);
         }
     }
 }

@@ -30,13 +30,17 @@ inline constexpr ChoiceName<ShadowResolve> kShadowResolveChoices[] = {
     {"auto", ShadowResolve::Auto}, {"forward", ShadowResolve::Forward}, {"deferred", ShadowResolve::Deferred}};
 const std::map<std::string, ShadowResolve>& shadow_resolve_names();
 
-// The path `resolve` stands for: Auto is Deferred where the shadows cost many taps per
-// shaded fragment (pcf, poisson and pcss filters) or spot/point lights cast shadows (each
-// adds its own lookups), Forward otherwise (hard and the moment filters take one lookup per
-// light, and the pre-pass would cost more than the overdraw it saves): on an H100 with the
-// 1 M-triangle forest at 1080p, deferred is 1.3 ms faster with pcf R=2 and 0.3 ms with 16
-// shadowed local lights, 1.1 ms slower with hard.
-ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters);
+// The path `resolve` stands for. Auto is Deferred where a filter takes many taps per shaded
+// fragment (pcf, poisson, pcss) and either the image has at least kDeferredMinPixels or
+// spot/point lights cast shadows (each adds its lookups to every fragment); Forward
+// otherwise: hard and the moment filters take one lookup per light, and the pre-pass then
+// costs more than the overdraw it saves. Measured on an H100 with the 1 M-triangle forest
+// (docs/PERFORMANCE.md, commit 9b810ac): at 3840 x 2160 deferred saves 0.5-3.7 ms with
+// those filters and costs 2.5 ms with hard; at 1920 x 1080 it costs 0.1-0.5 ms with pcss
+// and poisson (saves 0.4 ms with pcf R=2) and, with 16 shadowed local lights, saves
+// 1.4 ms with pcf and pcss and costs 0.7 ms with hard.
+inline constexpr uint64_t kDeferredMinPixels = 4'000'000;
+ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters, uint64_t pixels);
 
 constexpr uint32_t kMaxImageSize = 16384;
 // Spot and point lights the tools' renderer lights (the first ones of a scene's list).
