@@ -7,6 +7,17 @@
 
 namespace penumbra::renderer {
 
+gpu::Image create_camera_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
+                                VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+    gpu::ImageDesc desc;
+    desc.format = format;
+    desc.width = width;
+    desc.height = height;
+    desc.usage = usage;
+    desc.aspect = aspect;
+    return gpu::create_image(device, desc);
+}
+
 gpu::VertexLayout scene_vertex_layout() {
     gpu::VertexLayout layout;
     layout.stride = sizeof(Vertex);

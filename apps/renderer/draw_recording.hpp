@@ -3,13 +3,19 @@
 // its material, vertex layout, viewport and scissor.
 #include <vulkan/vulkan.h>
 
+#include <cstdint>
 #include <span>
 
 #include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
 #include "renderer/draw_data.hpp"
 #include "renderer/shader_interface.hpp"
 
 namespace penumbra::renderer {
+
+// A single-layer 2D image of `format` for a camera pass's attachments.
+gpu::Image create_camera_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
+                                VkImageUsageFlags usage, VkImageAspectFlags aspect);
 
 // The scene's interleaved Vertex: position, normal, uv at locations 0, 1, 2.
 gpu::VertexLayout scene_vertex_layout();

@@ -4,20 +4,11 @@
 #include <cmath>
 
 #include "penumbra/gpu/pipeline.hpp"
+#include "renderer/math_conversions.hpp"
 #include "renderer/renderer.hpp"
 
 namespace penumbra::renderer {
 namespace {
-
-Vec3 to_vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
-
-glm::mat4 to_glm(const Mat4& m) {
-    glm::mat4 result;
-    for (int column = 0; column < 4; ++column) {
-        for (int row = 0; row < 4; ++row) result[column][row] = m(row, column);
-    }
-    return result;
-}
 
 const Light* first_directional(const std::vector<Light>& lights) {
     for (const Light& light : lights) {

@@ -14,17 +14,6 @@ constexpr VkFormat kPositionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kNormalFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-gpu::Image create_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
-                         VkImageUsageFlags usage, VkImageAspectFlags aspect) {
-    gpu::ImageDesc desc;
-    desc.format = format;
-    desc.width = width;
-    desc.height = height;
-    desc.usage = usage;
-    desc.aspect = aspect;
-    return gpu::create_image(device, desc);
-}
-
 gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout layout, VkCullModeFlags cull_mode) {
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
@@ -45,10 +34,11 @@ GeometryAovPass::GeometryAovPass(const gpu::Device& device, VkDescriptorSetLayou
     : device_(device), width_(width), height_(height) {
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     targets_.world_position =
-        create_target(device, kPositionFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.world_normal = create_target(device, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.depth = create_target(device, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                   VK_IMAGE_ASPECT_DEPTH_BIT);
+        create_camera_target(device, kPositionFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.world_normal =
+        create_camera_target(device, kNormalFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.depth = create_camera_target(device, kDepthFormat, width, height,
+                                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});

@@ -17,17 +17,6 @@ constexpr VkFormat kVisibilityFormat = VK_FORMAT_R16_UNORM;
 constexpr VkFormat kCascadeFormat = VK_FORMAT_R8_UINT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-gpu::Image create_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
-                         VkImageUsageFlags usage, VkImageAspectFlags aspect) {
-    gpu::ImageDesc desc;
-    desc.format = format;
-    desc.width = width;
-    desc.height = height;
-    desc.usage = usage;
-    desc.aspect = aspect;
-    return gpu::create_image(device, desc);
-}
-
 // The ShadowSystem's specialization constants (ids from 0: lighting.frag leaves
 // PENUMBRA_SPEC_ID_BASE at its default).
 std::vector<gpu::SpecializationValue> shadow_specialization(const ShadowSystem& shadows) {
@@ -77,10 +66,11 @@ LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout fram
         throw std::invalid_argument("LightingPass: the deferred resolve needs the pre-pass's depth");
     }
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    targets_.color = create_target(device, kColorFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.color = create_camera_target(device, kColorFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     targets_.visibility =
-        create_target(device, kVisibilityFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.cascade = create_target(device, kCascadeFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+        create_camera_target(device, kVisibilityFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.cascade =
+        create_camera_target(device, kCascadeFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, material_set_layout,
                                                    shadows.descriptor_set_layout()};
     if (deferred) {
@@ -94,8 +84,8 @@ LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout fram
         nearest_ = gpu::create_sampler(device, sampler);
         set_layouts.push_back(screen_set_layout_);
     } else {
-        targets_.depth = create_target(device, kDepthFormat, width, height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                       VK_IMAGE_ASPECT_DEPTH_BIT);
+        targets_.depth = create_camera_target(device, kDepthFormat, width, height,
+                                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
     }
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});

@@ -2,6 +2,7 @@
 
 #include "penumbra/gpu/barriers.hpp"
 #include "renderer/draw_recording.hpp"
+#include "renderer/math_conversions.hpp"
 #include "renderer/shader_interface.hpp"
 #include "renderer_shaders.hpp"
 
@@ -10,17 +11,6 @@ namespace {
 
 constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-
-gpu::Image create_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
-                         VkImageUsageFlags usage, VkImageAspectFlags aspect) {
-    gpu::ImageDesc desc;
-    desc.format = format;
-    desc.width = width;
-    desc.height = height;
-    desc.usage = usage;
-    desc.aspect = aspect;
-    return gpu::create_image(device, desc);
-}
 
 gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout layout, VkCullModeFlags cull_mode) {
     gpu::GraphicsPipelineDesc desc;
@@ -35,25 +25,17 @@ gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout 
     return gpu::create_graphics_pipeline(device, desc);
 }
 
-Mat4 to_mat4(const glm::mat4& m) {
-    Mat4 result;
-    for (int column = 0; column < 4; ++column) {
-        for (int row = 0; row < 4; ++row) result(row, column) = m[column][row];
-    }
-    return result;
-}
-
 }  // namespace
 
 ScreenPrepass::ScreenPrepass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                              VkDescriptorSetLayout material_set_layout, uint32_t width, uint32_t height)
     : device_(device), width_(width), height_(height) {
-    targets_.normals =
-        create_target(device, kNormalFormat, width, height,
-                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-    targets_.depth = create_target(device, kDepthFormat, width, height,
-                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                   VK_IMAGE_ASPECT_DEPTH_BIT);
+    targets_.normals = create_camera_target(device, kNormalFormat, width, height,
+                                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                            VK_IMAGE_ASPECT_COLOR_BIT);
+    targets_.depth = create_camera_target(device, kDepthFormat, width, height,
+                                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                          VK_IMAGE_ASPECT_DEPTH_BIT);
     const VkDescriptorSetLayout set_layouts[] = {frame_set_layout, material_set_layout};
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
