@@ -1,6 +1,7 @@
 // run_bench_job: the frame loops of `penumbra bench` and the collection of their samples.
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -181,6 +182,33 @@ FrameSamples run_renderer_frames(const renderer::AppContext& context, const Benc
     return samples;
 }
 
+// The frames of a ceiling that renders no scene: warm-up and measured frames of `record`
+// inside the "frame" scope, with their GPU scopes and CPU recording and wall times.
+FrameSamples run_pass_frames(const BenchJob& job, gpu::FrameCommands& commands, gpu::GpuTimer& timer,
+                             const std::function<void(VkCommandBuffer)>& record) {
+    FrameSamples samples;
+    const uint32_t total = job.warmup + job.frames;
+    for (uint32_t index = 0; index < total; ++index) {
+        double recording_ms = 0.0;
+        const Clock::time_point start = Clock::now();
+        commands.submit_and_wait([&](VkCommandBuffer cmd) {
+            const Clock::time_point record_start = Clock::now();
+            timer.begin_frame(cmd);
+            gpu::TimedScope frame_scope(&timer, cmd, "frame");
+            record(cmd);
+            recording_ms = milliseconds_since(record_start);
+        });
+        const double wall_ms = milliseconds_since(start);
+        if (index >= job.warmup) {
+            samples.add_gpu_times(timer.read().value_or(std::vector<gpu::ScopeTime>{}));
+            samples.cpu.add("recording", recording_ms);
+            samples.cpu.add("frame_wall", wall_ms);
+        }
+        if (job.progress) job.progress(index + 1, total);
+    }
+    return samples;
+}
+
 // The sampling-rate ceilings: no scene rendering, only the tap pass (fragment or compute).
 FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob& job, const RenderSettings& settings,
                             BenchResult& result) {
@@ -194,27 +222,10 @@ FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob&
     result.shadow_map_bytes = pass.shadow_map_bytes();
     context.submit_and_wait([&](VkCommandBuffer cmd) { pass.record_setup(cmd); });
 
-    FrameSamples samples;
-    const uint32_t total = job.warmup + job.frames;
-    for (uint32_t index = 0; index < total; ++index) {
-        double recording_ms = 0.0;
-        const Clock::time_point start = Clock::now();
-        commands.submit_and_wait([&](VkCommandBuffer cmd) {
-            const Clock::time_point record_start = Clock::now();
-            timer.begin_frame(cmd);
-            gpu::TimedScope frame_scope(&timer, cmd, "frame");
-            gpu::TimedScope taps_scope(&timer, cmd, "taps");
-            pass.record(cmd);
-            recording_ms = milliseconds_since(record_start);
-        });
-        const double wall_ms = milliseconds_since(start);
-        if (index >= job.warmup) {
-            samples.add_gpu_times(timer.read().value_or(std::vector<gpu::ScopeTime>{}));
-            samples.cpu.add("recording", recording_ms);
-            samples.cpu.add("frame_wall", wall_ms);
-        }
-        if (job.progress) job.progress(index + 1, total);
-    }
+    const FrameSamples samples = run_pass_frames(job, commands, timer, [&](VkCommandBuffer cmd) {
+        gpu::TimedScope taps_scope(&timer, cmd, "taps");
+        pass.record(cmd);
+    });
     result.ceiling = CeilingReport{units == TapCeilingUnits::Compute ? "compute-taps" : "taps", "texture taps",
                                    pass.taps_per_frame(), 0.0};
     return samples;
@@ -232,26 +243,8 @@ FrameSamples run_layer_start_frames(const renderer::AppContext& context, const B
     result.shadow_map_bytes = pass.map_bytes();
     context.submit_and_wait([&](VkCommandBuffer cmd) { pass.record_setup(cmd); });
 
-    FrameSamples samples;
-    const uint32_t total = job.warmup + job.frames;
-    for (uint32_t index = 0; index < total; ++index) {
-        double recording_ms = 0.0;
-        const Clock::time_point start = Clock::now();
-        commands.submit_and_wait([&](VkCommandBuffer cmd) {
-            const Clock::time_point record_start = Clock::now();
-            timer.begin_frame(cmd);
-            gpu::TimedScope frame_scope(&timer, cmd, "frame");
-            pass.record(cmd, timer);
-            recording_ms = milliseconds_since(record_start);
-        });
-        const double wall_ms = milliseconds_since(start);
-        if (index >= job.warmup) {
-            samples.add_gpu_times(timer.read().value_or(std::vector<gpu::ScopeTime>{}));
-            samples.cpu.add("recording", recording_ms);
-            samples.cpu.add("frame_wall", wall_ms);
-        }
-        if (job.progress) job.progress(index + 1, total);
-    }
+    const FrameSamples samples =
+        run_pass_frames(job, commands, timer, [&](VkCommandBuffer cmd) { pass.record(cmd, timer); });
     result.ceiling =
         CeilingReport{"layer-start", "depth texels cleared by a render-pass clear", pass.texels_per_way(), 0.0};
     return samples;
