@@ -4,9 +4,15 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <set>
+#include <string>
 
 #include "cli_runner.hpp"
 #include "image/png_io.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "penumbra/settings.hpp"
 
 namespace fs = std::filesystem;
@@ -98,6 +104,7 @@ TEST_F(Cli, HelpListsEveryNameOfTheChoiceTables) {
     expect_listed(penumbra::kSplitSchemeChoices);
     expect_listed(penumbra::kFitModeChoices);
     expect_listed(penumbra::kShadowStrategyChoices);
+    expect_listed(penumbra::kShadowResolveChoices);
     expect_listed(penumbra::kShadowFilterChoices);
     expect_listed(penumbra::kPcssQualityChoices);
     expect_listed(penumbra::kCasterCullingChoices);
@@ -177,6 +184,43 @@ TEST_F(Cli, HelpDocumentsTheOptions) {
     for (const char* option : {"--output", "--config", "--aov", "--eye", "--light-dir", "--cascades", "--fit",
                                "--slope-bias", "--normal-offset", "--shadow-strategy", "--validate", "--device"}) {
         EXPECT_NE(result.out.find(option), std::string::npos) << option;
+    }
+}
+
+// docs/cli.md (with the pages its tables link to for the filter, bench, compare and viewer
+// flags) documents every flag of every command's --help, and names no flag that no command
+// has: the documentation cannot drift from the declarations the help is built from.
+TEST_F(Cli, EveryFlagIsDocumentedAndEveryDocumentedFlagExists) {
+    const auto read = [](const char* name) {
+        std::ifstream file(std::string(PENUMBRA_DOCS_DIR) + "/" + name);
+        EXPECT_TRUE(file) << name;
+        return std::string(std::istreambuf_iterator<char>(file), {});
+    };
+    const std::string cli = read("cli.md");
+    std::string docs = cli;
+    for (const char* page : {"filters.md", "bench.md", "viewer.md", "QUALITY.md", "local-lights.md"})
+        docs += read(page);
+    const std::regex flag(R"((^|[^\w-])(--[a-z][a-z0-9-]*))");
+    const auto flags_in = [&](const std::string& text) {
+        std::set<std::string> found;
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), flag); it != std::sregex_iterator(); ++it) {
+            found.insert((*it)[2].str());
+        }
+        return found;
+    };
+    const std::set<std::string> documented = flags_in(docs);
+    std::set<std::string> every_flag;
+    for (const char* command : {"render", "bench", "compare", "view"}) {
+        const RunResult help = run(std::string(command) + " --help");
+        ASSERT_EQ(help.exit_code, 0) << help.err;
+        for (const std::string& name : flags_in(help.out)) {
+            every_flag.insert(name);
+            if (name == "--help") continue;
+            EXPECT_TRUE(documented.contains(name)) << command << " " << name << " is not in docs/cli.md";
+        }
+    }
+    for (const std::string& name : flags_in(cli)) {
+        EXPECT_TRUE(every_flag.contains(name)) << "docs/cli.md names " << name << ", which no command has";
     }
 }
 
