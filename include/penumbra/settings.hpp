@@ -13,6 +13,7 @@
 namespace penumbra {
 
 inline constexpr int kMaxCascades = 8;  // cascades of the sun's shadow map
+inline constexpr int kMaxPcfRadius = 5;  // FilterSettings::pcf_radius
 
 // Spot and point lights (docs/local-lights.md).
 inline constexpr uint32_t kMaxLights = 256;             // lights one ShadowSystem takes (set_lights)

@@ -18,6 +18,8 @@
 #define PENUMBRA_MAX_CASCADES 8
 #define PENUMBRA_MAX_LIGHTS 256
 #define PENUMBRA_MAX_LOCAL_SHADOW_LAYERS 192
+// FilterSettings::pcf_radius's upper bound (the pcf kernel's arrays, penumbra/glsl/pcf.glsl).
+#define PENUMBRA_MAX_PCF_RADIUS 5
 
 // Bindings of the ShadowSystem's descriptor set (the set index is the caller's choice).
 #define PENUMBRA_BINDING_SHADOW_UNIFORMS 0  // PenumbraShadowUniforms (uniform buffer)

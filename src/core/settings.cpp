@@ -80,7 +80,7 @@ void require_one_of(const std::string& origin, const char* key, int value, int f
 }
 
 void validate_filter_settings(const FilterSettings& filter, const std::string& origin) {
-    require_in_range(origin, shadow_keys::kPcfRadius, filter.pcf_radius, 0, 5);
+    require_in_range(origin, shadow_keys::kPcfRadius, filter.pcf_radius, 0, kMaxPcfRadius);
     require_one_of(origin, shadow_keys::kPoissonTaps, filter.poisson_taps, 16, 32);
     require_in_range(origin, shadow_keys::kPoissonRadius, filter.poisson_radius, 0.5f, 32.0f);
     require_one_of(origin, shadow_keys::kPcssBlockerTaps, filter.pcss_blocker_taps, 16, 32);

@@ -23,6 +23,7 @@ using uvec4 = glm::uvec4;
 static_assert(sizeof(mat4) == 64 && sizeof(vec4) == 16 && sizeof(vec3) == 12 && sizeof(vec2) == 8);
 
 static_assert(PENUMBRA_MAX_CASCADES == kMaxCascades);
+static_assert(PENUMBRA_MAX_PCF_RADIUS == kMaxPcfRadius);
 // ResolvePushConstants::normal_encoding is the enum's value.
 static_assert(static_cast<int>(NormalEncoding::SignedFloat) == 0 &&
               static_cast<int>(NormalEncoding::UnsignedNormalized) == 1 &&

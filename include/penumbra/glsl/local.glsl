@@ -98,17 +98,23 @@ float penumbra_local_hard(PenumbraLocalShadow light, PenumbraLocalCoord coord) {
     return texture(penumbra_local_map, vec4(penumbra_clamp_to_light(light, coord.uv), coord.layer, coord.depth));
 }
 
+// pcf: the sun's kernel (penumbra/glsl/pcf.glsl), every tap kept inside the light's corner.
 float penumbra_local_pcf(PenumbraLocalShadow light, PenumbraLocalCoord coord) {
     const int radius = int(penumbra_shadow.pcf_radius);
+    const float texel = penumbra_local_texel_uv();
     const float bias = penumbra_local_static_bias(coord);
+    const vec2 f = fract(coord.uv / texel - 0.5);
+    const PenumbraPcfAxis x = penumbra_pcf_axis(f.x, radius);
+    const PenumbraPcfAxis y = penumbra_pcf_axis(f.y, radius);
     float lit = 0.0;
-    for (int y = -radius; y <= radius; ++y) {
-        for (int x = -radius; x <= radius; ++x) {
-            lit += penumbra_local_compare_tap(light, coord, vec2(x, y) * penumbra_local_texel_uv(), bias);
+    for (int j = 0; j <= radius; ++j) {
+        for (int i = 0; i <= radius; ++i) {
+            const vec2 offset = vec2(x.offsets[i], y.offsets[j]) * texel;
+            lit += x.weights[i] * y.weights[j] * penumbra_local_compare_tap(light, coord, offset, bias);
         }
     }
-    const int side = 2 * radius + 1;
-    return lit / float(side * side);
+    const float side = float(2 * radius + 1);
+    return lit / (side * side);
 }
 
 // Comparison taps over a rotated Poisson disk of `radius_uv`.

@@ -25,17 +25,24 @@ float penumbra_shadow_hard(int cascade, PenumbraShadowCoord coord) {
     return texture(penumbra_cascade_map, vec4(coord.uv, float(cascade), coord.depth));
 }
 
-// pcf: a (2R+1) x (2R+1) grid of comparison taps one texel apart.
+// pcf: the (2R+1) x (2R+1) grid of comparison taps one texel apart, as (R+1)^2 weighted
+// taps (penumbra/glsl/pcf.glsl).
 float penumbra_shadow_pcf(int cascade, PenumbraShadowCoord coord) {
     const int radius = int(penumbra_shadow.pcf_radius);
     const float texel = penumbra_shadow.texel_uv;
     const float bias = penumbra_receiver_plane_static_bias(coord);
+    const vec2 f = fract(coord.uv / texel - 0.5);
+    const PenumbraPcfAxis x = penumbra_pcf_axis(f.x, radius);
+    const PenumbraPcfAxis y = penumbra_pcf_axis(f.y, radius);
     float lit = 0.0;
-    for (int y = -radius; y <= radius; ++y) {
-        for (int x = -radius; x <= radius; ++x) lit += penumbra_compare_tap(cascade, coord, vec2(x, y) * texel, bias);
+    for (int j = 0; j <= radius; ++j) {
+        for (int i = 0; i <= radius; ++i) {
+            const vec2 offset = vec2(x.offsets[i], y.offsets[j]) * texel;
+            lit += x.weights[i] * y.weights[j] * penumbra_compare_tap(cascade, coord, offset, bias);
+        }
     }
-    const int side = 2 * radius + 1;
-    return lit / float(side * side);
+    const float side = float(2 * radius + 1);
+    return lit / (side * side);
 }
 
 // Sum of comparison taps over a rotated Poisson disk with per-axis radius `radius_uv`.

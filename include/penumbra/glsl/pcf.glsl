@@ -1,0 +1,40 @@
+// The pcf kernel of the sun's cascades and of the spot and point lights' layers, written
+// once (included by penumbra/shadow.glsl before sun.glsl and local.glsl).
+//
+// A (2R+1) x (2R+1) grid of bilinear comparison taps one texel apart weighs the
+// (2R+2) x (2R+2) texels around the receiver separably: on each axis 1 - f for the first,
+// 1 for those between and f for the last, f being the receiver's position between texel
+// centres. Pairing neighbouring texels, one bilinear comparison placed between a pair at
+// the ratio of their weights reads both with those weights (times the pair's total), so
+// (R+1) x (R+1) taps give the same filter: 9 instead of 25 taps for R = 2 (the "optimized
+// PCF" of The Witness and of MJP's Shadows sample). Every tap still reads texels at most
+// one texel from its own position, so the receiver-plane static bias keeps its meaning.
+// With the hardware's fixed-point filter weights (often 8 fractional bits) the result may
+// differ from the plain grid's in the last 1/256.
+#ifndef PENUMBRA_GLSL_PCF
+#define PENUMBRA_GLSL_PCF
+
+const int kPenumbraMaxPcfRadius = PENUMBRA_MAX_PCF_RADIUS;  // FilterSettings::pcf_radius's upper bound
+
+// One axis of the kernel: the offsets of its R + 1 taps from the receiver, in texels, and
+// their weights (summing to 2R + 1). `f` is the receiver's position past the texel centre
+// before it, in [0, 1).
+struct PenumbraPcfAxis {
+    float offsets[kPenumbraMaxPcfRadius + 1];
+    float weights[kPenumbraMaxPcfRadius + 1];
+};
+
+PenumbraPcfAxis penumbra_pcf_axis(float f, int radius) {
+    PenumbraPcfAxis axis;
+    for (int pair = 0; pair <= radius; ++pair) {
+        const int first = 2 * pair - radius;  // texel index relative to the one before the receiver
+        const float first_weight = first == -radius ? 1.0 - f : 1.0;
+        const float second_weight = first + 1 == radius + 1 ? f : 1.0;
+        const float weight = first_weight + second_weight;
+        axis.weights[pair] = weight;
+        axis.offsets[pair] = float(first) + second_weight / weight - f;
+    }
+    return axis;
+}
+
+#endif
