@@ -12,7 +12,7 @@
 
 namespace penumbra {
 
-inline constexpr int kMaxCascades = 8;  // cascades of the sun's shadow map
+inline constexpr int kMaxCascades = 8;   // cascades of the sun's shadow map
 inline constexpr int kMaxPcfRadius = 5;  // FilterSettings::pcf_radius
 
 // Spot and point lights (docs/local-lights.md).
