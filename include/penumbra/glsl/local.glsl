@@ -104,13 +104,13 @@ float penumbra_local_pcf(PenumbraLocalShadow light, PenumbraLocalCoord coord) {
     const float texel = penumbra_local_texel_uv();
     const float bias = penumbra_local_static_bias(coord);
     const vec2 f = fract(coord.uv / texel - 0.5);
-    const PenumbraPcfAxis x = penumbra_pcf_axis(f.x, radius);
-    const PenumbraPcfAxis y = penumbra_pcf_axis(f.y, radius);
     float lit = 0.0;
     for (int j = 0; j <= radius; ++j) {
+        const vec2 y = penumbra_pcf_tap(f.y, radius, j);
         for (int i = 0; i <= radius; ++i) {
-            const vec2 offset = vec2(x.offsets[i], y.offsets[j]) * texel;
-            lit += x.weights[i] * y.weights[j] * penumbra_local_compare_tap(light, coord, offset, bias);
+            const vec2 x = penumbra_pcf_tap(f.x, radius, i);
+            const vec2 offset = vec2(x.x, y.x) * texel;
+            lit += x.y * y.y * penumbra_local_compare_tap(light, coord, offset, bias);
         }
     }
     const float side = float(2 * radius + 1);

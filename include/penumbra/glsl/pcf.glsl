@@ -16,25 +16,16 @@
 
 const int kPenumbraMaxPcfRadius = PENUMBRA_MAX_PCF_RADIUS;  // FilterSettings::pcf_radius's upper bound
 
-// One axis of the kernel: the offsets of its R + 1 taps from the receiver, in texels, and
-// their weights (summing to 2R + 1). `f` is the receiver's position past the texel centre
-// before it, in [0, 1).
-struct PenumbraPcfAxis {
-    float offsets[kPenumbraMaxPcfRadius + 1];
-    float weights[kPenumbraMaxPcfRadius + 1];
-};
-
-PenumbraPcfAxis penumbra_pcf_axis(float f, int radius) {
-    PenumbraPcfAxis axis;
-    for (int pair = 0; pair <= radius; ++pair) {
-        const int first = 2 * pair - radius;  // texel index relative to the one before the receiver
-        const float first_weight = first == -radius ? 1.0 - f : 1.0;
-        const float second_weight = first + 1 == radius + 1 ? f : 1.0;
-        const float weight = first_weight + second_weight;
-        axis.weights[pair] = weight;
-        axis.offsets[pair] = float(first) + second_weight / weight - f;
-    }
-    return axis;
+// Tap `pair` (0..R) of one axis of the kernel: its offset from the receiver in texels (x)
+// and its weight (y; an axis's weights sum to 2R + 1). `f` is the receiver's position past
+// the texel centre before it, in [0, 1). Computed per tap rather than into arrays: arrays
+// indexed in a loop spill to local memory.
+vec2 penumbra_pcf_tap(float f, int radius, int pair) {
+    const int first = 2 * pair - radius;  // texel index relative to the one before the receiver
+    const float first_weight = first == -radius ? 1.0 - f : 1.0;
+    const float second_weight = first + 1 == radius + 1 ? f : 1.0;
+    const float weight = first_weight + second_weight;
+    return vec2(float(first) + second_weight / weight - f, weight);
 }
 
 #endif

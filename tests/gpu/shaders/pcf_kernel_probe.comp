@@ -16,9 +16,10 @@ const uint kStride = 2u * uint(kPenumbraMaxPcfRadius + 1);
 void main() {
     const uint i = gl_GlobalInvocationID.x;
     const int radius = int(i / 64u);
-    const PenumbraPcfAxis axis = penumbra_pcf_axis(float(i % 64u) / 64.0, radius);
+    const float f = float(i % 64u) / 64.0;
     for (int tap = 0; tap <= kPenumbraMaxPcfRadius; ++tap) {
-        values[i * kStride + uint(tap)] = tap <= radius ? axis.offsets[tap] : 0.0;
-        values[i * kStride + uint(kPenumbraMaxPcfRadius + 1 + tap)] = tap <= radius ? axis.weights[tap] : 0.0;
+        const vec2 t = tap <= radius ? penumbra_pcf_tap(f, radius, tap) : vec2(0.0);
+        values[i * kStride + uint(tap)] = t.x;
+        values[i * kStride + uint(kPenumbraMaxPcfRadius + 1 + tap)] = t.y;
     }
 }
