@@ -35,10 +35,10 @@ const std::map<std::string, ShadowResolve>& shadow_resolve_names();
 // spot/point lights cast shadows (each adds its lookups to every fragment); Forward
 // otherwise: hard and the moment filters take one lookup per light, and the pre-pass then
 // costs more than the overdraw it saves. Measured on an H100 with the 1 M-triangle forest
-// (docs/PERFORMANCE.md, commit 9b810ac): at 3840 x 2160 deferred saves 0.5-3.7 ms with
-// those filters and costs 2.5 ms with hard; at 1920 x 1080 it costs 0.1-0.5 ms with pcss
-// and poisson (saves 0.4 ms with pcf R=2) and, with 16 shadowed local lights, saves
-// 1.4 ms with pcf and pcss and costs 0.7 ms with hard.
+// (docs/PERFORMANCE.md, commits e897cbc and 56088cc): at 3840 x 2160 deferred saves
+// 0.7-2.7 ms with those filters and costs 2.2 ms with hard; at 1920 x 1080 it costs
+// 0.4 ms with pcf R=2 and 0.5 ms with poisson and, with 16 shadowed local lights, saves
+// 1.1-1.3 ms with pcf and pcss and costs 0.5 ms with hard.
 inline constexpr uint64_t kDeferredMinPixels = 4'000'000;
 ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters, uint64_t pixels);
 
