@@ -69,16 +69,28 @@ VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColo
     return attachment;
 }
 
-void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
-                            std::span<const VkRenderingAttachmentInfo> colors, VkImageView depth_view, uint32_t width,
-                            uint32_t height) {
+VkRenderingAttachmentInfo cleared_depth_attachment(VkImageView view, VkAttachmentStoreOp store) {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = depth_view;
+    depth.imageView = view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {0.0f, 0};
+    depth.storeOp = store;
+    depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: the far plane
+    return depth;
+}
 
+VkRenderingAttachmentInfo read_only_depth_attachment(VkImageView view) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;  // nothing written, nothing to store
+    return depth;
+}
+
+void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
+                            std::span<const VkRenderingAttachmentInfo> colors, const VkRenderingAttachmentInfo& depth,
+                            uint32_t width, uint32_t height) {
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {width, height}};
     info.layerCount = 1;

@@ -34,12 +34,20 @@ VkPushConstantRange draw_push_constant_range();
 // A colour attachment cleared to `clear` at the start of the pass and stored at its end.
 VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear);
 
+// A reverse-Z depth attachment cleared to 0 (far) at the start of the pass; `store`
+// decides whether a later pass sees what it holds at the end.
+VkRenderingAttachmentInfo cleared_depth_attachment(VkImageView view, VkAttachmentStoreOp store);
+
+// A depth attachment tested but not written (an equal test over a pre-pass's depth): loaded,
+// in VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, not stored.
+VkRenderingAttachmentInfo read_only_depth_attachment(VkImageView view);
+
 // Begins the dynamic rendering of a camera pass (one layer, the whole `width` x `height`
-// area) with the given colour attachments and a reverse-Z depth buffer cleared to 0 (far)
-// and not stored, then sets the viewport and scissor to the same area.
+// area) with the given colour and depth attachments, then sets the viewport and scissor to
+// the same area.
 void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
-                            std::span<const VkRenderingAttachmentInfo> colors, VkImageView depth_view, uint32_t width,
-                            uint32_t height);
+                            std::span<const VkRenderingAttachmentInfo> colors, const VkRenderingAttachmentInfo& depth,
+                            uint32_t width, uint32_t height);
 
 // Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
 // passes do, in DrawData::order (nearest first): single-sided materials with

@@ -51,7 +51,9 @@ void GeometryAovPass::begin_rendering(VkCommandBuffer cmd) const {
     const std::array<VkRenderingAttachmentInfo, 2> colors{
         cleared_color_attachment(targets_.world_position.view, no_geometry),
         cleared_color_attachment(targets_.world_normal.view, no_geometry)};
-    begin_camera_rendering(device_, cmd, colors, targets_.depth.view, width_, height_);
+    begin_camera_rendering(device_, cmd, colors,
+                           cleared_depth_attachment(targets_.depth.view, VK_ATTACHMENT_STORE_OP_DONT_CARE), width_,
+                           height_);
 }
 
 void GeometryAovPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const DrawData& data) const {

@@ -106,23 +106,11 @@ void LightingPass::begin_rendering(VkCommandBuffer cmd) const {
         cleared_color_attachment(targets_.visibility.view, {{1.0f, 0.0f, 0.0f, 0.0f}}),  // no geometry = fully lit
         cleared_color_attachment(targets_.cascade.view, VkClearColorValue{.uint32 = {RENDERER_NO_CASCADE, 0, 0, 0}}),
     };
-    if (resolve_ == ShadowResolve::Forward) {
-        begin_camera_rendering(device_, cmd, colors, targets_.depth.view, width_, height_);
-        return;
-    }
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = prepass_depth_->view;
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;  // read only: nothing to store
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {width_, height_}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
-    info.pColorAttachments = colors.data();
-    info.pDepthAttachment = &depth;
-    device_->vkCmdBeginRendering(cmd, &info);
-    set_viewport_and_scissor(device_, cmd, width_, height_);
+    const VkRenderingAttachmentInfo depth =
+        resolve_ == ShadowResolve::Forward
+            ? cleared_depth_attachment(targets_.depth.view, VK_ATTACHMENT_STORE_OP_DONT_CARE)
+            : read_only_depth_attachment(prepass_depth_->view);
+    begin_camera_rendering(device_, cmd, colors, depth, width_, height_);
 }
 
 void LightingPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, VkDescriptorSet shadow_set,

@@ -52,20 +52,10 @@ void ScreenPrepass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const
     // Pixels without geometry keep the clear value: the resolve does not read them.
     const VkRenderingAttachmentInfo normals =
         cleared_color_attachment(targets_.normals.view, {{0.0f, 0.0f, 0.0f, 0.0f}});
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = targets_.depth.view;
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;  // read by the resolve and tested by the lighting pass
-    depth.clearValue.depthStencil = {0.0f, 0};
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {width_, height_}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &normals;
-    info.pDepthAttachment = &depth;
-    device_->vkCmdBeginRendering(cmd, &info);
-    set_viewport_and_scissor(device_, cmd, width_, height_);
+    // Stored: the resolve reads it and the lighting pass tests against it.
+    begin_camera_rendering(device_, cmd, {&normals, 1},
+                           cleared_depth_attachment(targets_.depth.view, VK_ATTACHMENT_STORE_OP_STORE), width_,
+                           height_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, RENDERER_SET_FRAME, 1,
                                      &frame_set, 0, nullptr);
     record_camera_draws(device_, cmd, pipeline_layout_, data, single_sided_, double_sided_);
