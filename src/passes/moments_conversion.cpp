@@ -122,10 +122,8 @@ uint64_t MomentsConversion::memory_bytes() const {
     return moments_.memory_size + (scratch_ ? scratch_->memory_size : 0u);
 }
 
-void MomentsConversion::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set,
+void MomentsConversion::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
                                  const MomentsLayer& layer, glm::vec2 evsm_exponents, bool horizontal) const {
-    const bool converting = pipeline == convert_.get();
-    const VkPipelineLayout layout = converting ? convert_pipeline_layout_.get() : blur_pipeline_layout_.get();
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
     const shader::MomentsPushConstants constants{
@@ -140,16 +138,19 @@ void MomentsConversion::record(VkCommandBuffer cmd, const std::vector<MomentsLay
                                glm::vec2 evsm_exponents) const {
     using gpu::ImageState;
     gpu::transition(device_, cmd, moments_, ImageState::DiscardAfterShaderReads, ImageState::ComputeStorage);
-    for (const MomentsLayer& layer : layers) dispatch(cmd, convert_, convert_set_, layer, evsm_exponents, false);
+    for (const MomentsLayer& layer : layers)
+        dispatch(cmd, convert_, convert_pipeline_layout_, convert_set_, layer, evsm_exponents, false);
     if (scratch_) {
         // Every layer converted before the blur reads it; the scratch image's contents from
         // the previous frame are discarded (after that frame's blur has read them).
         gpu::transition(device_, cmd, moments_, ImageState::ComputeStorage, ImageState::ComputeStorage);
         gpu::transition(device_, cmd, *scratch_, ImageState::DiscardAfterShaderReads, ImageState::ComputeStorage);
-        for (const MomentsLayer& layer : layers) dispatch(cmd, blur_, horizontal_set_, layer, evsm_exponents, true);
+        for (const MomentsLayer& layer : layers)
+            dispatch(cmd, blur_, blur_pipeline_layout_, horizontal_set_, layer, evsm_exponents, true);
         gpu::transition(device_, cmd, *scratch_, ImageState::ComputeStorage, ImageState::ComputeStorage);
         gpu::transition(device_, cmd, moments_, ImageState::ComputeStorage, ImageState::ComputeStorage);
-        for (const MomentsLayer& layer : layers) dispatch(cmd, blur_, vertical_set_, layer, evsm_exponents, false);
+        for (const MomentsLayer& layer : layers)
+            dispatch(cmd, blur_, blur_pipeline_layout_, vertical_set_, layer, evsm_exponents, false);
     }
     gpu::transition(device_, cmd, moments_, ImageState::ComputeStorage, ImageState::ShaderSampled);
 }

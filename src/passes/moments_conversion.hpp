@@ -53,8 +53,8 @@ public:
     void record(VkCommandBuffer cmd, const std::vector<MomentsLayer>& layers, glm::vec2 evsm_exponents) const;
 
 private:
-    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set, const MomentsLayer& layer,
-                  glm::vec2 evsm_exponents, bool horizontal) const;
+    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
+                  const MomentsLayer& layer, glm::vec2 evsm_exponents, bool horizontal) const;
 
     const gpu::Device& device_;
     uint32_t blur_radius_;
