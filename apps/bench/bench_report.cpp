@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <variant>
 
 #include "penumbra/errors.hpp"
 
@@ -22,40 +23,18 @@ Json counts_json(const CountSummary& counts) {
     return Json{{"mean", counts.mean}, {"min", counts.min}, {"max", counts.max}};
 }
 
-// The filter settings that change the cost of a frame.
-Json filter_json(const FilterSettings& filter) {
-    return Json{{"mode", choice_name(kShadowFilterChoices, filter.mode)},
-                {"pcf_radius", filter.pcf_radius},
-                {"poisson_taps", filter.poisson_taps},
-                {"pcss_blocker_taps", filter.pcss_blocker_taps},
-                {"pcss_quality", choice_name(kPcssQualityChoices, filter.pcss_quality)},
-                {"blur_radius", filter.blur_radius},
-                {"evsm_components", filter.evsm_components}};
+Json setting_json(const SettingValue& value) {
+    return std::visit([](const auto& stored) { return Json(stored); }, value);
 }
 
+// The tools' output settings, then every ShadowSystem setting by its declaration's name.
 Json settings_json(const RenderSettings& settings) {
-    const ShadowSettings& shadow = settings.shadow;
-    return Json{{"width", settings.width},
-                {"height", settings.height},
-                {"resolve", choice_name(kShadowResolveChoices, settings.resolve)},
-                {"cascades", shadow.cascades.count},
-                {"shadow_resolution", shadow.cascades.resolution},
-                {"strategy", choice_name(kShadowStrategyChoices, shadow.strategy)},
-                {"cull_casters", shadow.cull_casters},
-                {"caster_culling", choice_name(kCasterCullingChoices, shadow.caster_culling)},
-                {"split_scheme", choice_name(kSplitSchemeChoices, shadow.cascades.scheme)},
-                {"split_lambda", shadow.cascades.split_lambda},
-                {"max_distance", shadow.cascades.max_distance},
-                {"fit", choice_name(kFitModeChoices, shadow.cascades.fit)},
-                {"slope_bias", shadow.bias.slope},
-                {"constant_bias", shadow.bias.constant},
-                {"bias_clamp", shadow.bias.clamp},
-                {"normal_offset", shadow.bias.normal_offset},
-                {"blend_width", shadow.blend_width},
-                {"filter", filter_json(shadow.filter)},
-                {"local_shadow_budget", settings.local_shadows.budget},
-                {"local_shadow_resolution", settings.local_shadows.resolution},
-                {"local_shadow_sizing", choice_name(kLocalShadowSizingChoices, settings.local_shadows.sizing)}};
+    Json json{{"width", settings.width},
+              {"height", settings.height},
+              {"resolve", choice_name(kShadowResolveChoices, settings.resolve)}};
+    for (const SettingDeclaration& setting : kSettingDeclarations)
+        json[setting.name] = setting_json(setting.get(settings));
+    return json;
 }
 
 Json run_json(const BenchJob& job) {

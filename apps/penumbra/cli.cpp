@@ -9,9 +9,9 @@
 
 #include "choice_help.hpp"
 #include "compare_options.hpp"
-#include "filter_options.hpp"
 #include "number_checks.hpp"
 #include "penumbra/errors.hpp"
+#include "setting_options.hpp"
 #include "view_options.hpp"
 
 namespace penumbra::cli {
@@ -19,11 +19,9 @@ namespace {
 
 // Raw option values as typed; converted after parsing so errors can name the flag.
 struct RawRenderOptions {
-    std::string eye, target, up, light_dir, aov, debug, split_scheme, fit, strategy, splits, local_shadow_sizing;
-    std::string caster_culling, resolve;
+    std::string eye, target, up, light_dir, aov, debug, resolve;
     std::string config;
-    bool no_cull = false;
-    RawFilterOptions filter;
+    RawSettingOptions settings;  // the ShadowSystem's settings, one flag each
 };
 
 struct RawBenchOptions {
@@ -44,22 +42,6 @@ glm::vec3 parse_vec3(const std::string& text, const std::string& flag) {
         }
     }
     return value;
-}
-
-std::vector<float> parse_float_list(const std::string& text, const std::string& flag) {
-    std::vector<float> values;
-    std::stringstream stream(text);
-    std::string item;
-    while (std::getline(stream, item, ',')) {
-        try {
-            size_t used = 0;
-            values.push_back(std::stof(item, &used));
-            if (used != item.size() || !sane_number(values.back())) throw std::invalid_argument(item);
-        } catch (const std::exception&) {
-            throw InputError(flag + ": expected comma-separated numbers, got \"" + text + "\"");
-        }
-    }
-    return values;
 }
 
 template <typename Enum>
@@ -87,39 +69,11 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
     render.add_option("--near", o.near_plane, "Camera near plane (> 0)");
     render.add_option("--far", o.far_plane, "Camera far plane (> near)");
     render.add_option("--light-dir", raw.light_dir, "Direction the sunlight travels x,y,z");
-    render.add_option("--cascades", o.cascades, "Number of shadow cascades (1..8, default 4)")->check(CLI::Range(1, 8));
     render
-        .add_option("--local-shadow-budget", o.local_shadow_budget,
-                    "Spot/point lights with a shadow map (0..32, default 8); the rest render unshadowed")
-        ->check(CLI::Range(0u, kMaxLocalShadowBudget));
-    render
-        .add_option("--local-shadow-resolution", o.local_shadow_resolution,
-                    "Texels per side of a spot/point light's shadow map unless the light sets shadow_resolution "
-                    "(16..8192, default 1024; the largest with coverage sizing)")
-        ->check(CLI::Range(16u, 8192u));
-    render.add_option("--local-shadow-sizing", raw.local_shadow_sizing,
-                      "Spot/point shadow map size: coverage (from the light's size on screen, default) | fixed");
-    render.add_option("--caster-culling", raw.caster_culling,
-                      "Faces the shadow passes skip, seen from the light: none (default) | back | front "
-                      "(front: render back faces, which hides acne on closed meshes)");
-    render.add_option("--shadow-resolution", o.shadow_resolution, "Shadow map texels per side (512..8192)")
-        ->check(CLI::Range(512u, 8192u));
-    render.add_option("--split-scheme", raw.split_scheme, "Cascade splits: " + choice_list(kSplitSchemeChoices));
-    render.add_option("--split-lambda", o.split_lambda, "Practical split blend: 0 uniform .. 1 log (default 0.75)")
-        ->check(CLI::Range(0.0f, 1.0f));
-    render.add_option("--splits", raw.splits, "Manual split distances a,b,c (cascades - 1 values)");
-    render.add_option("--max-distance", o.max_distance, "Shadow distance in metres (> 0)");
-    render.add_option("--fit", raw.fit, "Cascade fitting: " + choice_list(kFitModeChoices));
-    render.add_option("--slope-bias", o.slope_bias, "Slope-scaled depth bias factor (0..20)")
-        ->check(CLI::Range(0.0f, 20.0f));
-    render.add_option("--constant-bias", o.constant_bias, "Constant depth bias factor (>= 0)");
-    render.add_option("--bias-clamp", o.bias_clamp, "Maximum depth bias (0..0.1)")->check(CLI::Range(0.0f, 0.1f));
-    render.add_option("--normal-offset", o.normal_offset, "Normal offset in shadow texels (0..10)")
-        ->check(CLI::Range(0.0f, 10.0f));
-    render.add_option("--blend-width", o.blend_width, "Cascade blend band as a fraction (0..0.5)")
-        ->check(CLI::Range(0.0f, 0.5f));
-    render.add_option("--shadow-strategy", raw.strategy, "Shadow rendering: " + choice_list(kShadowStrategyChoices));
-    add_filter_options(render, o, raw.filter);
+        .add_option("--angular-diameter", o.angular_diameter,
+                    "The sun's angular diameter in degrees, for pcss (0..45; the scene's, default 0.53)")
+        ->check(CLI::Range(0.0f, 45.0f));
+    add_setting_options(render, raw.settings);
     // Every floating-point option, whatever its own range: finite and within +-1e9.
     for (CLI::Option* option : render.get_options()) {
         if (option->get_type_name().starts_with("FLOAT")) option->check(finite_number());
@@ -128,33 +82,17 @@ void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptio
 
 void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     SettingsOverrides& o = job.overrides;
-    convert_filter_options(raw.filter, o);
+    convert_setting_options(raw.settings, o.settings);
     if (!raw.eye.empty()) o.eye = parse_vec3(raw.eye, "--eye");
     if (!raw.target.empty()) o.target = parse_vec3(raw.target, "--target");
     if (!raw.up.empty()) o.up = parse_vec3(raw.up, "--up");
     if (!raw.light_dir.empty()) o.light_direction = parse_vec3(raw.light_dir, "--light-dir");
-    if (!raw.splits.empty()) o.splits = parse_float_list(raw.splits, "--splits");
-    if (!raw.splits.empty() && !raw.split_scheme.empty() && raw.split_scheme != "manual") {
-        throw InputError("--splits: manual split distances need --split-scheme manual, not \"" + raw.split_scheme +
-                         "\"");
-    }
-    if (!raw.split_scheme.empty()) {
-        o.split_scheme = parse_choice(raw.split_scheme, "--split-scheme", split_scheme_names());
-    }
-    if (!raw.fit.empty()) {
-        o.fit = parse_choice(raw.fit, "--fit", fit_mode_names());
-    }
-    if (!raw.local_shadow_sizing.empty()) {
-        o.local_shadow_sizing =
-            parse_choice(raw.local_shadow_sizing, "--local-shadow-sizing", local_shadow_sizing_names());
-    }
-    if (!raw.caster_culling.empty()) {
-        o.caster_culling = parse_choice(raw.caster_culling, "--caster-culling", caster_culling_names());
+    const SettingValue* scheme = o.settings.find("split_scheme");
+    if (o.settings.find("splits") && scheme && *scheme != SettingValue(std::string("manual"))) {
+        throw InputError("--splits: manual split distances need --split-scheme manual, not \"" +
+                         std::get<std::string>(*scheme) + "\"");
     }
     if (!raw.resolve.empty()) o.resolve = parse_choice(raw.resolve, "--resolve", shadow_resolve_names());
-    if (!raw.strategy.empty()) {
-        o.strategy = parse_choice(raw.strategy, "--shadow-strategy", shadow_strategy_names());
-    }
     if (raw.aov.starts_with("shadow:")) {
         job.aov = Aov::Shadow;
         job.aov_light = parse_light_index(raw.aov.substr(7), "--aov");
@@ -179,14 +117,12 @@ void add_render_job_options(CLI::App& command, RenderJob& job, RawRenderOptions&
     command.add_flag("--validate", job.device.validation,
                      "Enable the Khronos validation layer (with synchronization validation); any message fails");
     command.add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");
-    command.add_flag("--no-cull", raw.no_cull, "Disable per-cascade caster culling");
     add_settings_options(command, job.overrides, raw);
 }
 
 void finish_render_job(const RawRenderOptions& raw, RenderJob& job) {
     convert_raw_options(raw, job);
     if (!raw.config.empty()) job.config = raw.config;
-    if (raw.no_cull) job.overrides.cull_casters = false;
 }
 
 void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& raw) {

@@ -1,14 +1,18 @@
 #pragma once
 // The settings of a ShadowSystem: one struct, Settings, with named fields and documented
-// defaults and ranges (docs/library.md, docs/techniques.md, docs/filters.md). The CLI's
-// scene files, config files and flags fill the same structs. validate_settings() rejects
-// out-of-range values with an InputError naming the setting; requires_recreation() tells
-// which changes need a new ShadowSystem (they size or specialise GPU resources).
+// defaults (docs/library.md, docs/techniques.md, docs/filters.md), and below it one
+// declaration per field (kSettingDeclarations: name, range or choices, help, whether a
+// change recreates GPU resources). validate_settings() and requires_recreation() read the
+// declarations, and so do the tools' config files, flags, --help, viewer and reports: a new
+// setting is its field and its declaration, here.
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "penumbra/setting_declaration.hpp"
 
 namespace penumbra {
 
@@ -97,39 +101,6 @@ struct ShadowSettings {
     CasterCulling caster_culling = CasterCulling::None;
 };
 
-// The names validate_shadow_settings() uses for each setting in its messages; config and
-// CLI parsers use the same keys so that a message points at what the user wrote.
-namespace shadow_keys {
-inline constexpr const char* kCascades = "cascades";             // CascadeSettings::count
-inline constexpr const char* kResolution = "shadow_resolution";  // 512..8192
-inline constexpr const char* kSplitLambda = "split_lambda";      // 0..1
-inline constexpr const char* kSplits = "splits";                 // manual_splits
-inline constexpr const char* kMaxDistance = "max_distance";      // > 0, finite
-inline constexpr const char* kFilterPadding = "filter_padding";  // 0..64 texels
-inline constexpr const char* kSlopeBias = "slope_bias";          // 0..20
-inline constexpr const char* kConstantBias = "constant_bias";    // 0..1e5
-inline constexpr const char* kBiasClamp = "bias_clamp";          // 0..0.1
-inline constexpr const char* kNormalOffset = "normal_offset";    // 0..10 texels
-inline constexpr const char* kBlendWidth = "blend_width";        // 0..0.5
-inline constexpr const char* kFilter = "filter";
-inline constexpr const char* kReceiverPlaneBias = "receiver_plane_bias";
-inline constexpr const char* kPcfRadius = "pcf_radius";                         // 0..5
-inline constexpr const char* kPoissonTaps = "poisson_taps";                     // 16 or 32
-inline constexpr const char* kPoissonRadius = "poisson_radius";                 // 0.5..32 texels
-inline constexpr const char* kPcssBlockerTaps = "pcss_blocker_taps";            // 16 or 32
-inline constexpr const char* kPcssQuality = "pcss_quality";                     // low|medium|high
-inline constexpr const char* kPcssEarlyOut = "pcss_early_out";                  // bool
-inline constexpr const char* kPcssMaxPenumbra = "pcss_max_penumbra";            // 1..128 texels
-inline constexpr const char* kLightBleeding = "light_bleeding_reduction";       // 0..0.95
-inline constexpr const char* kBlurRadius = "blur_radius";                       // 0..8 texels
-inline constexpr const char* kMomentsPoisson = "moments_poisson";               // bool
-inline constexpr const char* kEvsmPositiveExponent = "evsm_positive_exponent";  // 0.1..100
-inline constexpr const char* kEvsmNegativeExponent = "evsm_negative_exponent";  // 0.1..100
-inline constexpr const char* kEvsmComponents = "evsm_components";               // 2 or 4
-inline constexpr const char* kMsmMomentBias = "msm_moment_bias";                // 0..0.01
-inline constexpr const char* kMsmQuantization = "msm_optimized_quantization";   // bool
-}  // namespace shadow_keys
-
 // How a light without its own `shadow_resolution` gets its map's size
 // (`--local-shadow-sizing`, `[shadow] local_shadow_sizing`).
 enum class LocalShadowSizing {
@@ -196,6 +167,287 @@ const std::map<std::string, Enum>& choice_map(const ChoiceName<Enum> (&choices)[
     return names;
 }
 
+// Bits of `filters` for SettingDeclaration::filters.
+constexpr uint32_t filter_bits(std::initializer_list<ShadowFilter> filters) {
+    uint32_t bits = 0;
+    for (const ShadowFilter filter : filters) bits |= 1u << static_cast<uint32_t>(filter);
+    return bits;
+}
+
+namespace setting_conditions {
+inline bool practical_splits(const Settings& s) { return s.shadow.cascades.scheme == SplitScheme::Practical; }
+inline bool manual_splits(const Settings& s) { return s.shadow.cascades.scheme == SplitScheme::Manual; }
+inline bool tight_fit(const Settings& s) { return s.shadow.cascades.fit == FitMode::Tight; }
+// The Poisson radius serves the poisson filter and the moment filters' Poisson taps.
+inline bool poisson_disk(const Settings& s) {
+    return s.shadow.filter.mode == ShadowFilter::Poisson || s.shadow.filter.moments_poisson;
+}
+}  // namespace setting_conditions
+
+inline constexpr int64_t kSixteenOrThirtyTwo[] = {16, 32};
+inline constexpr int64_t kTwoOrFour[] = {2, 4};
+inline constexpr uint32_t kMomentFilters = filter_bits({ShadowFilter::Vsm, ShadowFilter::Evsm, ShadowFilter::Msm});
+
+// Every setting of Settings, in the order config files and reports list them. A field's
+// default is its initializer above; a setting whose `recreates` is true sizes or
+// specialises GPU resources (pipelines, maps), so changing it needs a new ShadowSystem.
+inline constexpr SettingDeclaration kSettingDeclarations[] = {
+    // The sun's cascades (docs/techniques.md).
+    declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::count>({.name = "cascades",
+                                                                                    .group = "cascades",
+                                                                                    .label = "cascades",
+                                                                                    .help = "Number of shadow cascades",
+                                                                                    .minimum = 1,
+                                                                                    .maximum = kMaxCascades,
+                                                                                    .recreates = true}),
+    declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::resolution>(
+        {.name = "shadow_resolution",
+         .config_key = "resolution",
+         .group = "cascades",
+         .label = "resolution",
+         .help = "Shadow map texels per side",
+         .minimum = 512,
+         .maximum = 8192,
+         .powers_of_two = true,
+         .recreates = true}),
+    declare_choice<kSplitSchemeChoices, &Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::scheme>(
+        {.name = "split_scheme", .group = "cascades", .label = "split scheme", .help = "Cascade splits"}),
+    declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::split_lambda>(
+        {.name = "split_lambda",
+         .group = "cascades",
+         .label = "split lambda",
+         .help = "Practical split blend: 0 uniform .. 1 logarithmic",
+         .minimum = 0,
+         .maximum = 1,
+         .applies_when = setting_conditions::practical_splits}),
+    declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::manual_splits>(
+        {.name = "splits",
+         .group = "cascades",
+         .label = "splits (m)",
+         .help = "Manual split distances in metres, cascades - 1 increasing values (implies manual splits)",
+         .applies_when = setting_conditions::manual_splits}),
+    declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::max_distance>(
+        {.name = "max_distance",
+         .group = "cascades",
+         .label = "max distance (m)",
+         .help = "Shadow distance in metres",
+         .minimum = 0,
+         .minimum_exclusive = true}),
+    declare_choice<kFitModeChoices, &Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::fit>(
+        {.name = "fit", .group = "cascades", .label = "fit", .help = "Cascade fitting"}),
+    declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::filter_padding_texels>(
+        {.name = "filter_padding",
+         .group = "cascades",
+         .label = "filter padding (texels)",
+         .help = "Texels added around a tight fit so that filter kernels stay inside the map",
+         .minimum = 0,
+         .maximum = 64,
+         .applies_when = setting_conditions::tight_fit}),
+    // Biases, blending and the shadow passes (docs/techniques.md).
+    declare<&Settings::shadow, &ShadowSettings::bias, &BiasSettings::constant>({.name = "constant_bias",
+                                                                                .group = "bias",
+                                                                                .label = "constant bias",
+                                                                                .help = "Constant depth bias factor",
+                                                                                .minimum = 0,
+                                                                                .maximum = 1.0e5}),
+    declare<&Settings::shadow, &ShadowSettings::bias, &BiasSettings::slope>({.name = "slope_bias",
+                                                                             .group = "bias",
+                                                                             .label = "slope bias",
+                                                                             .help = "Slope-scaled depth bias factor",
+                                                                             .minimum = 0,
+                                                                             .maximum = 20}),
+    declare<&Settings::shadow, &ShadowSettings::bias, &BiasSettings::clamp>(
+        {.name = "bias_clamp",
+         .group = "bias",
+         .label = "bias clamp",
+         .help = "Maximum depth bias (reverse-Z depth)",
+         .minimum = 0,
+         .maximum = 0.1}),
+    declare<&Settings::shadow, &ShadowSettings::bias, &BiasSettings::normal_offset>(
+        {.name = "normal_offset",
+         .group = "bias",
+         .label = "normal offset (texels)",
+         .help = "Receivers move along their normal by this many shadow texels",
+         .minimum = 0,
+         .maximum = 10}),
+    declare<&Settings::shadow, &ShadowSettings::blend_width>({.name = "blend_width",
+                                                              .group = "bias",
+                                                              .label = "blend width",
+                                                              .help = "Fraction of a cascade blended into the next",
+                                                              .minimum = 0,
+                                                              .maximum = 0.5}),
+    declare_choice<kShadowStrategyChoices, &Settings::shadow, &ShadowSettings::strategy>(
+        {.name = "strategy", .group = "bias", .label = "strategy", .help = "Shadow rendering", .recreates = true}),
+    declare<&Settings::shadow, &ShadowSettings::cull_casters>({.name = "cull_casters",
+                                                               .group = "bias",
+                                                               .label = "cull casters",
+                                                               .help = "Cull casters per cascade and light layer"}),
+    declare_choice<kCasterCullingChoices, &Settings::shadow, &ShadowSettings::caster_culling>(
+        {.name = "caster_culling",
+         .group = "bias",
+         .label = "caster face culling",
+         .help = "Caster faces the shadow passes skip, seen from the light (front: draw back faces, which hides "
+                 "acne on closed meshes)"}),
+    // The filter and its parameters, for every light (docs/filters.md).
+    declare_choice<kShadowFilterChoices, &Settings::shadow, &ShadowSettings::filter, &FilterSettings::mode>(
+        {.name = "filter", .group = "filter", .label = "filter", .help = "Shadow filter", .recreates = true}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::receiver_plane_bias>(
+        {.name = "receiver_plane_bias",
+         .group = "filter",
+         .label = "receiver-plane bias",
+         .help = "pcf, poisson, pcss: receiver-plane depth bias",
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Pcf, ShadowFilter::Poisson, ShadowFilter::Pcss})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcf_radius>(
+        {.name = "pcf_radius",
+         .group = "filter",
+         .label = "PCF radius",
+         .help = "pcf: grid radius R, (2R+1)^2 taps",
+         .minimum = 0,
+         .maximum = kMaxPcfRadius,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Pcf})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::poisson_taps>(
+        {.name = "poisson_taps",
+         .group = "filter",
+         .label = "Poisson taps",
+         .help = "poisson: taps",
+         .allowed = kSixteenOrThirtyTwo,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Poisson})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::poisson_radius>(
+        {.name = "poisson_radius",
+         .group = "filter",
+         .label = "Poisson radius (texels)",
+         .help = "poisson (and moments_poisson): disk radius in texels",
+         .minimum = 0.5,
+         .maximum = 32,
+         .recreates = true,
+         .applies_when = setting_conditions::poisson_disk}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_blocker_taps>(
+        {.name = "pcss_blocker_taps",
+         .group = "filter",
+         .label = "blocker taps",
+         .help = "pcss: blocker-search taps",
+         .allowed = kSixteenOrThirtyTwo,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Pcss})}),
+    declare_choice<kPcssQualityChoices, &Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_quality>(
+        {.name = "pcss_quality",
+         .group = "filter",
+         .label = "PCSS quality",
+         .help = "pcss: filter taps (low 16, medium 25, high 49)",
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Pcss})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_early_out>(
+        {.name = "pcss_early_out",
+         .group = "filter",
+         .label = "PCSS early out",
+         .help = "pcss: fully shadowed when every blocker tap occludes",
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Pcss})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_max_penumbra>(
+        {.name = "pcss_max_penumbra",
+         .group = "filter",
+         .label = "max penumbra (texels)",
+         .help = "pcss: largest penumbra radius in texels",
+         .minimum = 1,
+         .maximum = 128,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Pcss})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::light_bleeding_reduction>(
+        {.name = "light_bleeding_reduction",
+         .group = "filter",
+         .label = "light-bleeding reduction",
+         .help = "vsm, evsm, msm: light-bleeding reduction",
+         .minimum = 0,
+         .maximum = 0.95,
+         .recreates = true,
+         .filters = kMomentFilters}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::blur_radius>(
+        {.name = "blur_radius",
+         .group = "filter",
+         .label = "blur radius (texels)",
+         .help = "vsm, evsm, msm: Gaussian blur radius of the moments in texels (0 = off)",
+         .minimum = 0,
+         .maximum = 8,
+         .recreates = true,
+         .filters = kMomentFilters}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::moments_poisson>(
+        {.name = "moments_poisson",
+         .group = "filter",
+         .label = "Poisson taps of the moments",
+         .help = "vsm, evsm, msm: 16 Poisson taps of the moments (poisson_radius)",
+         .recreates = true,
+         .filters = kMomentFilters}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::evsm_positive_exponent>(
+        {.name = "evsm_positive_exponent",
+         .group = "filter",
+         .label = "EVSM positive exponent",
+         .help = "evsm: positive warp exponent (clamped to 42 for 32-bit float)",
+         .minimum = 0.1,
+         .maximum = 100,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Evsm})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::evsm_negative_exponent>(
+        {.name = "evsm_negative_exponent",
+         .group = "filter",
+         .label = "EVSM negative exponent",
+         .help = "evsm: negative warp exponent (clamped to 42)",
+         .minimum = 0.1,
+         .maximum = 100,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Evsm})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::evsm_components>(
+        {.name = "evsm_components",
+         .group = "filter",
+         .label = "EVSM components",
+         .help = "evsm: 2 (positive warp only) or 4 components",
+         .allowed = kTwoOrFour,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Evsm})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::msm_moment_bias>(
+        {.name = "msm_moment_bias",
+         .group = "filter",
+         .label = "MSM moment bias",
+         .help = "msm: moment bias",
+         .minimum = 0,
+         .maximum = 0.01,
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Msm})}),
+    declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::msm_optimized_quantization>(
+        {.name = "msm_optimized_quantization",
+         .group = "filter",
+         .label = "MSM optimized quantization",
+         .help = "msm: optimized moment quantization, 16-bit moments (Peters & Klein 2015)",
+         .recreates = true,
+         .filters = filter_bits({ShadowFilter::Msm})}),
+    // Spot and point light shadow maps (docs/local-lights.md).
+    declare<&Settings::local_shadows, &LocalShadowSettings::budget>(
+        {.name = "local_shadow_budget",
+         .group = "local_shadows",
+         .label = "shadow budget",
+         .help = "Spot/point lights with a shadow map per frame; the rest render unshadowed",
+         .minimum = 0,
+         .maximum = kMaxLocalShadowBudget,
+         .recreates = true}),
+    declare<&Settings::local_shadows, &LocalShadowSettings::resolution>(
+        {.name = "local_shadow_resolution",
+         .group = "local_shadows",
+         .label = "shadow resolution",
+         .help = "Texels per side of a light's shadow map (the largest with coverage sizing)",
+         .minimum = 16,
+         .maximum = 8192,
+         .powers_of_two = true,
+         .recreates = true}),
+    declare_choice<kLocalShadowSizingChoices, &Settings::local_shadows, &LocalShadowSettings::sizing>(
+        {.name = "local_shadow_sizing",
+         .group = "local_shadows",
+         .label = "shadow sizing",
+         .help = "How a light without its own shadow_resolution gets its map's size",
+         .recreates = true}),
+};
+
 // The tables above as name -> value maps.
 const std::map<std::string, SplitScheme>& split_scheme_names();
 const std::map<std::string, FitMode>& fit_mode_names();
@@ -215,11 +467,11 @@ void validate_shadow_settings(const ShadowSettings& settings, const std::string&
 void validate_local_shadow_settings(const LocalShadowSettings& settings, const std::string& origin);
 void validate_settings(const Settings& settings, const std::string& origin);
 
-// True when going from `current` to `next` changes what a ShadowSystem creates once: the
-// cascade count or resolution, the filter and its tap counts (pipelines, moments maps and
-// the specialization of the caller's shaders), the shadow strategy, or the local shadow
-// budget, resolution and sizing. Every other setting may change between frames
-// (ShadowSystem::update_settings).
+// True when going from `current` to `next` changes a setting whose declaration `recreates`
+// (what a ShadowSystem creates once): the cascade count or resolution, the filter and its
+// parameters (pipelines, moments maps and the specialization of the caller's shaders), the
+// shadow strategy, or the local shadow budget, resolution and sizing. Every other setting
+// may change between frames (ShadowSystem::update_settings).
 bool requires_recreation(const Settings& current, const Settings& next);
 
 }  // namespace penumbra

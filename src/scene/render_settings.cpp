@@ -28,7 +28,7 @@ ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool
 void validate_render_settings(const RenderSettings& settings, const std::string& origin) {
     check_image_size(settings.width, "width", origin);
     check_image_size(settings.height, "height", origin);
-    validate_settings({settings.shadow, settings.local_shadows}, origin);
+    validate_settings(settings, origin);
 }
 
 }  // namespace penumbra

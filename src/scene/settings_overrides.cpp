@@ -21,33 +21,34 @@ std::string format_number(float value) {
 
 }  // namespace
 
+void SettingAssignments::assign(const SettingDeclaration& setting, SettingValue value) {
+    for (auto& [declaration, stored] : values_) {
+        if (declaration == &setting) {
+            stored = std::move(value);
+            return;
+        }
+    }
+    values_.emplace_back(&setting, std::move(value));
+}
+
+const SettingValue* SettingAssignments::find(std::string_view name) const {
+    for (const auto& [declaration, value] : values_) {
+        if (name == declaration->name) return &value;
+    }
+    return nullptr;
+}
+
+void SettingAssignments::apply_to(Settings& settings) const {
+    for (const auto& [declaration, value] : values_) declaration->set(settings, value);
+    // Giving split distances implies manual splits, unless the same source names a scheme.
+    if (find("splits") && !find("split_scheme")) settings.shadow.cascades.scheme = SplitScheme::Manual;
+}
+
 void apply_overrides(const SettingsOverrides& overrides, RenderSettings& settings) {
     assign_if(overrides.width, settings.width);
     assign_if(overrides.resolve, settings.resolve);
     assign_if(overrides.height, settings.height);
-    CascadeSettings& cascades = settings.shadow.cascades;
-    assign_if(overrides.cascades, cascades.count);
-    assign_if(overrides.shadow_resolution, cascades.resolution);
-    assign_if(overrides.local_shadow_budget, settings.local_shadows.budget);
-    assign_if(overrides.local_shadow_resolution, settings.local_shadows.resolution);
-    assign_if(overrides.local_shadow_sizing, settings.local_shadows.sizing);
-    assign_if(overrides.split_scheme, cascades.scheme);
-    assign_if(overrides.split_lambda, cascades.split_lambda);
-    if (overrides.splits) {
-        cascades.manual_splits = *overrides.splits;
-        if (!overrides.split_scheme) cascades.scheme = SplitScheme::Manual;  // giving splits implies manual
-    }
-    assign_if(overrides.max_distance, cascades.max_distance);
-    assign_if(overrides.fit, cascades.fit);
-    assign_if(overrides.constant_bias, settings.shadow.bias.constant);
-    assign_if(overrides.slope_bias, settings.shadow.bias.slope);
-    assign_if(overrides.bias_clamp, settings.shadow.bias.clamp);
-    assign_if(overrides.normal_offset, settings.shadow.bias.normal_offset);
-    assign_if(overrides.blend_width, settings.shadow.blend_width);
-    assign_if(overrides.strategy, settings.shadow.strategy);
-    assign_if(overrides.cull_casters, settings.shadow.cull_casters);
-    assign_if(overrides.caster_culling, settings.shadow.caster_culling);
-    apply_filter_overrides(overrides.filter, settings.shadow.filter);
+    overrides.settings.apply_to(settings);
 }
 
 void apply_overrides(const SettingsOverrides& overrides, Scene& scene) {

@@ -1,5 +1,6 @@
 #include "penumbra/scene/settings_files.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <map>
 
@@ -19,51 +20,42 @@ void read_output_table(TomlTableReader& reader, SettingsOverrides& o) {
     reader.reject_unknown_keys();
 }
 
-// The filter keys of [shadow] (docs/filters.md). Their ranges are checked by
-// validate_shadow_settings, which names the same keys.
-void read_filter_keys(TomlTableReader& reader, FilterOverrides& f) {
-    namespace k = shadow_keys;
-    f.mode = reader.optional_choice<ShadowFilter>(k::kFilter, shadow_filter_names());
-    f.receiver_plane_bias = reader.optional_boolean(k::kReceiverPlaneBias);
-    f.pcf_radius = reader.optional_integer_as<int>(k::kPcfRadius);
-    f.poisson_taps = reader.optional_integer_as<int>(k::kPoissonTaps);
-    f.poisson_radius = reader.optional_float(k::kPoissonRadius);
-    f.pcss_blocker_taps = reader.optional_integer_as<int>(k::kPcssBlockerTaps);
-    f.pcss_quality = reader.optional_choice<PcssQuality>(k::kPcssQuality, pcss_quality_names());
-    f.pcss_early_out = reader.optional_boolean(k::kPcssEarlyOut);
-    f.pcss_max_penumbra = reader.optional_float(k::kPcssMaxPenumbra);
-    f.light_bleeding_reduction = reader.optional_float(k::kLightBleeding);
-    f.blur_radius = reader.optional_integer_as<int>(k::kBlurRadius);
-    f.moments_poisson = reader.optional_boolean(k::kMomentsPoisson);
-    f.evsm_positive_exponent = reader.optional_float(k::kEvsmPositiveExponent);
-    f.evsm_negative_exponent = reader.optional_float(k::kEvsmNegativeExponent);
-    f.evsm_components = reader.optional_integer_as<int>(k::kEvsmComponents);
-    f.msm_moment_bias = reader.optional_float(k::kMsmMomentBias);
-    f.msm_optimized_quantization = reader.optional_boolean(k::kMsmQuantization);
+// A setting's value as its declaration's type reads from TOML, checked against the
+// declaration (so a message names the table's key and the allowed values).
+std::optional<SettingValue> read_setting(TomlTableReader& reader, const SettingDeclaration& setting) {
+    const char* key = setting.key_in_config();
+    std::optional<SettingValue> value;
+    switch (setting.type) {
+        case SettingType::Boolean:
+            if (const std::optional<bool> read = reader.optional_boolean(key)) value = *read;
+            break;
+        case SettingType::Integer:
+            if (const std::optional<int64_t> read = reader.optional_integer(key, INT64_MIN, INT64_MAX)) value = *read;
+            break;
+        case SettingType::Number:
+            if (const std::optional<double> read = reader.optional_number(key)) value = *read;
+            break;
+        case SettingType::Choice:
+            if (std::optional<std::string> read = reader.optional_string(key)) value = std::move(*read);
+            break;
+        case SettingType::NumberList:
+            if (std::optional<std::vector<float>> read = reader.optional_number_list(key)) value = std::move(*read);
+            break;
+    }
+    if (value) {
+        if (const std::string problem = setting_value_problem(setting, *value); !problem.empty()) {
+            reader.fail(key, problem);
+        }
+    }
+    return value;
 }
 
+// [shadow]: every setting of kSettingDeclarations, by its config key.
 void read_shadow_table(TomlTableReader& reader, SettingsOverrides& o) {
-    o.cascades = reader.optional_integer_as<int>("cascades", 1, 8);
-    o.shadow_resolution = reader.optional_integer_as<uint32_t>("resolution", 512, 8192);
-    o.split_scheme = reader.optional_choice<SplitScheme>("split_scheme", split_scheme_names());
-    o.split_lambda = reader.optional_float("split_lambda");
-    o.splits = reader.optional_number_list("splits");
-    o.max_distance = reader.optional_float("max_distance");
-    o.fit = reader.optional_choice<FitMode>("fit", fit_mode_names());
-    o.constant_bias = reader.optional_float("constant_bias");
-    o.slope_bias = reader.optional_float("slope_bias");
-    o.bias_clamp = reader.optional_float("bias_clamp");
-    o.normal_offset = reader.optional_float("normal_offset");
-    o.blend_width = reader.optional_float("blend_width");
-    o.strategy = reader.optional_choice<ShadowStrategy>("strategy", shadow_strategy_names());
-    o.cull_casters = reader.optional_boolean("cull_casters");
-    o.caster_culling = reader.optional_choice<CasterCulling>("caster_culling", caster_culling_names());
-    // Spot and point lights (docs/local-lights.md); the ranges of the flags of the same names.
-    o.local_shadow_budget = reader.optional_integer_as<uint32_t>("local_shadow_budget", 0, kMaxLocalShadowBudget);
-    o.local_shadow_resolution = reader.optional_integer_as<uint32_t>("local_shadow_resolution", 16, 8192);
-    o.local_shadow_sizing =
-        reader.optional_choice<LocalShadowSizing>("local_shadow_sizing", local_shadow_sizing_names());
-    read_filter_keys(reader, o.filter);
+    for (const SettingDeclaration& setting : kSettingDeclarations) {
+        if (std::optional<SettingValue> value = read_setting(reader, setting))
+            o.settings.assign(setting, std::move(*value));
+    }
     reader.reject_unknown_keys();
 }
 

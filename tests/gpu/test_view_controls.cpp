@@ -74,7 +74,7 @@ TEST(Script, ParsesEveryAction) {
         "s.txt");
     ASSERT_EQ(actions.size(), 14u);
     const auto& set = std::get<action::Set>(actions[0].action);
-    EXPECT_EQ(set.overrides.cascades, 2);
+    EXPECT_EQ(*set.overrides.settings.find("cascades"), penumbra::SettingValue(int64_t{2}));
     EXPECT_EQ(actions[0].origin, "s.txt:2");
     EXPECT_EQ(std::get<action::Set>(actions[1].action).overrides.eye, glm::vec3(1, 2, 3));
     EXPECT_EQ(std::get<action::Move>(actions[2].action).right_up_forward, glm::vec3(1, 0, -2));

@@ -131,15 +131,19 @@ TEST(ViewLocalLightsScript, SetsTheLocalShadowKeys) {
     const auto actions = penumbra::view::parse_script(
         "0 set shadow.local_shadow_budget = 3\n1 set shadow.local_shadow_resolution = 512\n", "s.txt");
     ASSERT_EQ(actions.size(), 2u);
-    EXPECT_EQ(std::get<penumbra::view::action::Set>(actions[0].action).overrides.local_shadow_budget, 3u);
-    EXPECT_EQ(std::get<penumbra::view::action::Set>(actions[1].action).overrides.local_shadow_resolution, 512u);
+    EXPECT_EQ(*std::get<penumbra::view::action::Set>(actions[0].action).overrides.settings.find("local_shadow_budget"),
+              penumbra::SettingValue(int64_t{3}));
+    EXPECT_EQ(
+        *std::get<penumbra::view::action::Set>(actions[1].action).overrides.settings.find("local_shadow_resolution"),
+        penumbra::SettingValue(int64_t{512}));
     const std::string too_many = std::to_string(penumbra::kMaxLocalShadowBudget + 1);
     try {
         penumbra::view::parse_script("0 set shadow.local_shadow_budget = " + too_many + "\n", "s.txt");
         ADD_FAILURE() << "budget " << too_many << " was accepted";
     } catch (const penumbra::InputError& error) {
-        const std::string expected = "s.txt:1: shadow.local_shadow_budget: " + too_many + " is out of range (0.." +
-                                     std::to_string(penumbra::kMaxLocalShadowBudget) + ")";
+        const std::string expected = "s.txt:1: shadow.local_shadow_budget: " + too_many +
+                                     " is outside the allowed range [0, " +
+                                     std::to_string(penumbra::kMaxLocalShadowBudget) + "]";
         EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
     }
 }

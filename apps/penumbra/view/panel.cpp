@@ -70,7 +70,7 @@ void draw_panel(ViewState& state, const PanelStats& stats) {
     sun_section(state);
     RenderSettings edited = state.settings;
     draw_shadow_settings(edited, stats.frame);
-    draw_local_lights(edited.local_shadows, stats);
+    draw_local_lights(edited, stats);
     if (edited.shadow.cascades.count != state.settings.shadow.cascades.count &&
         edited.shadow.cascades.scheme == SplitScheme::Manual) {
         edited.shadow.cascades.manual_splits.clear();  // refilled for the new count next frame

@@ -3,6 +3,7 @@
 // views, per-cascade and per-local-light statistics, GPU time per pass and the shadow-map
 // layers.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "renderer/debug_images.hpp"
@@ -27,12 +28,16 @@ struct PanelStats {
 // why); camera, sun and requests are changed in place.
 void draw_panel(ViewState& state, const PanelStats& stats);
 
+// A control for every setting of `group` (SettingDeclaration::group) that applies to
+// `settings`, editing them in place.
+void draw_setting_group(Settings& settings, std::string_view group, const renderer::FrameInfo* frame);
+
 // Controls of the settings sections, on `settings` in place (used by draw_panel).
 void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* frame);
 
-// The "Local lights" section: the local shadow budget and resolution on `local` in place,
-// and the last frame's shadowed spot/point lights (used by draw_panel).
-void draw_local_lights(LocalShadowSettings& local, const PanelStats& stats);
+// The "Local lights" section: the local shadow settings on `settings` in place, and the
+// last frame's shadowed spot/point lights (used by draw_panel).
+void draw_local_lights(Settings& settings, const PanelStats& stats);
 
 // Statistics sections (used by draw_panel).
 void draw_statistics(const PanelStats& stats);

@@ -2,8 +2,6 @@
 // and per shadowed spot/point light what its shadow pass did in the last frame.
 #include <imgui.h>
 
-#include <algorithm>
-#include <bit>
 #include <string>
 
 #include "panel.hpp"
@@ -12,9 +10,6 @@
 
 namespace penumbra::view {
 namespace {
-
-constexpr int kMinLocalResolutionLog2 = 4;   // 16 texels, the smallest validate_render_settings accepts
-constexpr int kMaxLocalResolutionLog2 = 13;  // 8192
 
 struct LocalLightCounts {
     uint32_t lit = 0;              // spot and point lights (the first kMaxLocalLights are lit)
@@ -38,28 +33,6 @@ LocalLightCounts count_local_lights(const PanelStats& stats) {
         if (scope.name == "shadow_local") counts.shadow_pass_ms = scope.milliseconds;
     }
     return counts;
-}
-
-// These settings size the shared layered shadow map (and fix which maps follow the screen
-// coverage), so changing them re-creates the renderer.
-void local_shadow_controls(LocalShadowSettings& local) {
-    int budget = static_cast<int>(local.budget);
-    if (ImGui::SliderInt("shadow budget", &budget, 0, static_cast<int>(kMaxLocalShadowBudget))) {
-        local.budget = static_cast<uint32_t>(budget);
-    }
-    // A slider over powers of two, labelled with the resolution itself (which need not be one:
-    // --local-shadow-resolution takes any size from 16 to 8192).
-    int exponent = std::clamp(static_cast<int>(std::bit_width(local.resolution)) - 1, kMinLocalResolutionLog2,
-                              kMaxLocalResolutionLog2);
-    const std::string label = std::to_string(local.resolution) + " texels";
-    if (ImGui::SliderInt("shadow resolution", &exponent, kMinLocalResolutionLog2, kMaxLocalResolutionLog2,
-                         label.c_str())) {
-        local.resolution = 1u << exponent;
-    }
-    bool coverage = local.sizing == LocalShadowSizing::Coverage;
-    if (ImGui::Checkbox("size by screen coverage (resolution = the largest)", &coverage)) {
-        local.sizing = coverage ? LocalShadowSizing::Coverage : LocalShadowSizing::Fixed;
-    }
 }
 
 const char* light_type_name(const PanelStats& stats, uint32_t light) {
@@ -96,9 +69,10 @@ void local_shadow_table(const PanelStats& stats) {
 
 }  // namespace
 
-void draw_local_lights(LocalShadowSettings& local, const PanelStats& stats) {
+void draw_local_lights(Settings& settings, const PanelStats& stats) {
     if (!ImGui::CollapsingHeader("Local lights", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    local_shadow_controls(local);
+    // These settings size the shared layered shadow map: changing them re-creates the renderer.
+    draw_setting_group(settings, "local_shadows", stats.frame);
     const LocalLightCounts counts = count_local_lights(stats);
     ImGui::Text("%u spot/point light(s), %u cast shadows, %u shadowed", counts.lit, counts.casting, counts.shadowed);
     if (counts.casting > counts.shadowed && stats.frame) {

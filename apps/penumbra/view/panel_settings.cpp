@@ -1,9 +1,15 @@
-// The settings sections of the viewer panel: one control per field of ShadowSettings.
+// The settings sections of the viewer panel: one control per setting, made from its
+// declaration (kSettingDeclarations): checkbox, list, slider or drag by its type and range,
+// shown only where the setting applies (the filter's own parameters, practical splits...).
 #include <imgui.h>
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cmath>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "panel.hpp"
 #include "penumbra/scene/render_settings.hpp"
@@ -31,25 +37,10 @@ void combo(const char* label, Enum& value, const ChoiceName<Enum> (&choices)[N])
     if (ImGui::Combo(label, &index, names.data(), static_cast<int>(N))) value = choices[index].value;
 }
 
-// A choice between two integer values (tap counts, component counts).
-void two_choice(const char* label, int& value, int first, int second) {
-    const std::string a = std::to_string(first);
-    const std::string b = std::to_string(second);
-    const std::array<const char*, 2> names{a.c_str(), b.c_str()};
-    int index = value == second ? 1 : 0;
-    if (ImGui::Combo(label, &index, names.data(), 2)) value = index == 1 ? second : first;
-}
-
-void resolution_combo(uint32_t& resolution) {
-    static constexpr std::array<uint32_t, 5> kSizes{512, 1024, 2048, 4096, 8192};
-    static constexpr std::array<const char*, 5> kNames{"512", "1024", "2048", "4096", "8192"};
-    int index = static_cast<int>(std::find(kSizes.begin(), kSizes.end(), resolution) - kSizes.begin());
-    if (index >= static_cast<int>(kSizes.size())) index = 2;
-    if (ImGui::Combo("resolution", &index, kNames.data(), static_cast<int>(kNames.size()))) resolution = kSizes[index];
-}
-
-// Switching to manual splits starts from the splits of the last frame.
-void manual_splits(CascadeSettings& cascades, const renderer::FrameInfo* frame) {
+// Switching to manual splits starts from the splits of the last frame (the one
+// NumberList setting: cascades - 1 distances below max_distance).
+void manual_splits_control(Settings& settings, const renderer::FrameInfo* frame) {
+    CascadeSettings& cascades = settings.shadow.cascades;
     const size_t wanted = static_cast<size_t>(cascades.count - 1);
     if (cascades.manual_splits.size() != wanted) {
         cascades.manual_splits.clear();
@@ -68,78 +59,115 @@ void manual_splits(CascadeSettings& cascades, const renderer::FrameInfo* frame) 
     }
 }
 
-void cascade_section(CascadeSettings& cascades, const renderer::FrameInfo* frame) {
-    if (!ImGui::CollapsingHeader("Cascades", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    ImGui::SliderInt("cascades", &cascades.count, 1, 8);
-    resolution_combo(cascades.resolution);
-    combo("split scheme", cascades.scheme, kSplitSchemeChoices);
-    if (cascades.scheme == SplitScheme::Practical)
-        ImGui::SliderFloat("split lambda", &cascades.split_lambda, 0.0f, 1.0f);
-    if (cascades.scheme == SplitScheme::Manual) manual_splits(cascades, frame);
-    ImGui::DragFloat("max distance (m)", &cascades.max_distance, 0.5f, 1.0f, 10000.0f, "%.1f");
-    combo("fit", cascades.fit, kFitModeChoices);
-}
-
-void bias_section(ShadowSettings& shadow) {
-    if (!ImGui::CollapsingHeader("Bias and blending", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    ImGui::SliderFloat("slope bias", &shadow.bias.slope, 0.0f, 20.0f);
-    ImGui::DragFloat("constant bias", &shadow.bias.constant, 1.0f, 0.0f, 100000.0f, "%.1f");
-    ImGui::SliderFloat("bias clamp", &shadow.bias.clamp, 0.0f, 0.1f, "%.4f");
-    ImGui::SliderFloat("normal offset (texels)", &shadow.bias.normal_offset, 0.0f, 10.0f);
-    ImGui::SliderFloat("blend width", &shadow.blend_width, 0.0f, 0.5f);
-    combo("strategy", shadow.strategy, kShadowStrategyChoices);
-    ImGui::Checkbox("cull casters", &shadow.cull_casters);
-    combo("caster face culling", shadow.caster_culling, kCasterCullingChoices);
-}
-
-void comparison_filter_controls(FilterSettings& filter) {
-    if (filter.mode == ShadowFilter::Pcf) ImGui::SliderInt("PCF radius", &filter.pcf_radius, 0, 5);
-    if (filter.mode == ShadowFilter::Poisson) {
-        two_choice("Poisson taps", filter.poisson_taps, 16, 32);
-        ImGui::SliderFloat("Poisson radius (texels)", &filter.poisson_radius, 0.5f, 32.0f);
+void choice_control(const SettingDeclaration& setting, Settings& settings) {
+    const SettingValue current = setting.get(settings);
+    int index = 0;
+    for (size_t i = 0; i < setting.choices.size(); ++i) {
+        if (current == SettingValue(std::string(setting.choices[i]))) index = static_cast<int>(i);
     }
-    if (filter.mode == ShadowFilter::Pcss) {
-        combo("PCSS quality", filter.pcss_quality, kPcssQualityChoices);
-        two_choice("blocker taps", filter.pcss_blocker_taps, 16, 32);
-        ImGui::Checkbox("PCSS early out", &filter.pcss_early_out);
-        ImGui::SliderFloat("max penumbra (texels)", &filter.pcss_max_penumbra, 1.0f, 128.0f);
-    }
-    if (filter.mode == ShadowFilter::Pcf || filter.mode == ShadowFilter::Poisson || filter.mode == ShadowFilter::Pcss) {
-        ImGui::Checkbox("receiver-plane bias", &filter.receiver_plane_bias);
+    if (ImGui::Combo(setting.label, &index, setting.choices.data(), static_cast<int>(setting.choices.size()))) {
+        setting.set(settings, std::string(setting.choices[index]));
     }
 }
 
-void moment_filter_controls(FilterSettings& filter) {
-    if (!is_moment_filter(filter.mode)) return;
-    ImGui::SliderFloat("light-bleeding reduction", &filter.light_bleeding_reduction, 0.0f, 0.95f);
-    ImGui::SliderInt("blur radius (texels)", &filter.blur_radius, 0, 8);
-    ImGui::Checkbox("Poisson taps of the moments", &filter.moments_poisson);
-    if (filter.moments_poisson) ImGui::SliderFloat("Poisson radius (texels)", &filter.poisson_radius, 0.5f, 32.0f);
-    if (filter.mode == ShadowFilter::Evsm) {
-        ImGui::SliderFloat("EVSM positive exponent", &filter.evsm_positive_exponent, 0.1f, 100.0f);
-        ImGui::SliderFloat("EVSM negative exponent", &filter.evsm_negative_exponent, 0.1f, 100.0f);
-        two_choice("EVSM components", filter.evsm_components, 2, 4);
+// Integers limited to a few values (tap counts, components).
+void allowed_values_control(const SettingDeclaration& setting, Settings& settings) {
+    const int64_t current = std::get<int64_t>(setting.get(settings));
+    std::vector<std::string> names;
+    std::vector<const char*> items;
+    int index = 0;
+    for (const int64_t value : setting.allowed) {
+        if (value == current) index = static_cast<int>(names.size());
+        names.push_back(std::to_string(value));
     }
-    if (filter.mode == ShadowFilter::Msm) {
-        ImGui::SliderFloat("MSM moment bias", &filter.msm_moment_bias, 0.0f, 0.01f, "%.6f");
-        ImGui::Checkbox("MSM optimized quantization", &filter.msm_optimized_quantization);
+    for (const std::string& name : names) items.push_back(name.c_str());
+    if (ImGui::Combo(setting.label, &index, items.data(), static_cast<int>(items.size()))) {
+        setting.set(settings, setting.allowed[static_cast<size_t>(index)]);
     }
 }
 
-void filter_section(FilterSettings& filter, ShadowResolve& resolve) {
-    if (!ImGui::CollapsingHeader("Filter", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    combo("filter", filter.mode, kShadowFilterChoices);
-    combo("resolve", resolve, kShadowResolveChoices);
-    comparison_filter_controls(filter);
-    moment_filter_controls(filter);
+// A map size: a slider over powers of two, labelled with the size itself (which need not
+// be a power of two when it came from a file or a flag).
+void power_of_two_control(const SettingDeclaration& setting, Settings& settings) {
+    const auto current = static_cast<uint64_t>(std::get<int64_t>(setting.get(settings)));
+    const int lowest = std::bit_width(static_cast<uint64_t>(setting.minimum)) - 1;
+    const int highest = std::bit_width(static_cast<uint64_t>(setting.maximum)) - 1;
+    int exponent = std::clamp(static_cast<int>(std::bit_width(current)) - 1, lowest, highest);
+    const std::string label = std::to_string(current) + " texels";
+    if (ImGui::SliderInt(setting.label, &exponent, lowest, highest, label.c_str())) {
+        setting.set(settings, int64_t{1} << exponent);
+    }
+}
+
+void integer_control(const SettingDeclaration& setting, Settings& settings) {
+    if (!setting.allowed.empty()) return allowed_values_control(setting, settings);
+    if (setting.powers_of_two) return power_of_two_control(setting, settings);
+    int value = static_cast<int>(std::get<int64_t>(setting.get(settings)));
+    if (ImGui::SliderInt(setting.label, &value, static_cast<int>(setting.minimum), static_cast<int>(setting.maximum))) {
+        setting.set(settings, int64_t{value});
+    }
+}
+
+// A slider over a bounded range; a drag for open or very wide ranges (distances, the
+// constant bias's 0..1e5), whose step is a thousandth of the range or half a unit.
+void number_control(const SettingDeclaration& setting, Settings& settings) {
+    auto value = static_cast<float>(std::get<double>(setting.get(settings)));
+    const bool bounded = std::isfinite(setting.minimum) && std::isfinite(setting.maximum);
+    bool changed = false;
+    if (bounded && setting.maximum - setting.minimum <= 1000.0 && !setting.minimum_exclusive) {
+        changed = ImGui::SliderFloat(setting.label, &value, static_cast<float>(setting.minimum),
+                                     static_cast<float>(setting.maximum), "%.4g");
+    } else {
+        const double lowest = setting.minimum_exclusive ? setting.minimum + 0.01 : setting.minimum;
+        const double highest = std::isfinite(setting.maximum) ? setting.maximum : 1.0e4;
+        const float speed = bounded ? static_cast<float>((highest - lowest) / 1.0e5) : 0.5f;
+        changed = ImGui::DragFloat(setting.label, &value, speed, static_cast<float>(lowest),
+                                   static_cast<float>(highest), "%.4g");
+    }
+    if (changed) setting.set(settings, static_cast<double>(value));
+}
+
+void setting_control(const SettingDeclaration& setting, Settings& settings, const renderer::FrameInfo* frame) {
+    switch (setting.type) {
+        case SettingType::Boolean: {
+            bool value = std::get<bool>(setting.get(settings));
+            if (ImGui::Checkbox(setting.label, &value)) setting.set(settings, value);
+            break;
+        }
+        case SettingType::Choice:
+            choice_control(setting, settings);
+            break;
+        case SettingType::Integer:
+            integer_control(setting, settings);
+            break;
+        case SettingType::Number:
+            number_control(setting, settings);
+            break;
+        case SettingType::NumberList:
+            manual_splits_control(settings, frame);
+            break;
+    }
+    if (ImGui::IsItemHovered() && *setting.help != '\0') ImGui::SetTooltip("%s", setting.help);
 }
 
 }  // namespace
 
+void draw_setting_group(Settings& settings, std::string_view group, const renderer::FrameInfo* frame) {
+    for (const SettingDeclaration& setting : kSettingDeclarations) {
+        if (group == setting.group && setting_applies(setting, settings)) setting_control(setting, settings, frame);
+    }
+}
+
 void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* frame) {
-    cascade_section(settings.shadow.cascades, frame);
-    bias_section(settings.shadow);
-    filter_section(settings.shadow.filter, settings.resolve);
+    if (ImGui::CollapsingHeader("Cascades", ImGuiTreeNodeFlags_DefaultOpen))
+        draw_setting_group(settings, "cascades", frame);
+    if (ImGui::CollapsingHeader("Bias and blending", ImGuiTreeNodeFlags_DefaultOpen)) {
+        draw_setting_group(settings, "bias", frame);
+    }
+    if (ImGui::CollapsingHeader("Filter", ImGuiTreeNodeFlags_DefaultOpen)) {
+        combo("resolve", settings.resolve, kShadowResolveChoices);
+        draw_setting_group(settings, "filter", frame);
+    }
     if (ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) {
         combo("debug view", settings.debug, std::array<const char*, 3>{"none", "cascade colours", "shadow-map layers"});
     }

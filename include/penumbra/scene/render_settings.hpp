@@ -46,17 +46,15 @@ constexpr uint32_t kMaxImageSize = 16384;
 // Spot and point lights the tools' renderer lights (the first ones of a scene's list).
 inline constexpr uint32_t kMaxLocalLights = 64;
 
-struct RenderSettings {
+// The ShadowSystem's settings (shadow, local_shadows) and the tools' own.
+struct RenderSettings : Settings {
     uint32_t width = 1280;
     uint32_t height = 720;
     ShadowResolve resolve = ShadowResolve::Auto;  // [output] resolve, --resolve
-    ShadowSettings shadow;
     DebugView debug = DebugView::None;
     // Also render and read back each pixel's world position and normal (FrameImages::
     // world_position / world_normal), for `penumbra compare`. Off: frames pay nothing.
     bool geometry_aovs = false;
-    // Shadow maps of spot and point lights (docs/local-lights.md).
-    LocalShadowSettings local_shadows;
     // The light whose visibility goes into FrameImages::visibility: an index into the
     // scene's [[lights]] list (`--aov shadow:N`), or -1 for the sun (`--aov shadow`).
     int32_t visibility_light = -1;

@@ -3,6 +3,8 @@
 // are applied in increasing priority: scene file, then --config file, then flags.
 #include <cstdint>
 #include <optional>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "penumbra/scene/render_settings.hpp"
@@ -10,53 +12,29 @@
 
 namespace penumbra {
 
-struct FilterOverrides {
-    std::optional<ShadowFilter> mode;
-    std::optional<bool> receiver_plane_bias;
-    std::optional<int> pcf_radius;
-    std::optional<int> poisson_taps;
-    std::optional<float> poisson_radius;
-    std::optional<int> pcss_blocker_taps;
-    std::optional<PcssQuality> pcss_quality;
-    std::optional<bool> pcss_early_out;
-    std::optional<float> pcss_max_penumbra;
-    std::optional<float> light_bleeding_reduction;
-    std::optional<int> blur_radius;
-    std::optional<bool> moments_poisson;
-    std::optional<float> evsm_positive_exponent;
-    std::optional<float> evsm_negative_exponent;
-    std::optional<int> evsm_components;
-    std::optional<float> msm_moment_bias;
-    std::optional<bool> msm_optimized_quantization;
-};
+// Values a source gives for the ShadowSystem's settings (kSettingDeclarations), each
+// checked against its declaration when read, in the order given.
+class SettingAssignments {
+public:
+    // Replaces an earlier value of the same setting. `value` must be one that
+    // setting_value_problem() accepts.
+    void assign(const SettingDeclaration& setting, SettingValue value);
+    // The value given for the setting called `name`, or nullptr.
+    const SettingValue* find(std::string_view name) const;
+    bool empty() const { return values_.empty(); }
+    void apply_to(Settings& settings) const;
 
-void apply_filter_overrides(const FilterOverrides& overrides, FilterSettings& filter);
+private:
+    std::vector<std::pair<const SettingDeclaration*, SettingValue>> values_;
+};
 
 struct SettingsOverrides {
     // [output]
     std::optional<uint32_t> width;
     std::optional<uint32_t> height;
     std::optional<ShadowResolve> resolve;
-    // [shadow]
-    std::optional<int> cascades;
-    std::optional<uint32_t> shadow_resolution;
-    std::optional<SplitScheme> split_scheme;
-    std::optional<float> split_lambda;
-    std::optional<std::vector<float>> splits;
-    std::optional<float> max_distance;
-    std::optional<FitMode> fit;
-    std::optional<float> constant_bias;
-    std::optional<float> slope_bias;
-    std::optional<float> bias_clamp;
-    std::optional<float> normal_offset;
-    std::optional<float> blend_width;
-    std::optional<ShadowStrategy> strategy;
-    std::optional<bool> cull_casters;
-    std::optional<CasterCulling> caster_culling;           // --caster-culling
-    FilterOverrides filter;                                // [shadow] filter keys (docs/filters.md)
-    std::optional<uint32_t> local_shadow_budget;           // --local-shadow-budget
-    std::optional<uint32_t> local_shadow_resolution;       // --local-shadow-resolution
-    std::optional<LocalShadowSizing> local_shadow_sizing;  // --local-shadow-sizing
+    // [shadow]: the ShadowSystem's settings, by declaration.
+    SettingAssignments settings;
     // [camera] and [sun]
     std::optional<glm::vec3> eye;
     std::optional<glm::vec3> target;
