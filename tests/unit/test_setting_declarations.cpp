@@ -1,0 +1,142 @@
+// kSettingDeclarations: every field of Settings has exactly one declaration, each
+// declaration reads and writes its own field and no other, the recreation rule and the
+// validation follow the declarations, and values are checked against them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <set>
+#include <string>
+
+#include "penumbra/errors.hpp"
+#include "penumbra/settings.hpp"
+
+namespace penumbra {
+namespace {
+
+// Counts an aggregate's fields: the most arguments that brace-initialise it (anything
+// converts to AnyField). A field added to a settings struct without a declaration
+// changes the count.
+struct AnyField {
+    template <typename T>
+    operator T() const;
+};
+
+template <typename T, typename... Fields>
+constexpr size_t field_count() {
+    if constexpr (requires { T{Fields{}..., AnyField{}}; }) {
+        return field_count<T, Fields..., AnyField>();
+    } else {
+        return sizeof...(Fields);
+    }
+}
+
+TEST(SettingDeclarations, EveryFieldOfSettingsHasOneDeclaration) {
+    // ShadowSettings' first three fields are the nested cascade, bias and filter structs.
+    const size_t leaves = field_count<CascadeSettings>() + field_count<BiasSettings>() + field_count<FilterSettings>() +
+                          (field_count<ShadowSettings>() - 3) + field_count<LocalShadowSettings>();
+    EXPECT_EQ(field_count<Settings>(), 2u);
+    EXPECT_EQ(std::size(kSettingDeclarations), leaves);
+}
+
+TEST(SettingDeclarations, NamesAndConfigKeysAreUniqueAndFound) {
+    std::set<std::string> names, keys;
+    for (const SettingDeclaration& setting : kSettingDeclarations) {
+        EXPECT_TRUE(names.insert(setting.name).second) << setting.name;
+        EXPECT_TRUE(keys.insert(setting.key_in_config()).second) << setting.key_in_config();
+        EXPECT_EQ(find_setting(setting.name), &setting);
+        EXPECT_NE(*setting.help, '\0') << setting.name;
+        EXPECT_NE(*setting.label, '\0') << setting.name;
+        EXPECT_EQ(setting_value_problem(setting, setting.get(Settings{})), "") << setting.name << ": invalid default";
+    }
+    EXPECT_EQ(find_setting("no_such_setting"), nullptr);
+}
+
+// A valid value other than the default.
+SettingValue other_value(const SettingDeclaration& setting) {
+    const SettingValue current = setting.get(Settings{});
+    switch (setting.type) {
+        case SettingType::Boolean:
+            return !std::get<bool>(current);
+        case SettingType::Integer:
+            if (!setting.allowed.empty()) {
+                return setting.allowed[0] == std::get<int64_t>(current) ? setting.allowed[1] : setting.allowed[0];
+            }
+            return std::get<int64_t>(current) == static_cast<int64_t>(setting.maximum)
+                       ? static_cast<int64_t>(setting.minimum)
+                       : static_cast<int64_t>(setting.maximum);
+        case SettingType::Number: {
+            // A quarter of the way into the range (or three quarters, if that is the default).
+            const double lowest = std::isfinite(setting.minimum) ? setting.minimum : 0.0;
+            const double highest = std::isfinite(setting.maximum) ? setting.maximum : lowest + 100.0;
+            // Numbers are stored as floats: a value a float holds reads back unchanged.
+            const auto as_float = [](double value) { return static_cast<double>(static_cast<float>(value)); };
+            const double quarter = as_float(lowest + 0.25 * (highest - lowest));
+            return std::get<double>(current) == quarter ? as_float(lowest + 0.75 * (highest - lowest)) : quarter;
+        }
+        case SettingType::Choice:
+            return std::string(std::get<std::string>(current) == setting.choices[0] ? setting.choices[1]
+                                                                                    : setting.choices[0]);
+        case SettingType::NumberList:
+            return std::vector<float>{1.0f};
+    }
+    return current;
+}
+
+TEST(SettingDeclarations, EachDeclarationReadsAndWritesItsOwnFieldOnly) {
+    const Settings defaults;
+    for (const SettingDeclaration& setting : kSettingDeclarations) {
+        const SettingValue value = other_value(setting);
+        ASSERT_EQ(setting_value_problem(setting, value), "") << setting.name;
+        ASSERT_NE(value, setting.get(defaults)) << setting.name;
+        Settings changed;
+        setting.set(changed, value);
+        EXPECT_EQ(setting.get(changed), value) << setting.name;
+        for (const SettingDeclaration& other : kSettingDeclarations) {
+            if (&other == &setting) continue;
+            EXPECT_EQ(other.get(changed), other.get(defaults)) << setting.name << " wrote " << other.name;
+        }
+        EXPECT_EQ(requires_recreation(defaults, changed), setting.recreates) << setting.name;
+    }
+}
+
+TEST(SettingDeclarations, ValidationNamesTheDeclarationAndItsRange) {
+    Settings settings;
+    find_setting("blur_radius")->set(settings, int64_t{9});
+    try {
+        validate_settings(settings, "origin");
+        ADD_FAILURE() << "blur_radius 9 was accepted";
+    } catch (const InputError& error) {
+        EXPECT_STREQ(error.what(), "origin: blur_radius: 9 is outside the allowed range [0, 8]");
+    }
+    const SettingDeclaration& max_distance = *find_setting("max_distance");
+    EXPECT_EQ(setting_value_problem(max_distance, 0.0), "0 must be a finite number greater than 0");
+    EXPECT_EQ(setting_value_problem(max_distance, 1e39), "1e+39 must be a finite number greater than 0")
+        << "beyond float: infinite once stored";
+    EXPECT_EQ(setting_value_problem(*find_setting("bias_clamp"), 0.1), "") << "the bound itself, as a float";
+    EXPECT_EQ(setting_value_problem(*find_setting("filter"), std::string("pcf")), "");
+    EXPECT_EQ(setting_value_problem(*find_setting("filter"), std::string("box")),
+              "unknown value \"box\" (expected evsm, hard, msm, pcf, pcss, poisson, vsm)");
+    EXPECT_EQ(setting_value_problem(*find_setting("filter"), int64_t{1}), "expected a name");
+    EXPECT_EQ(setting_value_problem(*find_setting("poisson_taps"), int64_t{24}), "24 must be 16 or 32");
+}
+
+TEST(SettingDeclarations, FilterParametersApplyToTheirFilters) {
+    Settings settings;
+    const SettingDeclaration& pcf_radius = *find_setting("pcf_radius");
+    const SettingDeclaration& poisson_radius = *find_setting("poisson_radius");
+    EXPECT_FALSE(setting_applies(pcf_radius, settings)) << "hard is the default";
+    settings.shadow.filter.mode = ShadowFilter::Pcf;
+    EXPECT_TRUE(setting_applies(pcf_radius, settings));
+    EXPECT_FALSE(setting_applies(poisson_radius, settings));
+    settings.shadow.filter.mode = ShadowFilter::Vsm;
+    settings.shadow.filter.moments_poisson = true;
+    EXPECT_TRUE(setting_applies(poisson_radius, settings)) << "the moments' Poisson taps use it too";
+    EXPECT_TRUE(setting_applies(*find_setting("cascades"), settings));
+    EXPECT_EQ(describe_allowed_values(pcf_radius), "0..5");
+    EXPECT_EQ(describe_allowed_values(*find_setting("max_distance")), "> 0");
+    EXPECT_EQ(describe_allowed_values(*find_setting("fit")), "stable|tight");
+}
+
+}  // namespace
+}  // namespace penumbra
