@@ -53,6 +53,7 @@ layout(set = PENUMBRA_SHADOW_SET,
 #include "penumbra/glsl/poisson_disks.glsl"
 #include "penumbra/glsl/moments.glsl"
 #include "penumbra/glsl/pcf.glsl"
+#include "penumbra/glsl/filters.glsl"
 #include "penumbra/glsl/sun.glsl"
 #include "penumbra/glsl/local.glsl"
 

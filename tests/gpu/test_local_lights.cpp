@@ -433,6 +433,64 @@ TEST(LocalLights, SpotPcssPenumbraGrowsWithTheLightRadius) {
     EXPECT_GT(large, 3 * std::max<size_t>(small, 20));
 }
 
+// A spot of radius 0.5 m over a grate of slats 18 cm wide with 2 cm gaps, 3 m below it.
+std::string spot_over_grate_scene() {
+    std::string text = R"(
+[camera]
+eye = [0.0, 12.0, 6.0]
+target = [0.0, 0.0, 0.0]
+fov = 55.0
+far = 60.0
+
+[[lights]]
+type = "spot"
+position = [0.0, 6.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+inner_angle = 33.0
+outer_angle = 35.0
+range = 25.0
+radius = 0.5
+intensity = 40.0
+
+[[objects]]
+type = "plane"
+size = [30.0, 30.0]
+)";
+    char slat[128];
+    for (int k = 0; k <= 10; ++k) {
+        std::snprintf(slat, sizeof(slat),
+                      "\n[[objects]]\ntype = \"box\"\nsize = [0.18, 0.1, 2.0]\ntranslation = [%.2f, 3.0, 0.0]\n",
+                      -1.0 + 0.2 * k);
+        text += slat;
+    }
+    return text;
+}
+
+// pcss_early_out on a spot, as on the sun (one PCSS for both, penumbra/glsl/filters.glsl):
+// where every blocker tap occludes, the receiver is fully shadowed without the filter step.
+// Under the grate the 16 search taps often all land on slats while the filter's taps also
+// find the gaps, so some pixels turn black; every other pixel keeps its visibility.
+TEST(LocalLights, SpotPcssEarlyOutShadowsWhereEveryBlockerTapOccludes) {
+    const Scene scene = scene_from_toml(spot_over_grate_scene());
+    RenderSettings settings = small_settings(320, 240);
+    settings.shadow.filter.mode = ShadowFilter::Pcss;
+    const RenderedFrame filtered = render_light(scene, settings, 0);
+    settings.shadow.filter.pcss_early_out = true;
+    const RenderedFrame early_out = render_light(scene, settings, 0);
+    ASSERT_EQ(filtered.images.visibility.size(), early_out.images.visibility.size());
+    size_t blackened = 0, changed_otherwise = 0;
+    for (size_t i = 0; i < filtered.images.visibility.size(); ++i) {
+        const uint16_t before = filtered.images.visibility[i];
+        const uint16_t after = early_out.images.visibility[i];
+        if (before == after) continue;
+        ++(after == 0 ? blackened : changed_otherwise);
+    }
+    std::printf("spot pcss early out: %zu px turned fully shadowed, %zu changed otherwise\n", blackened,
+                changed_otherwise);
+    EXPECT_GT(blackened, 100u);
+    EXPECT_EQ(changed_otherwise, 0u);
+}
+
 // Shadowed spot lights in a grid (5 m apart, `columns` per row), each over its own box.
 glm::vec2 grid_light_xz(int index, int count, int columns) {
     const int rows = (count + columns - 1) / columns;

@@ -1,5 +1,5 @@
 // The pcf kernel of the sun's cascades and of the spot and point lights' layers, written
-// once (included by penumbra/shadow.glsl before sun.glsl and local.glsl).
+// once (included by penumbra/shadow.glsl before filters.glsl, which uses it).
 //
 // A (2R+1) x (2R+1) grid of bilinear comparison taps one texel apart weighs the
 // (2R+2) x (2R+2) texels around the receiver separably: on each axis 1 - f for the first,

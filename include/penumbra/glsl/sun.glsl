@@ -1,6 +1,6 @@
 // The sun's cascaded shadow map (included by penumbra/shadow.glsl): cascade selection,
-// receiver coordinates with normal offset and receiver-plane bias, every filter, and the
-// blend band between cascades.
+// receiver coordinates with normal offset and receiver-plane bias, the cascade's view for
+// the filters (penumbra/glsl/filters.glsl), and the blend band between cascades.
 //
 // Cascade selection by view depth, a blend band between neighbouring cascades and a
 // distance fade follow the usual cascaded-shadow-map practice (PSSM, Zhang et al. 2006;
@@ -120,39 +120,36 @@ void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_
     }
 }
 
-// Rotation of the Poisson patterns: interleaved gradient noise per pixel (Jimenez 2014,
-// "Next Generation Post Processing in Call of Duty: Advanced Warfare") plus a golden-ratio
-// step per frame, so that successive frames sample new directions and a temporal filter
-// can accumulate them. The frame step is Fibonacci hashing (frame * 2^32 / phi, wrapping),
-// exact for any frame index, where fract(frame * 0.618) would lose precision.
-mat2 penumbra_sample_rotation(vec2 pixel) {
-    const float noise = fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
-    const float frame_offset = float(penumbra_shadow.frame_index * 2654435769u) * (1.0 / 4294967296.0);
-    const float angle = 6.28318530718 * fract(noise + frame_offset);
-    const float c = cos(angle);
-    const float s = sin(angle);
-    return mat2(c, s, -s, c);
+// A cascade as the filters see it (penumbra/glsl/filters.glsl). Its projection is
+// orthographic, so reverse-Z depth is linear in the distance from the light: 1 - depth
+// serves as distance for the moments and for PCSS, whose light radius per unit of depth
+// (light_radius_uv_per_depth = depth range * tan(theta / 2) / (width, height), for a sun of
+// angular diameter theta) turns the distance from the near plane into the blocker search
+// radius and the receiver-blocker distance into the penumbra radius. Taps are not
+// clamped: the whole layer is this cascade's.
+PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord) {
+    const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
+    PenumbraShadowView view;
+    view.uv = coord.uv;
+    view.layer = float(cascade);
+    view.depth = coord.depth;
+    view.depth_gradient = coord.depth_gradient;
+    view.texel_uv = penumbra_shadow.texel_uv;
+    view.uv_bounds = kPenumbraUnboundedUv;
+    view.pcss_search_radius = (1.0 - coord.depth) * light_radius_per_depth;
+    view.pcss_penumbra_scale = light_radius_per_depth;
+    view.pcss_perspective = false;
+    view.pcss_receiver_distance = 1.0 - coord.depth;
+    view.pcss_depth_to_distance = vec4(1.0, -1.0, 1.0, 0.0);  // 1 - depth
+    view.moments_distance = 1.0 - coord.depth;
+    return view;
 }
-
-#include "penumbra/glsl/sun_filters.glsl"
 
 // Visibility through one cascade with the configured filter; lookups outside the map are lit.
 float penumbra_sample_cascade(int cascade, PenumbraShadowCoord coord, vec2 pixel) {
     if (any(lessThan(coord.uv, vec2(0.0))) || any(greaterThan(coord.uv, vec2(1.0)))) return 1.0;
-    switch (kPenumbraFilterMode) {
-        case PENUMBRA_FILTER_PCF:
-            return penumbra_shadow_pcf(cascade, coord);
-        case PENUMBRA_FILTER_POISSON:
-            return penumbra_shadow_poisson(cascade, coord, pixel);
-        case PENUMBRA_FILTER_PCSS:
-            return penumbra_shadow_pcss(cascade, coord, pixel);
-        case PENUMBRA_FILTER_VSM:
-        case PENUMBRA_FILTER_EVSM:
-        case PENUMBRA_FILTER_MSM:
-            return penumbra_shadow_moments(cascade, coord, pixel);
-        default:
-            return penumbra_shadow_hard(cascade, coord);
-    }
+    return penumbra_filter_shadow(penumbra_cascade_map, penumbra_cascade_depth, penumbra_cascade_moments,
+                                  penumbra_cascade_view(cascade, coord), pixel);
 }
 
 // The sun's shadow at a receiver in [0, 1] (1 beyond the cascades). Inside the last
