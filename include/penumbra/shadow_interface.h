@@ -31,7 +31,8 @@
 #define PENUMBRA_BINDING_LOCAL_DEPTH 6      // sampler2DArray: the same map's raw depth
 #define PENUMBRA_BINDING_LOCAL_MOMENTS 7    // sampler2DArray: local lights' filtered moments, else their depth map
 
-// Filters (Settings::shadow.filter.mode), the value of the first specialization constant.
+// Filters (Settings::shadow.filter.mode): the ShadowFilter's value is the first
+// specialization constant (checked in src/passes/shader_interface.hpp).
 #define PENUMBRA_FILTER_HARD 0u
 #define PENUMBRA_FILTER_PCF 1u
 #define PENUMBRA_FILTER_POISSON 2u
@@ -39,6 +40,7 @@
 #define PENUMBRA_FILTER_VSM 4u
 #define PENUMBRA_FILTER_EVSM 5u
 #define PENUMBRA_FILTER_MSM 6u
+#define PENUMBRA_FILTER_COUNT 7u
 
 // Specialization constant ids, relative to the shaders' PENUMBRA_SPEC_ID_BASE
 // (ShadowSystem::shader_specialization()).

@@ -5,6 +5,7 @@
 // cannot disagree, and the limits checked against the library's C++ constants.
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 #include "core/glm_config.hpp"
 #include "penumbra/settings.hpp"
@@ -28,6 +29,22 @@ static_assert(PENUMBRA_MAX_PCF_RADIUS == kMaxPcfRadius);
 static_assert(static_cast<int>(NormalEncoding::SignedFloat) == 0 &&
               static_cast<int>(NormalEncoding::UnsignedNormalized) == 1 &&
               static_cast<int>(NormalEncoding::Octahedral) == 2);
+// The filter specialization constant is the ShadowFilter's value: the enum is dense and
+// listed in order by its choice table, which has one entry per GLSL filter id.
+static_assert(PENUMBRA_FILTER_COUNT == std::size(kShadowFilterChoices));
+static_assert([] {
+    for (size_t i = 0; i < std::size(kShadowFilterChoices); ++i) {
+        if (static_cast<size_t>(kShadowFilterChoices[i].value) != i) return false;
+    }
+    return true;
+}());
+static_assert(PENUMBRA_FILTER_HARD == static_cast<uint32_t>(ShadowFilter::Hard) &&
+              PENUMBRA_FILTER_PCF == static_cast<uint32_t>(ShadowFilter::Pcf) &&
+              PENUMBRA_FILTER_POISSON == static_cast<uint32_t>(ShadowFilter::Poisson) &&
+              PENUMBRA_FILTER_PCSS == static_cast<uint32_t>(ShadowFilter::Pcss) &&
+              PENUMBRA_FILTER_VSM == static_cast<uint32_t>(ShadowFilter::Vsm) &&
+              PENUMBRA_FILTER_EVSM == static_cast<uint32_t>(ShadowFilter::Evsm) &&
+              PENUMBRA_FILTER_MSM == static_cast<uint32_t>(ShadowFilter::Msm));
 static_assert(PENUMBRA_MAX_LIGHTS == kMaxLights);
 static_assert(PENUMBRA_MAX_LOCAL_SHADOW_LAYERS == kMaxLocalShadowLayers);
 static_assert(PENUMBRA_MAX_SHADOWED_LIGHTS == kMaxLocalShadowBudget);

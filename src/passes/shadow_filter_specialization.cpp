@@ -6,26 +6,6 @@
 namespace penumbra::passes {
 namespace {
 
-uint32_t filter_mode_constant(ShadowFilter filter) {
-    switch (filter) {
-        case ShadowFilter::Hard:
-            return PENUMBRA_FILTER_HARD;
-        case ShadowFilter::Pcf:
-            return PENUMBRA_FILTER_PCF;
-        case ShadowFilter::Poisson:
-            return PENUMBRA_FILTER_POISSON;
-        case ShadowFilter::Pcss:
-            return PENUMBRA_FILTER_PCSS;
-        case ShadowFilter::Vsm:
-            return PENUMBRA_FILTER_VSM;
-        case ShadowFilter::Evsm:
-            return PENUMBRA_FILTER_EVSM;
-        case ShadowFilter::Msm:
-            return PENUMBRA_FILTER_MSM;
-    }
-    return PENUMBRA_FILTER_HARD;
-}
-
 uint32_t boolean(bool value) { return value ? VK_TRUE : VK_FALSE; }
 
 }  // namespace
@@ -34,7 +14,7 @@ std::vector<gpu::SpecializationValue> shadow_filter_specialization(const FilterS
     const bool pcss = filter.mode == ShadowFilter::Pcss;
     const int search_taps = pcss ? filter.pcss_blocker_taps : filter.poisson_taps;
     return {
-        {PENUMBRA_SPEC_FILTER_MODE, filter_mode_constant(filter.mode)},
+        {PENUMBRA_SPEC_FILTER_MODE, static_cast<uint32_t>(filter.mode)},  // the GLSL id (shader_interface.hpp)
         {PENUMBRA_SPEC_SEARCH_TAPS, static_cast<uint32_t>(search_taps)},
         {PENUMBRA_SPEC_FILTER_TAPS, static_cast<uint32_t>(pcss_filter_taps(filter.pcss_quality))},
         {PENUMBRA_SPEC_RECEIVER_PLANE, boolean(filter.receiver_plane_bias)},

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -221,6 +222,75 @@ TEST_F(Cli, EveryFlagIsDocumentedAndEveryDocumentedFlagExists) {
     }
     for (const std::string& name : flags_in(cli)) {
         EXPECT_TRUE(every_flag.contains(name)) << "docs/cli.md names " << name << ", which no command has";
+    }
+}
+
+// Every setting's row in docs/cli.md or docs/filters.md gives what its declaration says:
+// the default, the range's bounds (or the allowed values, or every choice), and its config
+// key appears in the config example or the filters' key column. The flag of each setting
+// is read from --help, where its declaration's help line follows it.
+TEST_F(Cli, EverySettingsDocRowAgreesWithItsDeclaration) {
+    using namespace penumbra;
+    const auto read = [](const char* name) {
+        std::ifstream file(std::string(PENUMBRA_DOCS_DIR) + "/" + name);
+        EXPECT_TRUE(file) << name;
+        return std::string(std::istreambuf_iterator<char>(file), {});
+    };
+    const std::string docs = read("cli.md") + read("filters.md");
+    const RunResult help = run("render --help");
+    ASSERT_EQ(help.exit_code, 0) << help.err;
+    // The table row whose first cell is the flag.
+    const auto row_of = [&](const std::string& flag) {
+        const std::regex row("\\n(\\| `" + flag + "[` \\\\][^\\n]*)");
+        std::smatch match;
+        return std::regex_search(docs, match, row) ? match[1].str() : std::string();
+    };
+    // Whether the row writes `value` ("0.005", "1e+05" as "100000", "3e-05" as "3e-5").
+    const auto mentions = [](const std::string& row, double value) {
+        const std::regex number(R"([0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?)");
+        for (auto it = std::sregex_iterator(row.begin(), row.end(), number); it != std::sregex_iterator(); ++it) {
+            if (std::abs(std::stod(it->str()) - value) <= 1e-6 * std::abs(value)) return true;
+        }
+        return false;
+    };
+    const auto number_of = [](const SettingValue& value) {
+        return std::holds_alternative<int64_t>(value) ? static_cast<double>(std::get<int64_t>(value))
+                                                      : std::get<double>(value);
+    };
+    for (const SettingDeclaration& setting : kSettingDeclarations) {
+        const size_t help_at = help.out.find(setting.help);
+        ASSERT_NE(help_at, std::string::npos) << setting.name << "'s help line is not in --help";
+        const size_t flag_at = help.out.rfind("  --", help_at);
+        const std::string flag = help.out.substr(flag_at + 2, help.out.find_first_of(" \n", flag_at + 2) - flag_at - 2);
+        const std::string row = row_of(flag);
+        ASSERT_FALSE(row.empty()) << flag << " has no table row in docs/cli.md or docs/filters.md";
+        const SettingValue default_value = setting.get(Settings{});
+        const std::string key = setting.key_in_config();
+        EXPECT_TRUE(docs.find("\n" + key + " = ") != std::string::npos ||
+                    docs.find("`" + key + "`") != std::string::npos)
+            << key << " (" << flag << ") is in neither the config example nor the filters' key column";
+        switch (setting.type) {
+            case SettingType::Integer:
+            case SettingType::Number:
+                EXPECT_TRUE(mentions(row, number_of(default_value))) << flag << ": default missing: " << row;
+                for (const int64_t allowed : setting.allowed) {
+                    EXPECT_TRUE(mentions(row, static_cast<double>(allowed)))
+                        << flag << ": " << allowed << " missing: " << row;
+                }
+                if (setting.allowed.empty() && std::isfinite(setting.maximum)) {
+                    EXPECT_TRUE(mentions(row, setting.minimum)) << flag << ": minimum: " << row;
+                    EXPECT_TRUE(mentions(row, setting.maximum)) << flag << ": maximum: " << row;
+                }
+                break;
+            case SettingType::Choice:
+                for (const char* choice : setting.choices) {
+                    EXPECT_NE(row.find(choice), std::string::npos) << flag << ": choice " << choice << ": " << row;
+                }
+                break;
+            case SettingType::Boolean:
+            case SettingType::NumberList:
+                break;
+        }
     }
 }
 
