@@ -15,7 +15,7 @@
 
 namespace penumbra::quality {
 
-// The spot cone of shaders/include/local_lights.glsl, spot_cone(): smoothstep(cos outer,
+// The spot cone of apps/renderer/shaders/include/local_lighting.glsl, spot_cone(): smoothstep(cos outer,
 // max(cos inner, cos outer + 1e-4), cos angle to the axis); 1 for a point light.
 float spot_cone_factor(const Light& light, const glm::vec3& point);
 
