@@ -22,12 +22,25 @@ layout(std430, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTE
     LocalBlock {
     PenumbraLocalShadows local_shadows;
 };
-mat4 layer_view_projection() { return local_shadows.layer_view_projection[caster.layer]; }
+vec4 layer_position(vec4 world) { return local_shadows.layer_view_projection[caster.layer] * world; }
 #else
 layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS) uniform ShadowBlock {
     PenumbraShadowUniforms shadow;
 };
-mat4 layer_view_projection() { return shadow.cascades[caster.layer + PENUMBRA_VIEW_INDEX].view_projection; }
+// The cascade's clip space through its texel grid (PenumbraCascade): the map texel is
+// computed without contraction (precise: no fused multiply-add that would round it
+// differently for another origin) and snapped to 1/256 texel (what rasterisers keep), so
+// that a cascade moved by whole texels draws every caster exactly that many texels
+// further: a cached cascade's copied texels equal freshly drawn ones.
+vec4 layer_position(vec4 world) {
+    const PenumbraCascade cascade = shadow.cascades[caster.layer + PENUMBRA_VIEW_INDEX];
+    const vec3 light = (shadow.light_view * world).xyz;
+    precise vec2 texel = light.xy * cascade.texels_per_metre - cascade.texel_origin;
+    texel = round(texel * 256.0) * (1.0 / 256.0);
+    const float texels_per_side = 1.0 / shadow.texel_uv;
+    precise vec2 clip = texel * (2.0 / texels_per_side) - 1.0;
+    return vec4(clip, light.z * cascade.depth_scale + cascade.depth_offset, 1.0);
+}
 #endif
 
 layout(location = PENUMBRA_LOCATION_POSITION) in vec3 in_position;
@@ -37,7 +50,7 @@ layout(location = 0) out vec2 out_uv;
 #endif
 
 void main() {
-    gl_Position = layer_view_projection() * (caster.model * vec4(in_position, 1.0));
+    gl_Position = layer_position(caster.model * vec4(in_position, 1.0));
 #ifdef PENUMBRA_MASKED
     out_uv = in_uv;
 #endif

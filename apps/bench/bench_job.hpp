@@ -82,6 +82,11 @@ struct CountSummary {
 struct CascadeReport {
     CountSummary draws;      // per frame
     CountSummary triangles;  // per frame
+    // With cached static casters (--shadow-cache): texels drawn and copied per frame, and
+    // the frames that reused the cache (without: every texel drawn, nothing copied).
+    CountSummary texels_rendered;
+    CountSummary texels_copied;
+    uint64_t cache_reused_frames = 0;
 };
 
 // One shadowed spot or point light (renderer::LocalShadowStats), over the measured frames.

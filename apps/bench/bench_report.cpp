@@ -178,7 +178,10 @@ std::string bench_json(const BenchResult& result) {
     for (size_t c = 0; c < result.cascades.size(); ++c) {
         cascades.push_back(Json{{"index", c},
                                 {"draws", counts_json(result.cascades[c].draws)},
-                                {"triangles", counts_json(result.cascades[c].triangles)}});
+                                {"triangles", counts_json(result.cascades[c].triangles)},
+                                {"texels_rendered", counts_json(result.cascades[c].texels_rendered)},
+                                {"texels_copied", counts_json(result.cascades[c].texels_copied)},
+                                {"cache_reused_frames", result.cascades[c].cache_reused_frames}});
     }
     const Json document{
         {"schema", "penumbra-bench/1"},

@@ -64,6 +64,9 @@ struct FrameSamples {
     SampleSet cpu;
     std::vector<std::vector<uint64_t>> cascade_draws;  // [cascade][frame]
     std::vector<std::vector<uint64_t>> cascade_triangles;
+    std::vector<std::vector<uint64_t>> cascade_texels_rendered;
+    std::vector<std::vector<uint64_t>> cascade_texels_copied;
+    std::vector<uint64_t> cascade_reused;
     std::vector<LocalShadowSamples> local_shadows;
     uint32_t frames_without_gpu_times = 0;
 
@@ -72,6 +75,17 @@ struct FrameSamples {
         for (const gpu::ScopeTime& time : times) gpu.add(time.name, time.milliseconds);
     }
 };
+
+// The sun's whole shadow work of a frame: its cascades' passes, the cache's copies and
+// dynamic casters, the moments conversion (0 for a cached frame that drew nothing). The
+// spot/point lights' pass ("shadow_local") is not the sun's.
+double sun_shadow_ms(const std::vector<gpu::ScopeTime>& times) {
+    double total = 0.0;
+    for (const gpu::ScopeTime& time : times) {
+        if (time.name.starts_with("shadow_") && time.name != "shadow_local") total += time.milliseconds;
+    }
+    return total;
+}
 
 CountSummary summarize_counts(const std::vector<uint64_t>& counts) {
     CountSummary summary;
@@ -123,6 +137,7 @@ SceneReport describe_scene(const std::string& spec, const Scene& scene) {
 
 void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, FrameSamples& samples) {
     samples.add_gpu_times(frame.gpu_times);
+    if (!frame.gpu_times.empty()) samples.gpu.add("shadow_sun", sun_shadow_ms(frame.gpu_times));
     samples.cpu.add("cascade_setup", frame.cpu_times.cascade_setup_ms);
     samples.cpu.add("culling", frame.cpu_times.culling_ms);
     samples.cpu.add("recording", frame.cpu_times.recording_ms);
@@ -130,9 +145,15 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
     samples.cpu.add("frame_wall", wall_ms);
     samples.cascade_draws.resize(frame.cascades.size());
     samples.cascade_triangles.resize(frame.cascades.size());
+    samples.cascade_texels_rendered.resize(frame.cascades.size());
+    samples.cascade_texels_copied.resize(frame.cascades.size());
+    samples.cascade_reused.resize(frame.cascades.size());
     for (size_t c = 0; c < frame.cascades.size(); ++c) {
         samples.cascade_draws[c].push_back(frame.cascades[c].draws);
         samples.cascade_triangles[c].push_back(frame.cascades[c].triangles);
+        samples.cascade_texels_rendered[c].push_back(frame.cascades[c].texels_rendered);
+        samples.cascade_texels_copied[c].push_back(frame.cascades[c].texels_copied);
+        samples.cascade_reused[c] += frame.cascades[c].cache_reused ? 1 : 0;
     }
     samples.local_shadows.resize(frame.local_shadows.size());
     for (size_t i = 0; i < frame.local_shadows.size(); ++i) {
@@ -172,7 +193,7 @@ FrameSamples run_renderer_frames(const renderer::AppContext& context, const Benc
         const float t = path_parameter(job, index);
         if (sun) sun->direction = glm::normalize(sun_on_path(job.light_path, start_sun, t));
         const Clock::time_point start = Clock::now();
-        renderer.render(camera_on_path(job.camera_path, start_camera, t), readback);
+        renderer.render(camera_on_path(job.camera_path, start_camera, t, job.frames), readback);
         const double wall_ms = milliseconds_since(start);
         if (index >= job.warmup) record_renderer_frame(renderer.last_frame(), wall_ms, samples);
         if (job.progress) job.progress(index + 1, total);
@@ -285,8 +306,10 @@ void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchRes
     samples.gpu.summarize_into(result.gpu_pass_order, result.gpu_ms, "frame");
     samples.cpu.summarize_into(result.cpu_step_order, result.cpu_ms, "frame_wall");
     for (size_t c = 0; c < samples.cascade_draws.size(); ++c) {
-        result.cascades.push_back(
-            {summarize_counts(samples.cascade_draws[c]), summarize_counts(samples.cascade_triangles[c])});
+        result.cascades.push_back({summarize_counts(samples.cascade_draws[c]),
+                                   summarize_counts(samples.cascade_triangles[c]),
+                                   summarize_counts(samples.cascade_texels_rendered[c]),
+                                   summarize_counts(samples.cascade_texels_copied[c]), samples.cascade_reused[c]});
     }
     for (const LocalShadowSamples& light : samples.local_shadows) {
         result.local_shadows.push_back(summarize_local_shadow(light, scene));

@@ -37,17 +37,41 @@ Camera flythrough(const Camera& start, float t) {
     return camera;
 }
 
+// A walker's speed (1.4 m/s) at 60 frames a second.
+constexpr float kWalkMetresPerFrame = 1.4f / 60.0f;
+
+Camera walk(const Camera& start, float t, uint32_t frames) {
+    const glm::vec3 view = start.target - start.eye;
+    glm::vec3 ahead{view.x, 0.0f, view.z};
+    ahead = glm::length(ahead) > 1e-3f ? glm::normalize(ahead) : glm::vec3(0.0f, 0.0f, -1.0f);
+    const glm::vec3 step = ahead * (kWalkMetresPerFrame * t * static_cast<float>(frames));
+    Camera camera = start;
+    camera.eye += step;
+    camera.target += step;
+    return camera;
+}
+
 }  // namespace
 
-Camera camera_on_path(CameraPath path, const Camera& start, float t) {
-    return path == CameraPath::Orbit ? orbit(start, t) : flythrough(start, t);
+Camera camera_on_path(CameraPath path, const Camera& start, float t, uint32_t frames) {
+    switch (path) {
+        case CameraPath::Orbit:
+            return orbit(start, t);
+        case CameraPath::Flythrough:
+            return flythrough(start, t);
+        case CameraPath::Walk:
+            return walk(start, t, frames);
+        case CameraPath::Still:
+            break;
+    }
+    return start;
 }
 
 glm::vec3 sun_on_path(LightPath path, const glm::vec3& start, float t) {
     return path == LightPath::Fixed ? start : rotate_about_y(start, kTwoPi * t);
 }
 
-const char* camera_path_name(CameraPath path) { return path == CameraPath::Orbit ? "orbit" : "flythrough"; }
+const char* camera_path_name(CameraPath path) { return choice_name(kCameraPathChoices, path); }
 const char* light_path_name(LightPath path) { return path == LightPath::Fixed ? "fixed" : "rotate"; }
 
 }  // namespace penumbra::bench

@@ -129,7 +129,9 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--frames", job.frames, "Measured frames (default 100)")->check(CLI::Range(1u, 1000000u));
     bench.add_option("--warmup", job.warmup, "Frames rendered before measuring (default 10)")
         ->check(CLI::Range(0u, 1000000u));
-    bench.add_option("--camera-path", raw.camera_path, "Camera path: orbit (default) | flythrough");
+    bench.add_option("--camera-path", raw.camera_path,
+                     "Camera path: " + choice_list(bench::kCameraPathChoices, bench::CameraPath::Orbit) +
+                         " (walk: 1.4 m/s at 60 frames/s; still: the scene's camera)");
     bench.add_option("--light-path", raw.light_path, "Sun path: fixed (default) | rotate");
     bench.add_option("--json", raw.json, "Also write the results (and device, settings, scene) as JSON");
     bench.add_option("--ceiling", raw.ceiling,
@@ -144,9 +146,7 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
 void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_raw, bench::BenchJob& job) {
     finish_render_job(raw, job.render);
     if (!bench_raw.camera_path.empty()) {
-        job.camera_path = parse_choice<bench::CameraPath>(
-            bench_raw.camera_path, "--camera-path",
-            {{"orbit", bench::CameraPath::Orbit}, {"flythrough", bench::CameraPath::Flythrough}});
+        job.camera_path = parse_choice(bench_raw.camera_path, "--camera-path", choice_map(bench::kCameraPathChoices));
     }
     if (!bench_raw.light_path.empty()) {
         job.light_path =

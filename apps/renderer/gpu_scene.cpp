@@ -202,6 +202,7 @@ void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRang
         uint32_t flags = kInstanceAlphaMasked;
         if (casts[instance.mesh] && instance.cast_shadows) flags |= kInstanceCastsShadows;
         if (material.double_sided) flags |= kInstanceDoubleSided;
+        if (instance.dynamic) flags |= kInstanceDynamic;
         shadows.add_instance({ids[instance.mesh], to_mat4(instance.world), flags});
     }
 }

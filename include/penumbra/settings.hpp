@@ -99,6 +99,10 @@ struct ShadowSettings {
     ShadowStrategy strategy = ShadowStrategy::PerCascade;
     bool cull_casters = true;
     CasterCulling caster_culling = CasterCulling::None;
+    // Keep each cascade's static casters' depths from frame to frame and draw again only the
+    // texels the cascade's move exposes and those of static casters that changed; dynamic
+    // instances (kInstanceDynamic) are drawn over them every frame. Per-cascade strategy only.
+    bool cache_static_casters = false;
 };
 
 // How a light without its own `shadow_resolution` gets its map's size
@@ -288,6 +292,12 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .label = "caster face culling",
          .help = "Caster faces the shadow passes skip, seen from the light (front: draw back faces, which hides "
                  "acne on closed meshes)"}),
+    declare<&Settings::shadow, &ShadowSettings::cache_static_casters>(
+        {.name = "shadow_cache",
+         .group = "bias",
+         .label = "cache static casters",
+         .help = "Keep the cascades' static casters from frame to frame; draw only what moved or changed",
+         .recreates = true}),
     // The filter and its parameters, for every light (docs/filters.md).
     declare_choice<kShadowFilterChoices, &Settings::shadow, &ShadowSettings::filter, &FilterSettings::mode>(
         {.name = "filter", .group = "filter", .label = "filter", .help = "Shadow filter", .recreates = true}),

@@ -66,12 +66,21 @@ struct PenumbraCascade {
     vec2 max_depth_gradient;  // clamp of the receiver-plane gradient dz/du, dz/dv
     float split_far;          // camera view distance where the cascade ends
     float texel_world_size;   // metres per texel (normal offset)
-    float padding0;
-    float padding1;
+    // How casters are drawn into the cascade (shaders/caster.vert): the light view's x, y
+    // times texels_per_metre is a point's place in a texel grid fixed in the world, less
+    // texel_origin (whole numbers) its place in this map, and the light view's z times
+    // depth_scale plus depth_offset its reverse-Z depth. The same as view_projection, but
+    // a cascade that moves by whole texels puts every caster exactly that many texels
+    // further (cached cascades copy what it drew before).
+    float depth_scale;
+    float depth_offset;
+    vec2 texels_per_metre;
+    vec2 texel_origin;
 };
 
 struct PenumbraShadowUniforms {
     mat4 camera_view;  // world -> view of the prepared camera (cascade selection by view depth)
+    mat4 light_view;   // world -> the sun's light view (a rotation), every cascade's
     PenumbraCascade cascades[PENUMBRA_MAX_CASCADES];
     vec4 to_sun;                     // xyz: unit vector toward the sun; w: 1 when there is a sun
     PENUMBRA_UINT cascade_count;     // 0: the sun casts no shadow (or there is no sun)

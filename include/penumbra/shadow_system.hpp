@@ -102,6 +102,11 @@ enum InstanceFlags : uint32_t {
     // Alpha-tested with its mesh's AlphaMaskDesc (ignored for meshes without one); without
     // this flag such a mesh casts as opaque.
     kInstanceAlphaMasked = 1u << 2,
+    // Moves or changes often: drawn into the sun's cascades every frame over the cached
+    // static casters (Settings::shadow.cache_static_casters). Instances are static unless
+    // flagged: moving, adding, removing or changing a static instance re-renders the
+    // cached texels its old and new bounds cover.
+    kInstanceDynamic = 1u << 3,
 };
 
 struct InstanceDesc {
@@ -144,6 +149,12 @@ struct CascadeInfo {
     Vec3 light_extent;              // light-space width, height and depth range (metres)
     uint32_t draws = 0;             // casters drawn into it this frame (after culling)
     uint64_t triangles = 0;
+    // With cached static casters (Settings::shadow.cache_static_casters): whether the cache
+    // was reused (false: every static caster was drawn), the texels whose static casters
+    // were drawn this frame, and the texels copied between the map and its cache.
+    bool cache_reused = false;
+    uint64_t texels_rendered = 0;
+    uint64_t texels_copied = 0;
 };
 
 struct LocalShadowInfo {

@@ -80,14 +80,19 @@ LightOrthoBox fit_tight_box(const std::array<glm::vec3, 8>& light_space_points, 
     return box;
 }
 
-LightOrthoBox extend_depth_to_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds) {
+LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds) {
     if (light_space_scene_bounds.empty()) return box;
-    LightOrthoBox extended = box;
-    // Toward the light: casters between the sun and the slice. Away from it: receivers
-    // beyond the slice that still fall into its rectangle (cascade blending reads them).
-    extended.near_distance = std::min(box.near_distance, -light_space_scene_bounds.max.z);
-    extended.far_distance = std::max(box.far_distance, -light_space_scene_bounds.min.z);
-    return extended;
+    // The scene's extent along the light, whatever the slice: every caster and every
+    // receiver lies inside it, and a cascade that moves keeps its depth mapping, so that
+    // depths rendered in an earlier frame stay valid (cached cascades). A margin keeps the
+    // range open for a scene flat across the light (a ground plane lit from straight above).
+    const float near_distance = -light_space_scene_bounds.max.z;
+    const float far_distance = -light_space_scene_bounds.min.z;
+    const float margin = std::max(kMinDepthMargin, 1e-3f * (far_distance - near_distance));
+    LightOrthoBox ranged = box;
+    ranged.near_distance = near_distance - margin;
+    ranged.far_distance = far_distance + margin;
+    return ranged;
 }
 
 glm::mat4 light_projection(const LightOrthoBox& box) {

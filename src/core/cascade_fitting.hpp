@@ -43,10 +43,14 @@ LightOrthoBox fit_stable_box(const BoundingSphere& light_space_sphere, uint32_t 
 LightOrthoBox fit_tight_box(const std::array<glm::vec3, 8>& light_space_points, uint32_t resolution,
                             float padding_texels);
 
-// Extends the depth range toward the light to the nearest point of the scene bounds (so
-// casters between the light and the slice are rendered) and away from it to their
-// farthest point (so every receiver lies inside). An empty box leaves it unchanged.
-LightOrthoBox extend_depth_to_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds);
+// Metres added to each end of a scene's depth range (at least; or 1e-3 of the range).
+inline constexpr float kMinDepthMargin = 0.01f;
+
+// The depth range of the scene bounds along the light, whatever the slice's own, plus a
+// margin: casters between the light and the slice are rendered, every receiver lies
+// inside, and the mapping of depth does not change when the camera moves (so that a
+// cascade's depths can be cached). An empty box leaves the slice's range unchanged.
+LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds);
 
 // Reverse-Z orthographic projection of the box: near_distance -> depth 1, far -> 0.
 glm::mat4 light_projection(const LightOrthoBox& box);

@@ -6,9 +6,10 @@
 //   2. light view: a rotation looking along the light (light_view_matrix);
 //   3. per slice, fit the light-space XY window: stable (bounding sphere + texel snap,
 //      Valient 2008) or tight (AABB of the slice corners);
-//   4. extend the depth range to the scene bounds so no caster toward the light is
-//      clipped ("Z extended to scene bounds", Microsoft, Common Techniques to Improve
-//      Shadow Depth Maps);
+//   4. the depth range is the scene bounds' along the light, so no caster toward the light
+//      is clipped ("Z extended to scene bounds", Microsoft, Common Techniques to Improve
+//      Shadow Depth Maps) and the depth mapping stays put while the camera moves (cached
+//      cascades keep their depths);
 //   5. reverse-Z orthographic projection: near the light -> depth 1.
 #include "core/cascades.hpp"
 
@@ -57,6 +58,13 @@ Cascade make_cascade(const glm::mat4& light_view, const LightOrthoBox& box, uint
     cascade.light_extent = box.extent();
     cascade.texel_world_size =
         std::max(cascade.light_extent.x, cascade.light_extent.y) / static_cast<float>(resolution);
+    // The window's first texel in the world's grid of its texel size: both fits place the
+    // window on that grid, so the quotient is a whole number up to rounding.
+    const glm::vec2 texel = 2.0f * box.half_size / static_cast<float>(resolution);
+    cascade.texels_per_metre = 1.0f / texel;
+    cascade.texel_origin = glm::round((box.center - box.half_size) / texel);
+    cascade.depth_scale = cascade.projection[2][2];
+    cascade.depth_offset = cascade.projection[3][2];
     return cascade;
 }
 
@@ -74,10 +82,10 @@ CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_dir
     const glm::mat4 light_view = light_view_matrix(light_direction);
     set.light_direction = glm::normalize(light_direction);
     const Aabb light_space_scene = transform_aabb(scene_bounds, light_view);
-    // 3.-5. Fit, extend toward the casters, project.
+    // 3.-5. Fit, take the scene's depth range, project.
     for (int i = 0; i < settings.count; ++i) {
         const LightOrthoBox slice_box = fit_slice(camera, light_view, settings, splits[i], splits[i + 1]);
-        const LightOrthoBox box = extend_depth_to_scene(slice_box, light_space_scene);
+        const LightOrthoBox box = depth_range_of_scene(slice_box, light_space_scene);
         set.cascades.push_back(make_cascade(light_view, box, settings.resolution, splits[i], splits[i + 1]));
     }
     return set;

@@ -36,6 +36,13 @@ struct Cascade {
     float split_far = 0.0f;         // ... and ends
     float texel_world_size = 0.0f;  // world metres per shadow-map texel (max of X and Y)
     glm::vec3 light_extent{0.0f};   // light-space width (X), height (Y), depth range (Z), metres
+    // The same projection in a texel grid fixed in the world (the caster pass draws with
+    // it): map texel = light view (x, y) * texels_per_metre - texel_origin, the origin a
+    // whole number; reverse-Z depth = light view z * depth_scale + depth_offset.
+    glm::vec2 texels_per_metre{0.0f};
+    glm::vec2 texel_origin{0.0f};
+    float depth_scale = 0.0f;
+    float depth_offset = 0.0f;
 };
 
 struct CascadeSet {
@@ -48,9 +55,10 @@ struct CascadeSet {
 // Stable: bounding sphere of the slice (radius rounded up to 1/16 m), light-space origin
 // snapped to whole texels, so shadows do not shimmer under camera motion.
 // Tight: light-space AABB of the slice corners in XY (snapped to texels, padded by
-// settings.filter_padding_texels); in both modes Z is extended to scene_bounds so that
-// casters between the light and the slice are never clipped (and receivers beyond the
-// slice stay inside); an empty scene_bounds leaves Z at the slice (or sphere).
+// settings.filter_padding_texels). In both modes Z is scene_bounds' range along the light
+// plus a margin, so that casters between the light and the slice are never clipped,
+// receivers beyond the slice stay inside, and the depth mapping does not follow the
+// camera (cached cascades); an empty scene_bounds leaves Z at the slice (or sphere).
 // Requires validated settings (validate_shadow_settings); throws InputError when
 // max_distance does not exceed the camera near plane or manual splits do not fit inside
 // [near, shadow_distance].

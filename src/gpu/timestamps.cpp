@@ -65,7 +65,8 @@ void GpuTimer::end(VkCommandBuffer cmd, uint32_t scope) {
 }
 
 std::optional<std::vector<ScopeTime>> GpuTimer::read() const {
-    if (!supported() || names_.empty()) return std::nullopt;
+    if (!supported()) return std::nullopt;
+    if (names_.empty()) return std::vector<ScopeTime>{};  // nothing was timed (a cached frame with no pass)
     for (const bool ended : ended_) {
         if (!ended) throw UsageError("GpuTimer: a scope was opened but never closed");
     }

@@ -15,18 +15,6 @@ VkFrontFace facing_light(const glm::mat4& view_projection) {
 
 }  // namespace
 
-std::vector<passes::DrawList> cull_cascade_casters(const CascadeSet& cascades, const passes::CasterScene& scene,
-                                                   bool cull) {
-    std::vector<passes::DrawList> lists(cascades.cascades.size());
-    for (size_t c = 0; c < cascades.cascades.size(); ++c) {
-        for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-            if (cull && !caster_may_shadow_cascade(cascades.cascades[c], scene.draws[d].world_bounds)) continue;
-            lists[c].push_back(d);
-        }
-    }
-    return lists;
-}
-
 std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
                                                          const passes::CasterScene& scene, bool cull) {
     std::vector<passes::LocalShadowLayer> layers;
@@ -79,6 +67,11 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
         out.max_depth_gradient = params.max_depth_gradient;
         out.split_far = cascade.split_far;
         out.texel_world_size = cascade.texel_world_size;
+        out.depth_scale = cascade.depth_scale;
+        out.depth_offset = cascade.depth_offset;
+        out.texels_per_metre = cascade.texels_per_metre;
+        out.texel_origin = cascade.texel_origin;
+        uniforms.light_view = cascade.view;  // one light view for every cascade
     }
     uniforms.cascade_count = sun_casts_shadows ? static_cast<uint32_t>(cascades.cascades.size()) : 0u;
     uniforms.normal_offset_texels = settings.bias.normal_offset;

@@ -1,6 +1,6 @@
 #pragma once
-// A frame's CPU work that makes no Vulkan calls: caster culling for every cascade and
-// local-light layer, and the contents of the two uniform blocks of the descriptor set.
+// A frame's CPU work that makes no Vulkan calls: caster culling for every local-light
+// layer (the cascades': library/cascade_cache.hpp), and the contents of the two uniform blocks of the descriptor set.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -20,10 +20,6 @@ struct CullStats {
     uint32_t draws = 0;
     uint64_t triangles = 0;
 };
-
-// Draws that may cast into each cascade (all of them when `cull` is off).
-std::vector<passes::DrawList> cull_cascade_casters(const CascadeSet& cascades, const passes::CasterScene& scene,
-                                                   bool cull);
 
 // The layers to render for every shadowed local light: the draws inside each layer's
 // frustum (and, for a cube face, the sphere of the range), none on a wide spot's cube

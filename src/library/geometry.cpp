@@ -275,6 +275,7 @@ InstanceId Geometry::add_instance(const InstanceDesc& desc) {
     }
     Instance instance{next_instance_id_++, desc.mesh.value, world, desc.flags, {}};
     update_bounds(instance);
+    note_static_change(instance);
     ++mesh.instances;
     instance_index_.emplace(instance.id, static_cast<uint32_t>(instances_.size()));
     instances_.push_back(instance);
@@ -290,6 +291,16 @@ Geometry::Instance& Geometry::find_instance(InstanceId instance, const char* cal
     return instances_[found->second];
 }
 
+void Geometry::note_static_change(const Instance& instance) {
+    const bool static_caster = (instance.flags & kInstanceCastsShadows) && !(instance.flags & kInstanceDynamic);
+    if (static_caster) static_changes_.push_back(instance.world_bounds);
+}
+
+void Geometry::forget_static_changes(size_t count) {
+    static_changes_.erase(static_changes_.begin(), static_changes_.begin() + static_cast<std::ptrdiff_t>(std::min(
+                                                                                 count, static_changes_.size())));
+}
+
 void Geometry::update_bounds(Instance& instance) {
     instance.world_bounds = transform_aabb(meshes_.at(instance.mesh).bounds, instance.world);
 }
@@ -299,16 +310,23 @@ void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {
     for (const float value : world.m) {
         if (!std::isfinite(value)) reject("set_instance_transform", "world", "must be finite");
     }
+    note_static_change(instance);
     instance.world = to_glm(world);
     update_bounds(instance);
+    note_static_change(instance);
 }
 
 void Geometry::set_instance_flags(InstanceId id, uint32_t flags) {
-    find_instance(id, "set_instance_flags").flags = flags;
+    Instance& instance = find_instance(id, "set_instance_flags");
+    if (flags == instance.flags) return;
+    note_static_change(instance);  // what it was (a static caster's depths go)
+    instance.flags = flags;
+    note_static_change(instance);  // and what it is
 }
 
 void Geometry::remove_instance(InstanceId id) {
     Instance& instance = find_instance(id, "remove_instance");
+    note_static_change(instance);
     meshes_.at(instance.mesh).instances -= 1;
     const uint32_t index = instance_index_.at(id.value);
     if (index + 1 != instances_.size()) {
@@ -338,6 +356,7 @@ const passes::CasterScene& Geometry::build_scene() {
         draw.masked = (instance.flags & kInstanceAlphaMasked) && mesh.alpha_mask_set != VK_NULL_HANDLE;
         draw.double_sided = (instance.flags & kInstanceDoubleSided) != 0;
         draw.mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0f;
+        draw.dynamic = (instance.flags & kInstanceDynamic) != 0;
         scene_.draws.push_back(draw);
     }
     return scene_;

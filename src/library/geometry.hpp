@@ -37,6 +37,12 @@ public:
     const passes::CasterScene& build_scene();
     const passes::CasterScene& scene() const { return scene_; }  // as the last build_scene() made it
     const Aabb& world_bounds() const { return world_bounds_; }
+    // World bounds, old and new, of every static caster (casting, not kInstanceDynamic)
+    // added, moved, changed or removed since they were last forgotten: the texels of the
+    // cached cascades they cover are stale.
+    const std::vector<Aabb>& static_changes() const { return static_changes_; }
+    // Forgets the first `count` (those a recorded frame has redrawn).
+    void forget_static_changes(size_t count);
     uint64_t triangles(uint32_t draw) const { return scene_.meshes[scene_.draws[draw].mesh].index_count / 3; }
 
     // Records the copies of meshes uploaded since the last call and makes them visible to
@@ -74,6 +80,7 @@ private:
     Mesh& find_mesh(MeshId mesh, const char* call);
     Instance& find_instance(InstanceId instance, const char* call);
     void update_bounds(Instance& instance);
+    void note_static_change(const Instance& instance);
 
     const gpu::Device& device_;
     RetiredObjects& retired_;
@@ -89,6 +96,7 @@ private:
     std::vector<Upload> uploads_;
     passes::CasterScene scene_;
     Aabb world_bounds_;
+    std::vector<Aabb> static_changes_;
 };
 
 }  // namespace penumbra::library

@@ -33,7 +33,7 @@ BiasSettings depth_bias_of(const ShadowSettings& settings) {
 CascadeMaps::CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                          VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings)
     : depth_pass_(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution,
-                  static_cast<uint32_t>(settings.cascades.count), settings.strategy),
+                  static_cast<uint32_t>(settings.cascades.count), settings.strategy, settings.cache_static_casters),
       depth_sampler_(create_nearest_sampler(device)) {
     if (is_moment_filter(settings.filter.mode)) {
         moments_.emplace(device, depth_pass_.shadow_map(), depth_sampler_, settings.filter);
@@ -48,13 +48,13 @@ SampledMaps CascadeMaps::sampled() const {
 }
 
 uint64_t CascadeMaps::memory_bytes() const {
-    return depth_pass_.shadow_map().memory_size + (moments_ ? moments_->memory_bytes() : 0u);
+    return depth_pass_.memory_bytes() + (moments_ ? moments_->memory_bytes() : 0u);
 }
 
 void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
-                         const std::vector<passes::DrawList>& lists, const ShadowSettings& settings,
-                         const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
-    depth_pass_.record(cmd, frame_set, scene, lists, depth_bias_of(settings), culling, timer);
+                         const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
+                         const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) {
+    depth_pass_.record(cmd, frame_set, scene, draws, depth_bias_of(settings), culling, timer);
     if (!moments_) return;
     gpu::TimedScope scope(timer, cmd, "shadow_moments");
     const gpu::ImageDesc& map = depth_pass_.shadow_map().desc;

@@ -37,9 +37,10 @@ public:
     SampledMaps sampled() const;
     uint64_t memory_bytes() const;
 
+    bool cached() const { return depth_pass_.cached(); }
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
-                const std::vector<passes::DrawList>& lists, const ShadowSettings& settings,
-                const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+                const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
+                const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer);
 
 private:
     passes::ShadowPass depth_pass_;

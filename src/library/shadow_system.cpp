@@ -13,6 +13,7 @@
 #include "core/cascades.hpp"
 #include "core/caster_facing.hpp"
 #include "core/local_lights.hpp"
+#include "library/cascade_cache.hpp"
 #include "library/conversions.hpp"
 #include "library/device_checks.hpp"
 #include "library/frame_setup.hpp"
@@ -109,7 +110,10 @@ struct ShadowSystem::Impl {
     uint32_t sampling_frame = 0;  // rotates the Poisson/PCSS patterns (ViewDesc::sampling_frame)
     FrameInfo info;
     // What prepare() computed for record_shadow_maps().
-    std::vector<passes::DrawList> cascade_lists;
+    std::vector<passes::CascadeDraws> cascade_draws;
+    library::CascadeCache cascade_cache;
+    CascadeSet planned_cascades;        // the cascades cascade_draws were planned for
+    size_t planned_static_changes = 0;  // Geometry::static_changes() that plan covered
     LocalShadowPlan plan;
     std::vector<passes::LocalShadowLayer> local_layers;
     passes::CasterFaceCulling cascade_culling;
@@ -153,8 +157,12 @@ struct ShadowSystem::Impl {
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         const bool casts = sun_light && sun_light->cast_shadows;
-        cascade_lists = casts ? library::cull_cascade_casters(set, scene, settings.shadow.cull_casters)
-                              : std::vector<passes::DrawList>(set.cascades.size());
+        if (!casts) cascade_cache.invalidate();
+        planned_static_changes = geometry.static_changes().size();
+        cascade_draws = casts ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades.cached(),
+                                                   geometry.static_changes(), settings.shadow.cascades.resolution)
+                              : std::vector<passes::CascadeDraws>(set.cascades.size());
+        planned_cascades = set;
         info.cpu_cull_ms += milliseconds_since(start);
         cascade_culling = {settings.shadow.caster_culling,
                            light_facing_is_counter_clockwise(set.cascades.front().view_projection)
@@ -172,8 +180,13 @@ struct ShadowSystem::Impl {
                             library::to_public(cascade.light_extent),
                             0,
                             0};
-            out.draws = static_cast<uint32_t>(cascade_lists[c].size());
-            for (const uint32_t draw : cascade_lists[c]) out.triangles += geometry.triangles(draw);
+            const library::CascadeDrawStats stats =
+                library::cascade_draw_stats(cascade_draws[c], settings.shadow.cascades.resolution);
+            out.draws = stats.draws;
+            out.cache_reused = stats.cache_reused;
+            out.texels_rendered = stats.texels_rendered;
+            out.texels_copied = stats.texels_copied;
+            library::for_each_draw(cascade_draws[c], [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
             info.cascades.push_back(out);
         }
         library::FrameSlot& slot = slots.at(frame);
@@ -262,6 +275,10 @@ void ShadowSystem::update_settings(const Settings& settings) {
             "ShadowSystem::update_settings: the new settings change the cascade count or resolution, the filter, "
             "the strategy or the local shadow budget, resolution or sizing; create a new ShadowSystem for them");
     }
+    // Biases and culling change the depths the cache holds.
+    for (const SettingDeclaration& setting : kSettingDeclarations) {
+        if (setting.get(impl_->settings) != setting.get(settings)) impl_->cascade_cache.invalidate();
+    }
     impl_->settings = settings;
 }
 
@@ -311,8 +328,12 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
     impl.geometry.record_uploads(cmd, impl.frame);
     // The scene prepare() culled: instances changed since then show in the next frame.
     const passes::CasterScene& scene = impl.geometry.scene();
-    impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_lists, impl.settings.shadow, impl.cascade_culling,
+    impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
                          &slot.timer);
+    // The cache holds this frame's static casters once the commands run; the changes the
+    // plan covered are drawn.
+    if (impl.cascades.cached()) impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws);
+    impl.geometry.forget_static_changes(impl.planned_static_changes);
     impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, &slot.timer);
     slot.shadow_maps_recorded = true;
 }

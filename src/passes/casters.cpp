@@ -173,14 +173,15 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
     }
 }
 
-gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint32_t layers) {
+gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint32_t layers,
+                            VkImageUsageFlags extra_usage) {
     gpu::ImageDesc desc;
     desc.format = kShadowFormat;
     desc.width = resolution;
     desc.height = resolution;
     desc.layers = std::max(layers, 1u);
-    desc.usage =
-        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT | extra_usage;
     desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     desc.array_view = true;
     return gpu::create_image(device, desc);

@@ -49,6 +49,7 @@ struct CasterDraw {
     bool masked = false;        // alpha-tested with its mesh's mask
     bool double_sided = false;  // never face-culled
     bool mirrored = false;      // the model matrix flips the winding (negative determinant)
+    bool dynamic = false;       // drawn every frame over cached static casters (kInstanceDynamic)
 };
 
 struct CasterScene {
@@ -117,8 +118,9 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 
 // The layered D32 reverse-Z depth map of the caster passes (depth attachment, sampled,
-// copied out by debug views).
-gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint32_t layers);
+// copied out by debug views), with `extra_usage` (a cached map is also copied into).
+gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint32_t layers,
+                            VkImageUsageFlags extra_usage = 0);
 
 // Sets the depth bias of a reverse-Z shadow pass.
 void set_shadow_depth_bias(const gpu::Device& device, VkCommandBuffer cmd, const penumbra::BiasSettings& bias);

@@ -53,10 +53,14 @@ static_assert(offsetof(PenumbraCascade, light_radius_uv_per_depth) == 64);
 static_assert(offsetof(PenumbraCascade, max_depth_gradient) == 72);
 static_assert(offsetof(PenumbraCascade, split_far) == 80);
 static_assert(offsetof(PenumbraCascade, texel_world_size) == 84);
-static_assert(sizeof(PenumbraCascade) == 96);
+static_assert(offsetof(PenumbraCascade, depth_scale) == 88);
+static_assert(offsetof(PenumbraCascade, texels_per_metre) == 96);
+static_assert(offsetof(PenumbraCascade, texel_origin) == 104);
+static_assert(sizeof(PenumbraCascade) == 112);
 
-static_assert(offsetof(PenumbraShadowUniforms, cascades) == 64);
-static_assert(offsetof(PenumbraShadowUniforms, to_sun) == 64 + 96 * PENUMBRA_MAX_CASCADES);
+static_assert(offsetof(PenumbraShadowUniforms, light_view) == 64);
+static_assert(offsetof(PenumbraShadowUniforms, cascades) == 128);
+static_assert(offsetof(PenumbraShadowUniforms, to_sun) == 128 + 112 * PENUMBRA_MAX_CASCADES);
 static_assert(offsetof(PenumbraShadowUniforms, cascade_count) == offsetof(PenumbraShadowUniforms, to_sun) + 16);
 static_assert(offsetof(PenumbraShadowUniforms, camera_near) == offsetof(PenumbraShadowUniforms, cascade_count) + 16);
 static_assert(offsetof(PenumbraShadowUniforms, light_bleeding_reduction) ==

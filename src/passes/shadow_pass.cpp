@@ -50,52 +50,157 @@ gpu::UniquePipelineLayout create_caster_layout(const gpu::Device& device, VkDesc
 
 ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                        VkDescriptorSetLayout alpha_mask_set_layout, uint32_t resolution, uint32_t cascade_count,
-                       ShadowStrategy strategy)
+                       ShadowStrategy strategy, bool cached)
     : device_(device),
       resolution_(resolution),
       cascade_count_(cascade_count),
       strategy_(strategy),
-      shadow_map_(create_depth_map(device, resolution, cascade_count)),
+      shadow_map_(create_depth_map(device, resolution, cascade_count,
+                                   cached && strategy == ShadowStrategy::PerCascade
+                                       ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
+                                       : VkImageUsageFlags{0})),
       pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout)),
       pipelines_(device, depth_template(device, pipeline_layout_,
                                         strategy == ShadowStrategy::Multiview ? (1u << cascade_count) - 1u : 0u)) {
     if (strategy == ShadowStrategy::Multiview) require_multiview(device, cascade_count);
+    if (cached && strategy == ShadowStrategy::PerCascade) {
+        cache_ = std::make_unique<gpu::Image>(
+            create_depth_map(device, resolution, cascade_count, VK_IMAGE_USAGE_TRANSFER_DST_BIT));
+    }
 }
 
 void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                        const std::vector<DrawList>& lists, const BiasSettings& bias, const CasterFaceCulling& culling,
-                        gpu::GpuTimer* timer) const {
-    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
-                    gpu::ImageState::DepthAttachment);
+                        const std::vector<CascadeDraws>& draws, const BiasSettings& bias,
+                        const CasterFaceCulling& culling, gpu::GpuTimer* timer) {
+    const auto any = [&](auto&& wanted) { return std::any_of(draws.begin(), draws.end(), wanted); };
+    if (any([](const CascadeDraws& d) { return d.reuse; }) && !cache_) {
+        throw UsageError("ShadowPass::record: a cascade reuses a cache this pass does not keep");
+    }
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_CASTER_FRAME,
                                      1, &frame_set, 0, nullptr);
     if (strategy_ == ShadowStrategy::Multiview) {
-        // One pass renders every layer, so a draw goes in when any cascade needs it.
-        DrawList union_list;
-        for (const DrawList& list : lists) union_list.insert(union_list.end(), list.begin(), list.end());
-        std::sort(union_list.begin(), union_list.end());
-        union_list.erase(std::unique(union_list.begin(), union_list.end()), union_list.end());
-        gpu::TimedScope scope(timer, cmd, "shadow_multiview");
-        begin_rendering(cmd, shadow_map_.view, (1u << cascade_count_) - 1u, bias);
-        record_caster_draws(device_, cmd, pipelines_, scene, union_list, 0, culling);
-        device_->vkCmdEndRendering(cmd);
-    } else {
-        for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
-            gpu::TimedScope scope(timer, cmd, "shadow_cascade_" + std::to_string(cascade));
-            begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias);
-            record_caster_draws(device_, cmd, pipelines_, scene, lists[cascade], cascade, culling);
-            device_->vkCmdEndRendering(cmd);
-        }
+        gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
+                        gpu::ImageState::DepthAttachment);
+        record_multiview(cmd, scene, draws, bias, culling, timer);
+        gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
+        return;
     }
-    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
+    // Every layer is drawn from scratch unless one keeps what the last frame left in it.
+    const bool keep = any([](const CascadeDraws& d) { return d.reuse; });
+    gpu::ImageState map_state = keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads;
+    if (any([](const CascadeDraws& d) { return d.restore; })) {
+        gpu::TimedScope scope(timer, cmd, "shadow_cache_restore");
+        gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::TransferDst);
+        map_state = gpu::ImageState::TransferDst;
+        copy_cache(cmd, draws, true);
+    }
+    gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::DepthAttachment);
+    record_static(cmd, scene, draws, bias, culling, timer);
+    map_state = gpu::ImageState::DepthAttachment;
+    if (any([](const CascadeDraws& d) { return d.store; })) {
+        gpu::TimedScope scope(timer, cmd, "shadow_cache_store");
+        gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::TransferSrc);
+        map_state = gpu::ImageState::TransferSrc;
+        copy_cache(cmd, draws, false);
+    }
+    if (any([](const CascadeDraws& d) { return !d.dynamic.empty(); })) {
+        gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::DepthAttachment);
+        map_state = gpu::ImageState::DepthAttachment;
+        record_dynamic(cmd, scene, draws, bias, culling, timer);
+    }
+    gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::ShaderSampled);
 }
 
-void ShadowPass::begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask,
-                                 const BiasSettings& bias) const {
+void ShadowPass::record_multiview(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                                  const BiasSettings& bias, const CasterFaceCulling& culling,
+                                  gpu::GpuTimer* timer) const {
+    // One pass renders every layer, so a draw goes in when any cascade needs it.
+    DrawList union_list;
+    for (const CascadeDraws& cascade : draws)
+        union_list.insert(union_list.end(), cascade.casters.begin(), cascade.casters.end());
+    std::sort(union_list.begin(), union_list.end());
+    union_list.erase(std::unique(union_list.begin(), union_list.end()), union_list.end());
+    gpu::TimedScope scope(timer, cmd, "shadow_multiview");
+    begin_rendering(cmd, shadow_map_.view, (1u << cascade_count_) - 1u, bias, VK_ATTACHMENT_LOAD_OP_CLEAR);
+    record_caster_draws(device_, cmd, pipelines_, scene, union_list, 0, culling);
+    device_->vkCmdEndRendering(cmd);
+}
+
+// Step 2: per layer, everything from a cleared layer, or the stale rectangles of a kept one
+// (each cleared, then drawn under a scissor: the rasteriser writes only inside it).
+void ShadowPass::record_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                               const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
+    for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
+        const CascadeDraws& layer = draws[cascade];
+        if (layer.reuse && layer.redraw.empty()) continue;
+        gpu::TimedScope scope(timer, cmd, "shadow_cascade_" + std::to_string(cascade));
+        const VkImageView view = shadow_map_.layer_views[cascade];
+        if (!layer.reuse) {
+            begin_rendering(cmd, view, 0, bias, VK_ATTACHMENT_LOAD_OP_CLEAR);
+            record_caster_draws(device_, cmd, pipelines_, scene, layer.casters, cascade, culling);
+            device_->vkCmdEndRendering(cmd);
+            continue;
+        }
+        begin_rendering(cmd, view, 0, bias, VK_ATTACHMENT_LOAD_OP_LOAD);
+        for (const CascadeDraws::Redraw& redraw : layer.redraw) {
+            const VkRect2D rect{{redraw.rect.min.x, redraw.rect.min.y},
+                                {static_cast<uint32_t>(redraw.rect.max.x - redraw.rect.min.x),
+                                 static_cast<uint32_t>(redraw.rect.max.y - redraw.rect.min.y)}};
+            const VkClearAttachment clear{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {.depthStencil = {0.0f, 0}}};
+            const VkClearRect clear_rect{rect, 0, 1};
+            device_->vkCmdClearAttachments(cmd, 1, &clear, 1, &clear_rect);
+            device_->vkCmdSetScissor(cmd, 0, 1, &rect);
+            record_caster_draws(device_, cmd, pipelines_, scene, redraw.casters, cascade, culling);
+        }
+        device_->vkCmdEndRendering(cmd);
+    }
+}
+
+// Steps 1 and 3: the cache's layer into the map, moved by the cascade's shift (restore),
+// or the map's static casters into the cache (store).
+void ShadowPass::copy_cache(VkCommandBuffer cmd, const std::vector<CascadeDraws>& draws, bool restore) {
+    const gpu::ImageState wanted = restore ? gpu::ImageState::TransferSrc : gpu::ImageState::TransferDst;
+    gpu::transition(device_, cmd, *cache_, cache_state_, wanted);
+    cache_state_ = wanted;
+    const int32_t size = static_cast<int32_t>(resolution_);
+    for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
+        const CascadeDraws& layer = draws[cascade];
+        if (restore ? !layer.restore : !layer.store) continue;
+        const glm::ivec2 shift = restore ? layer.shift : glm::ivec2(0);
+        const glm::ivec2 extent = glm::ivec2(size) - glm::abs(shift);
+        if (extent.x <= 0 || extent.y <= 0) continue;
+        VkImageCopy region{};
+        region.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, cascade, 1};
+        region.dstSubresource = region.srcSubresource;
+        region.srcOffset = {std::max(-shift.x, 0), std::max(-shift.y, 0), 0};
+        region.dstOffset = {std::max(shift.x, 0), std::max(shift.y, 0), 0};
+        region.extent = {static_cast<uint32_t>(extent.x), static_cast<uint32_t>(extent.y), 1};
+        const VkImage source = restore ? cache_->get() : shadow_map_.get();
+        const VkImage destination = restore ? shadow_map_.get() : cache_->get();
+        device_->vkCmdCopyImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    }
+}
+
+// Step 4: the dynamic casters over the static ones, every frame.
+void ShadowPass::record_dynamic(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                                const BiasSettings& bias, const CasterFaceCulling& culling,
+                                gpu::GpuTimer* timer) const {
+    gpu::TimedScope scope(timer, cmd, "shadow_dynamic");
+    for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
+        if (draws[cascade].dynamic.empty()) continue;
+        begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias, VK_ATTACHMENT_LOAD_OP_LOAD);
+        record_caster_draws(device_, cmd, pipelines_, scene, draws[cascade].dynamic, cascade, culling);
+        device_->vkCmdEndRendering(cmd);
+    }
+}
+
+void ShadowPass::begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias,
+                                 VkAttachmentLoadOp load) const {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.loadOp = load;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane (no caster)
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};

@@ -5,12 +5,22 @@
 // cutoff. Per-cascade strategy: one rendering pass per layer with that cascade's culled
 // draws. Multiview strategy: one pass whose view mask covers every cascade; the vertex
 // shader adds gl_ViewIndex to the cascade.
+//
+// With a cache (per-cascade only, core/shadow_cache.hpp), a second layered image keeps
+// each cascade's static casters from frame to frame. A frame then (1) restores the cache
+// into the map where it moved or where dynamic casters were drawn over it, shifted by the
+// cascade's whole-texel move, (2) clears and draws the static casters only in the
+// rectangles that need it (or the whole layer without a usable cache), (3) stores the
+// result back into the cache, and (4) draws the dynamic casters over it.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "core/shadow_cache.hpp"
 #include "passes/casters.hpp"
+#include "penumbra/gpu/barriers.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
@@ -19,34 +29,67 @@
 
 namespace penumbra::passes {
 
+// What a frame draws into one cascade.
+struct CascadeDraws {
+    // false: clear the layer and draw `casters` (every caster, or every static one with a
+    // cache). true (cached): keep the static casters the map holds, moved by `shift`.
+    bool reuse = false;
+    glm::ivec2 shift{0};
+    bool restore = false;  // reuse: copy the cache into the layer first (moved, or dynamic casters over it)
+    DrawList casters;      // !reuse: the layer's casters
+    struct Redraw {
+        TexelRect rect;
+        DrawList casters;  // the static casters that can reach it
+    };
+    std::vector<Redraw> redraw;  // reuse: clear these rectangles and draw their casters
+    bool store = false;          // copy the layer's static casters into the cache
+    DrawList dynamic;            // drawn over the static ones (cached only)
+};
+
 class ShadowPass {
 public:
     // `frame_set_layout` is set 0 of the caster pipelines (the frame's uniforms), and
     // `alpha_mask_set_layout` set 1. Multiview throws DeviceError without the multiview
     // feature, InputError for more cascades than the device renders views in one pass.
+    // `cached`: also keep a cache of the static casters (ignored by the multiview strategy).
     ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                VkDescriptorSetLayout alpha_mask_set_layout, uint32_t resolution, uint32_t cascade_count,
-               ShadowStrategy strategy);
+               ShadowStrategy strategy, bool cached);
 
     const gpu::Image& shadow_map() const { return shadow_map_; }
     uint32_t cascade_count() const { return cascade_count_; }
+    bool cached() const { return cache_ != nullptr; }
+    uint64_t memory_bytes() const { return shadow_map_.memory_size + (cache_ ? cache_->memory_size : 0u); }
     void prepare_pipelines(const VertexFormats& formats) { pipelines_.prepare(formats); }
 
     // Records the depth rendering of every cascade and leaves the shadow map in
-    // ImageState::ShaderSampled. lists[c] are the draws for cascade c. With a timer, each
-    // cascade's rendering is a scope "shadow_cascade_<c>" (multiview: one, "shadow_multiview").
+    // ImageState::ShaderSampled. draws[c] is cascade c's; a reuse needs cached() and the
+    // previous frame's map and cache, recorded earlier on the same queue. With a timer,
+    // each cascade's rendering is a scope "shadow_cascade_<c>" (multiview: one,
+    // "shadow_multiview"), and the cache's copies and dynamic casters "shadow_cache_restore",
+    // "shadow_cache_store" and "shadow_dynamic".
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                const std::vector<DrawList>& lists, const BiasSettings& bias, const CasterFaceCulling& culling,
-                gpu::GpuTimer* timer = nullptr) const;
+                const std::vector<CascadeDraws>& draws, const BiasSettings& bias, const CasterFaceCulling& culling,
+                gpu::GpuTimer* timer = nullptr);
 
 private:
-    void begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias) const;
+    void begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias,
+                         VkAttachmentLoadOp load) const;
+    void record_multiview(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                          const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+    void record_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                       const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+    void copy_cache(VkCommandBuffer cmd, const std::vector<CascadeDraws>& draws, bool restore);
+    void record_dynamic(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                        const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
 
     const gpu::Device& device_;
     uint32_t resolution_;
     uint32_t cascade_count_;
     ShadowStrategy strategy_;
     gpu::Image shadow_map_;
+    std::unique_ptr<gpu::Image> cache_;  // the static casters of each cascade (cached only)
+    gpu::ImageState cache_state_ = gpu::ImageState::Undefined;
     gpu::UniquePipelineLayout pipeline_layout_;
     CasterPipelines pipelines_;
 };

@@ -54,6 +54,7 @@ public:
                                         (options.placement_casts.empty() || options.placement_casts.at(p)) &&
                                         !excluded_[i - model_first];
                 instance.receive_shadows = options.placement_receives.empty() || options.placement_receives.at(p);
+                instance.dynamic = !options.placement_dynamic.empty() && options.placement_dynamic.at(p);
             }
         }
         if (options.import_lights) append_gltf_lights(source_, placed_lights_, placements, scene_.lights);

@@ -112,6 +112,7 @@ private:
         Instance instance{static_cast<uint32_t>(scene_.meshes.size()), world};
         instance.cast_shadows = reader.boolean_or("cast_shadows", true);
         instance.receive_shadows = reader.boolean_or("receive_shadows", true);
+        instance.dynamic = reader.boolean_or("dynamic", false);
         const std::string path = reader.key_path("type");  // "objects[2].type"
         instance.name = path.substr(0, path.rfind('.')) + " (" + type + ")";
         reader.reject_unknown_keys();
@@ -163,6 +164,7 @@ private:
         GltfImportOptions options;
         const bool casts = reader.boolean_or("cast_shadows", true);
         const bool receives = reader.boolean_or("receive_shadows", true);
+        const bool dynamic = reader.boolean_or("dynamic", false);
         options.exclude_casters = reader.optional_string_list("exclude_casters").value_or(std::vector<std::string>{});
         std::vector<glm::mat4> placements;
         const bool has_instances = reader.contains("instances");
@@ -174,6 +176,7 @@ private:
             placements.push_back(object_transform * read_transform(instance_reader));
             options.placement_casts.push_back(instance_reader.boolean_or("cast_shadows", casts));
             options.placement_receives.push_back(instance_reader.boolean_or("receive_shadows", receives));
+            options.placement_dynamic.push_back(instance_reader.boolean_or("dynamic", dynamic));
             instance_reader.reject_unknown_keys();
         }
         if (has_instances && placements.empty()) {
@@ -183,6 +186,7 @@ private:
             placements.push_back(object_transform);
             options.placement_casts.push_back(casts);
             options.placement_receives.push_back(receives);
+            options.placement_dynamic.push_back(dynamic);
         }
         options.import_lights = reader.boolean_or("import_lights", false);
         reader.reject_unknown_keys();

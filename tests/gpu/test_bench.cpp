@@ -79,6 +79,28 @@ TEST_F(BenchCli, ReportsEveryPassWithAPositiveTime) {
     EXPECT_TRUE(report["ceiling"].is_null());
 }
 
+// --shadow-cache: a still camera reuses every cascade after the first frame and draws
+// nothing more (the forest is static); without it every texel is drawn every frame.
+TEST_F(BenchCli, ShadowCacheReportsTheTexelsItDrawsAndCopies) {
+    const json cached = run_json(std::string(kForest) + kSmall + " --shadow-cache --camera-path still");
+    ASSERT_FALSE(cached.empty());
+    EXPECT_EQ(cached["settings"]["shadow_cache"], true);
+    EXPECT_EQ(cached["run"]["camera_path"], "still");
+    const json uncached = run_json(std::string(kForest) + kSmall + " --camera-path still");
+    ASSERT_FALSE(uncached.empty());
+    ASSERT_EQ(cached["cascades"].size(), uncached["cascades"].size());
+    for (size_t c = 0; c < cached["cascades"].size(); ++c) {
+        const json& with = cached["cascades"][c];
+        const json& without = uncached["cascades"][c];
+        const uint64_t layer = uint64_t{512} * 512;
+        EXPECT_EQ(without["texels_rendered"]["min"].get<uint64_t>(), layer) << "cascade " << c;
+        EXPECT_EQ(without["cache_reused_frames"].get<uint64_t>(), 0u);
+        EXPECT_EQ(with["texels_rendered"]["max"].get<uint64_t>(), 0u) << "the warm-up filled the cache";
+        EXPECT_EQ(with["cache_reused_frames"].get<uint64_t>(), 3u) << "every measured frame";
+    }
+    expect_positive_timings(cached["gpu_ms"], {"lighting", "frame"});
+}
+
 TEST_F(BenchCli, PrintsATableOfMedianP95AndMin) {
     const RunResult result = run(std::string("bench ") + kForest + kSmall + " --camera-path flythrough");
     ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -203,12 +225,12 @@ TEST(BenchPaths, OrbitCirclesTheTargetAtTheCameraDistance) {
     start.target = {0.0f, 3.0f, 0.0f};
     using penumbra::bench::CameraPath;
     for (const float t : {0.0f, 0.25f, 0.5f, 0.9f}) {
-        const penumbra::Camera camera = penumbra::bench::camera_on_path(CameraPath::Orbit, start, t);
+        const penumbra::Camera camera = penumbra::bench::camera_on_path(CameraPath::Orbit, start, t, 100);
         EXPECT_NEAR(glm::length(camera.eye - camera.target), glm::length(start.eye - start.target), 1e-3f);
         EXPECT_EQ(camera.target, start.target);
         EXPECT_NEAR(camera.eye.y, start.eye.y, 1e-4f);
     }
-    EXPECT_NEAR(penumbra::bench::camera_on_path(CameraPath::Orbit, start, 0.5f).eye.z, -90.0f, 1e-3f);
+    EXPECT_NEAR(penumbra::bench::camera_on_path(CameraPath::Orbit, start, 0.5f, 100).eye.z, -90.0f, 1e-3f);
 }
 
 TEST(BenchPaths, FlythroughKeepsTheViewDirectionAndMovesAhead) {
@@ -216,11 +238,26 @@ TEST(BenchPaths, FlythroughKeepsTheViewDirectionAndMovesAhead) {
     start.eye = {0.0f, 20.0f, 90.0f};
     start.target = {0.0f, 3.0f, 0.0f};
     using penumbra::bench::CameraPath;
-    const penumbra::Camera half = penumbra::bench::camera_on_path(CameraPath::Flythrough, start, 0.5f);
+    const penumbra::Camera half = penumbra::bench::camera_on_path(CameraPath::Flythrough, start, 0.5f, 100);
     EXPECT_NEAR(half.eye.z, 0.0f, 1e-3f);  // over the target halfway
     const glm::vec3 view = half.target - half.eye;
     const glm::vec3 start_view = start.target - start.eye;
     EXPECT_NEAR(glm::length(view - start_view), 0.0f, 1e-3f);
+}
+
+TEST(BenchPaths, WalkGoesAheadAtWalkingSpeedAndStillStaysPut) {
+    penumbra::Camera start;
+    start.eye = {0.0f, 1.7f, 10.0f};
+    start.target = {0.0f, 1.0f, 0.0f};
+    using penumbra::bench::CameraPath;
+    // Frame 30 of 60 at 1.4 m/s and 60 frames a second: 0.7 m ahead, looking the same way.
+    const penumbra::Camera walked = penumbra::bench::camera_on_path(CameraPath::Walk, start, 0.5f, 60);
+    EXPECT_NEAR(walked.eye.z, 10.0f - 0.7f, 1e-4f);
+    EXPECT_NEAR(walked.eye.y, 1.7f, 1e-6f);
+    EXPECT_NEAR(glm::length((walked.target - walked.eye) - (start.target - start.eye)), 0.0f, 1e-5f);
+    const penumbra::Camera still = penumbra::bench::camera_on_path(CameraPath::Still, start, 0.7f, 60);
+    EXPECT_EQ(still.eye, start.eye);
+    EXPECT_EQ(still.target, start.target);
 }
 
 TEST(BenchPaths, RotatingSunKeepsItsElevation) {

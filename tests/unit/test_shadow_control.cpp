@@ -67,6 +67,24 @@ TEST(ShadowControl, GltfObjectAndInstanceFlags) {
     EXPECT_FALSE(scene.instances[3].receive_shadows);
 }
 
+// `dynamic` (cached cascades draw such instances every frame): per object, per glTF
+// object and per placement, false unless given.
+TEST(ShadowControl, DynamicFlagsPerObjectAndPlacement) {
+    const Scene objects =
+        parse_scene_text("[[objects]]\ntype = \"box\"\ndynamic = true\n\n[[objects]]\ntype = \"plane\"\n");
+    ASSERT_EQ(objects.instances.size(), 2u);
+    EXPECT_TRUE(objects.instances[0].dynamic);
+    EXPECT_FALSE(objects.instances[1].dynamic);
+    const Scene model =
+        parse_scene_text(named_model("dynamic = true\ninstances = [{ translation = [1.0, 0.0, 0.0] },\n"
+                                     "  { translation = [2.0, 0.0, 0.0], dynamic = false }]\n"));
+    ASSERT_EQ(model.instances.size(), 6u);
+    std::vector<bool> dynamic;
+    for (const Instance& instance : model.instances) dynamic.push_back(instance.dynamic);
+    EXPECT_THAT(dynamic, ElementsAre(true, true, true, false, false, false));
+    EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\ndynamic = 1\n"), HasSubstr("objects[0].dynamic"));
+}
+
 // A closed box around the camera and everything else is found and named; the ground plane
 // alone, or the box once it casts no shadow, is not.
 TEST(ShadowControl, EnclosingCastersAreFound) {

@@ -129,19 +129,23 @@ void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_
 // clamped: the whole layer is this cascade's.
 PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord) {
     const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
+    // The cascade's depth range is the scene's along the light: a receiver beyond it (a
+    // caller's surface that is no instance) compares as lying on the far side (lit unless
+    // a caster covers it) or on the near side (lit).
+    const float depth = clamp(coord.depth, 0.0, 1.0);
     PenumbraShadowView view;
     view.uv = coord.uv;
     view.layer = float(cascade);
-    view.depth = coord.depth;
+    view.depth = depth;
     view.depth_gradient = coord.depth_gradient;
     view.texel_uv = penumbra_shadow.texel_uv;
     view.uv_bounds = kPenumbraUnboundedUv;
-    view.pcss_search_radius = (1.0 - coord.depth) * light_radius_per_depth;
+    view.pcss_search_radius = (1.0 - depth) * light_radius_per_depth;
     view.pcss_penumbra_scale = light_radius_per_depth;
     view.pcss_perspective = false;
-    view.pcss_receiver_distance = 1.0 - coord.depth;
+    view.pcss_receiver_distance = 1.0 - depth;
     view.pcss_depth_to_distance = vec4(1.0, -1.0, 1.0, 0.0);  // 1 - depth
-    view.moments_distance = 1.0 - coord.depth;
+    view.moments_distance = 1.0 - depth;
     return view;
 }
 

@@ -112,6 +112,7 @@ namespace penumbra::gpu {
     X(vkCmdCopyImage)                   \
     X(vkCmdClearDepthStencilImage)      \
     X(vkCmdClearColorImage)             \
+    X(vkCmdClearAttachments)            \
     X(vkCmdResetQueryPool)              \
     X(vkCmdWriteTimestamp2)
 

@@ -45,6 +45,7 @@ struct GltfImportOptions {
     std::vector<std::string> exclude_casters;
     std::vector<bool> placement_casts;
     std::vector<bool> placement_receives;
+    std::vector<bool> placement_dynamic;  // likewise each placement's Instance::dynamic
 };
 void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
                  const GltfImportOptions& options = {});

@@ -143,6 +143,7 @@ struct Instance {
     glm::mat4 world{1.0f};
     bool cast_shadows = true;     // drawn into shadow maps (and traced by compare's reference)
     bool receive_shadows = true;  // false: lit as if nothing shadowed it
+    bool dynamic = false;         // drawn every frame over cached static casters (--shadow-cache)
     std::string name;             // where it came from, for messages: a glTF node's name, an object's type
 };
 

@@ -1,0 +1,95 @@
+#include "core/shadow_cache.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+// Map texel coordinates of clip-space x, y in [-1, 1] (the viewport covers the map).
+glm::vec2 clip_to_texels(float x, float y, uint32_t resolution) {
+    const float size = static_cast<float>(resolution);
+    return {(x * 0.5f + 0.5f) * size, (y * 0.5f + 0.5f) * size};
+}
+
+bool same_mapping_but_translation(const Cascade& a, const Cascade& b) {
+    return a.view == b.view && a.texels_per_metre == b.texels_per_metre && a.depth_scale == b.depth_scale &&
+           a.depth_offset == b.depth_offset;
+}
+
+}  // namespace
+
+TexelRect intersect(const TexelRect& a, const TexelRect& b) {
+    TexelRect result{glm::max(a.min, b.min), glm::min(a.max, b.max)};
+    return result.empty() ? TexelRect{} : result;
+}
+
+TexelRect whole_map(uint32_t resolution) { return {glm::ivec2(0), glm::ivec2(static_cast<int32_t>(resolution))}; }
+
+std::optional<glm::ivec2> whole_texel_shift(const Cascade& cached, const Cascade& current) {
+    if (!same_mapping_but_translation(cached, current)) return std::nullopt;
+    // A point at grid texel g sits at g - origin in each map.
+    return glm::ivec2(cached.texel_origin - current.texel_origin);
+}
+
+std::vector<TexelRect> exposed_by_shift(glm::ivec2 shift, uint32_t resolution) {
+    const int32_t size = static_cast<int32_t>(resolution);
+    if (shift == glm::ivec2(0)) return {};
+    if (std::abs(shift.x) >= size || std::abs(shift.y) >= size) return {whole_map(resolution)};
+    std::vector<TexelRect> rects;
+    // The columns the shifted map leaves uncovered, full height ...
+    if (shift.x > 0) rects.push_back({{0, 0}, {shift.x, size}});
+    if (shift.x < 0) rects.push_back({{size + shift.x, 0}, {size, size}});
+    // ... and the rows, between those columns.
+    const int32_t x0 = std::max(shift.x, 0);
+    const int32_t x1 = size + std::min(shift.x, 0);
+    if (shift.y > 0) rects.push_back({{x0, 0}, {x1, shift.y}});
+    if (shift.y < 0) rects.push_back({{x0, size + shift.y}, {x1, size}});
+    return rects;
+}
+
+TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32_t resolution) {
+    if (world_box.empty()) return {};
+    // Arvo's method bounds the box in clip space (the projection is affine); only the far
+    // side culls, as in caster_may_shadow_cascade (nearer boxes are flattened onto the
+    // near plane by depth clamp).
+    const Aabb clip_box = transform_aabb(world_box, cascade.view_projection);
+    if (clip_box.max.z < 0.0f) return {};
+    const glm::vec2 low = clip_to_texels(clip_box.min.x, clip_box.min.y, resolution);
+    const glm::vec2 high = clip_to_texels(clip_box.max.x, clip_box.max.y, resolution);
+    // One texel of margin: rasterisation covers texels whose centres the triangles reach.
+    const glm::vec2 limit(static_cast<float>(resolution) + 2.0f);
+    const TexelRect rect{glm::ivec2(glm::clamp(glm::floor(low) - 1.0f, glm::vec2(-2.0f), limit)),
+                         glm::ivec2(glm::clamp(glm::ceil(high) + 1.0f, glm::vec2(-2.0f), limit))};
+    return intersect(rect, whole_map(resolution));
+}
+
+int64_t CascadeUpdate::redraw_texels() const {
+    int64_t texels = 0;
+    for (const TexelRect& rect : redraw) texels += rect.area();
+    return texels;
+}
+
+CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Cascade& current, uint32_t resolution,
+                                  std::span<const Aabb> changed_static_bounds) {
+    CascadeUpdate update;
+    const std::optional<glm::ivec2> shift = cached ? whole_texel_shift(*cached, current) : std::nullopt;
+    if (!shift) return update;
+    update.reuse = true;
+    update.shift = *shift;
+    update.redraw = exposed_by_shift(*shift, resolution);
+    for (const Aabb& bounds : changed_static_bounds) {
+        const TexelRect footprint = caster_footprint(current, bounds, resolution);
+        if (!footprint.empty()) update.redraw.push_back(footprint);
+    }
+    const double share =
+        static_cast<double>(update.redraw_texels()) / static_cast<double>(whole_map(resolution).area());
+    if (update.redraw.size() > kMaxRedrawRects || share > kMaxRedrawShare) return CascadeUpdate{};
+    return update;
+}
+
+bool caster_may_shadow_rect(const Cascade& cascade, const TexelRect& rect, uint32_t resolution, const Aabb& world_box) {
+    return !intersect(caster_footprint(cascade, world_box, resolution), rect).empty();
+}
+
+}  // namespace penumbra

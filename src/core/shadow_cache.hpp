@@ -1,0 +1,78 @@
+#pragma once
+// Cached cascades (render only what changed): which texels of a cascade's depth map the
+// previous frame's static casters still give, and which must be rendered again. Engines
+// that cache shadow maps (CryEngine's cached far cascades, Unity HDRP's mixed cached maps,
+// UE5's virtual shadow map pages) keep the depths of casters that did not move; with the
+// stable fit a cascade only ever moves by whole texels in its own plane, and with the
+// scene's depth range along the light (compute_cascades) its depth mapping stays put, so
+// the kept depths are moved by the same whole texels and only the strips the move exposes
+// (and the footprints of static casters that changed) are drawn again.
+// Pure functions; no Vulkan.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/cascades.hpp"
+
+namespace penumbra {
+
+// Texels [min, max) of one map layer (x right, y down as the rasteriser counts them).
+struct TexelRect {
+    glm::ivec2 min{0};
+    glm::ivec2 max{0};
+
+    bool empty() const { return max.x <= min.x || max.y <= min.y; }
+    int64_t area() const { return empty() ? 0 : int64_t{max.x - min.x} * (max.y - min.y); }
+    friend bool operator==(const TexelRect&, const TexelRect&) = default;
+};
+
+TexelRect intersect(const TexelRect& a, const TexelRect& b);
+
+// The whole map: [0, resolution)^2.
+TexelRect whole_map(uint32_t resolution);
+
+// How `current` lies against `cached` when it is the same cascade moved in its plane: the
+// same light view, texel size and depth mapping, so that only the window's origin in the
+// world's texel grid differs (Cascade::texel_origin, whole numbers). The shift is in
+// texels: what the cached map holds at texel p belongs at texel p + shift of the current
+// one. nullopt otherwise (the light, the cascade's size or the scene's depth range changed).
+std::optional<glm::ivec2> whole_texel_shift(const Cascade& cached, const Cascade& current);
+
+// The texels of the current map that a cached map moved by `shift` does not cover: no
+// rectangle for a zero shift, the whole map when the shift is a map or more, else a
+// column strip and a row strip (at most two rectangles, disjoint).
+std::vector<TexelRect> exposed_by_shift(glm::ivec2 shift, uint32_t resolution);
+
+// The texels whose depth a caster inside `world_box` can set in the cascade: the box's
+// footprint (its projection onto the map, an orthographic light's shadow-map texels),
+// rounded out to whole texels plus one texel of margin for rasterisation at the edges,
+// clipped to the map. Empty for an empty box, one outside the map or beyond its far side.
+TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32_t resolution);
+
+// What to draw into a cascade this frame when a cache of its static casters exists.
+struct CascadeUpdate {
+    bool reuse = false;             // false: the cache is unusable, render every static caster
+    glm::ivec2 shift{0};            // the cached depths move by this many texels
+    std::vector<TexelRect> redraw;  // clear and render the static casters here (disjoint is not required)
+    int64_t redraw_texels() const;
+};
+
+// Above this share of the map, redrawing rectangles costs more than it saves: render all.
+inline constexpr double kMaxRedrawShare = 0.5;
+// More rectangles than this (many changed casters) are rendered as the whole map.
+inline constexpr size_t kMaxRedrawRects = 16;
+
+// Plans a cascade's update from its cache: `cached` is the cascade the cache was rendered
+// for (nullopt: no cache), `changed_static_bounds` the world bounds, old and new, of every
+// static caster added, moved, removed or changed since then. Reuse when the cascade moved
+// by whole texels; redraw the exposed strips and the changed casters' footprints in the
+// current cascade. Falls back to rendering everything when that is most of the map.
+CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Cascade& current, uint32_t resolution,
+                                  std::span<const Aabb> changed_static_bounds);
+
+// Caster culling for a redraw: true when a caster inside `world_box` can set a depth
+// inside `rect` of the cascade (its footprint meets the rectangle).
+bool caster_may_shadow_rect(const Cascade& cascade, const TexelRect& rect, uint32_t resolution, const Aabb& world_box);
+
+}  // namespace penumbra
