@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Side-by-side bench runs of several penumbra binaries (or settings) on one GPU, in one
+call of the device tool, so that every comparison is measured on the same machine in the
+same session (docs/PERFORMANCE.md). Each run is `penumbra bench ... --json`; the report is
+a markdown table of the per-frame GPU medians that the comparisons read (shadow_sun:
+the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
+counts, plus every run's JSON.
+
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|filters|all --out DIR
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+FOREST = "builtin:forest?count=1000"  # 1 M triangles, the matrix's baseline scene
+BASE = ["--width", "1920", "--height", "1080", "--cascades", "4", "--shadow-resolution", "2048"]
+UHD = ["--width", "3840", "--height", "2160", "--cascades", "4", "--shadow-resolution", "2048"]
+
+
+def cache_runs(binary):
+    """Cached cascades off and on along each camera path (issue 15's numbers)."""
+    runs = []
+    for path, frames in (("orbit", 60), ("walk", 120), ("flythrough", 120), ("still", 60)):
+        for cache in ("off", "on"):
+            extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10"]
+            if cache == "on":
+                extra.append("--shadow-cache")
+            runs.append((f"cache {cache}, {path} ({frames} frames)", binary, FOREST, BASE + extra))
+    return runs
+
+
+def filter_runs(binaries):
+    """The filters at 4K, forward and deferred, for every binary given (same-call A/B)."""
+    runs = []
+    configs = [("pcf R=2", ["--filter", "pcf", "--pcf-radius", "2"]),
+               ("pcss high", ["--filter", "pcss", "--pcss-quality", "high"]),
+               ("hard", ["--filter", "hard"])]
+    for label, args in configs:
+        for resolve in ("forward", "deferred"):
+            for binary in binaries:
+                runs.append((f"{label}, {resolve}, 4K [{binary}]", binary, FOREST,
+                             UHD + args + ["--resolve", resolve, "--frames", "60", "--warmup", "10"]))
+    lights = f"{FOREST}&spots=8&points=8"
+    for binary in binaries:
+        runs.append((f"pcss high, deferred, 8 spots + 8 points, 1080p [{binary}]", binary, lights,
+                     BASE + ["--filter", "pcss", "--pcss-quality", "high", "--resolve", "deferred",
+                             "--frames", "60", "--warmup", "10"]))
+    return runs
+
+
+def median(report, name):
+    entry = report["gpu_ms"].get(name)
+    return entry["median"] if entry else None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
+    parser.add_argument("--plan", choices=["cache", "filters", "all"], default="all")
+    parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args()
+    binaries = dict(item.split("=", 1) for item in args.binary)
+    names = list(binaries)
+    runs = []
+    if args.plan in ("cache", "all"):
+        runs += cache_runs(args.cache_binary or names[0])
+    if args.plan in ("filters", "all"):
+        runs += filter_runs(names)
+    os.makedirs(args.out, exist_ok=True)
+    rows = ["| run | shadow_sun ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame |",
+            "|---|---|---|---|---|---|---|"]
+    results = []
+    for index, (label, binary, scene, extra) in enumerate(runs):
+        json_path = os.path.join(args.out, f"run{index:02d}.json")
+        command = [binaries[binary], "bench", scene, "--json", json_path] + extra
+        print(f"[{index + 1}/{len(runs)}] {label}: {' '.join(command[1:])}", flush=True)
+        done = subprocess.run(command, capture_output=True, text=True)
+        if done.returncode != 0:
+            print(done.stderr, file=sys.stderr)
+            rows.append(f"| {label} | failed ({done.returncode}) | | | | | |")
+            continue
+        with open(json_path) as file:
+            report = json.load(file)
+        drawn = sum(c["texels_rendered"]["mean"] for c in report["cascades"]) if "texels_rendered" in report["cascades"][0] else None
+        copied = sum(c["texels_copied"]["mean"] for c in report["cascades"]) if "texels_copied" in report["cascades"][0] else None
+        cells = [median(report, n) for n in ("shadow_sun", "lighting", "visibility", "frame")]
+        fmt = lambda v: "" if v is None else (f"{v:.3f}" if isinstance(v, float) else str(v))
+        rows.append(f"| {label} | " + " | ".join(fmt(c) for c in cells) +
+                    f" | {fmt(None if drawn is None else round(drawn))} | {fmt(None if copied is None else round(copied))} |")
+        results.append({"label": label, "binary": binary, "scene": scene, "args": extra, "report": report})
+    device = results[0]["report"]["device"]["name"] if results else "?"
+    text = f"Device: {device}\n\n" + "\n".join(rows) + "\n"
+    with open(os.path.join(args.out, "ab.md"), "w") as file:
+        file.write(text)
+    with open(os.path.join(args.out, "ab.json"), "w") as file:
+        json.dump(results, file, indent=1)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
