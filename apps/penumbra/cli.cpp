@@ -19,7 +19,7 @@ namespace {
 
 // Raw option values as typed; converted after parsing so errors can name the flag.
 struct RawRenderOptions {
-    std::string eye, target, up, light_dir, aov, debug, resolve;
+    std::string eye, target, up, light_dir, aov, debug;
     std::string config;
     RawSettingOptions settings;  // the ShadowSystem's settings, one flag each
 };
@@ -54,14 +54,6 @@ Enum parse_choice(const std::string& text, const std::string& flag, const std::m
 }
 
 void add_settings_options(CLI::App& render, SettingsOverrides& o, RawRenderOptions& raw) {
-    render.add_option("--width", o.width, "Image width in pixels (1..16384, default 1280)")
-        ->check(CLI::Range(1u, kMaxImageSize));
-    render.add_option("--height", o.height, "Image height in pixels (1..16384, default 720)")
-        ->check(CLI::Range(1u, kMaxImageSize));
-    render.add_option("--resolve", raw.resolve,
-                      "Where shadows are evaluated: " + choice_list(kShadowResolveChoices, RenderSettings{}.resolve) +
-                          " (forward: in the lighting pass per fragment; deferred: a depth and normal pre-pass, "
-                          "then once per pixel in a compute pass)");
     render.add_option("--eye", raw.eye, "Camera position x,y,z (overrides the scene)");
     render.add_option("--target", raw.target, "Camera target x,y,z");
     render.add_option("--up", raw.up, "Camera up vector x,y,z");
@@ -92,7 +84,6 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
         throw InputError("--splits: manual split distances need --split-scheme manual, not \"" +
                          std::get<std::string>(*scheme) + "\"");
     }
-    if (!raw.resolve.empty()) o.resolve = parse_choice(raw.resolve, "--resolve", shadow_resolve_names());
     if (raw.aov.starts_with("shadow:")) {
         job.aov = Aov::Shadow;
         job.aov_light = parse_light_index(raw.aov.substr(7), "--aov");

@@ -6,6 +6,7 @@
 
 #include "number_checks.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::cli {
@@ -26,12 +27,13 @@ std::string dashed(const char* name) {
     return text;
 }
 
+// Defaults from a RenderSettings: the output settings' accessors read one.
 bool on_by_default(const SettingDeclaration& setting) {
-    return setting.type == SettingType::Boolean && std::get<bool>(setting.get(Settings{}));
+    return setting.type == SettingType::Boolean && std::get<bool>(setting.get(RenderSettings{}));
 }
 
 std::string help_text(const SettingDeclaration& setting) {
-    const SettingValue default_value = setting.get(Settings{});
+    const SettingValue default_value = setting.get(RenderSettings{});
     std::string help = setting.help;
     switch (setting.type) {
         case SettingType::Boolean:
@@ -103,6 +105,13 @@ SettingValue parse_value(const SettingDeclaration& setting, const std::string& t
     return text;
 }
 
+// The tools' settings, then the ShadowSystem's.
+template <typename Visit>
+void for_each_setting(Visit visit) {
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations) visit(setting);
+    for (const SettingDeclaration& setting : kSettingDeclarations) visit(setting);
+}
+
 }  // namespace
 
 std::string setting_flag(const SettingDeclaration& setting) {
@@ -113,34 +122,34 @@ std::string setting_flag(const SettingDeclaration& setting) {
 }
 
 void add_setting_options(CLI::App& command, RawSettingOptions& raw) {
-    for (const SettingDeclaration& setting : kSettingDeclarations) {
+    for_each_setting([&](const SettingDeclaration& setting) {
         if (setting.type == SettingType::Boolean) {
             command.add_flag(setting_flag(setting), raw.switches[setting.name], help_text(setting));
         } else {
             command.add_option(setting_flag(setting), raw.values[setting.name], help_text(setting))
                 ->type_name(type_name(setting.type));
         }
-    }
+    });
 }
 
 void convert_setting_options(const RawSettingOptions& raw, SettingAssignments& settings) {
-    for (const SettingDeclaration& setting : kSettingDeclarations) {
+    for_each_setting([&](const SettingDeclaration& setting) {
         const std::string flag = setting_flag(setting);
         SettingValue value;
         if (setting.type == SettingType::Boolean) {
             const auto given = raw.switches.find(setting.name);
-            if (given == raw.switches.end() || !given->second) continue;
+            if (given == raw.switches.end() || !given->second) return;
             value = !on_by_default(setting);
         } else {
             const auto given = raw.values.find(setting.name);
-            if (given == raw.values.end() || given->second.empty()) continue;
+            if (given == raw.values.end() || given->second.empty()) return;
             value = parse_value(setting, given->second, flag);
         }
         if (const std::string problem = setting_value_problem(setting, value); !problem.empty()) {
             throw InputError(flag + ": " + problem);
         }
         settings.assign(setting, std::move(value));
-    }
+    });
 }
 
 std::vector<float> parse_float_list(const std::string& text, const std::string& flag) {

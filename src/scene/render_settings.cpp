@@ -3,16 +3,13 @@
 #include "penumbra/errors.hpp"
 
 namespace penumbra {
-namespace {
 
-void check_image_size(uint32_t value, const char* name, const std::string& origin) {
-    if (value == 0 || value > kMaxImageSize) {
-        throw InputError(origin + ": " + name + ": " + std::to_string(value) + " is out of range (1.." +
-                         std::to_string(kMaxImageSize) + ")");
+const SettingDeclaration* find_output_setting(std::string_view name) {
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations) {
+        if (name == setting.name) return &setting;
     }
+    return nullptr;
 }
-
-}  // namespace
 
 const std::map<std::string, ShadowResolve>& shadow_resolve_names() { return choice_map(kShadowResolveChoices); }
 
@@ -26,8 +23,10 @@ ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool
 }
 
 void validate_render_settings(const RenderSettings& settings, const std::string& origin) {
-    check_image_size(settings.width, "width", origin);
-    check_image_size(settings.height, "height", origin);
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations) {
+        const std::string problem = setting_value_problem(setting, setting.get(settings));
+        if (!problem.empty()) throw InputError(origin + ": " + setting.name + ": " + problem);
+    }
     validate_settings(settings, origin);
 }
 

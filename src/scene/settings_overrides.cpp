@@ -45,9 +45,6 @@ void SettingAssignments::apply_to(Settings& settings) const {
 }
 
 void apply_overrides(const SettingsOverrides& overrides, RenderSettings& settings) {
-    assign_if(overrides.width, settings.width);
-    assign_if(overrides.resolve, settings.resolve);
-    assign_if(overrides.height, settings.height);
     overrides.settings.apply_to(settings);
 }
 

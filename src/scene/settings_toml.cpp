@@ -13,12 +13,6 @@ namespace {
 
 // Every reader below reads all the keys its table may hold and then rejects the others, so
 // that the error for a typo lists the keys the table understands.
-void read_output_table(TomlTableReader& reader, SettingsOverrides& o) {
-    o.width = reader.optional_integer_as<uint32_t>("width", 1, kMaxImageSize);
-    o.height = reader.optional_integer_as<uint32_t>("height", 1, kMaxImageSize);
-    o.resolve = reader.optional_choice<ShadowResolve>("resolve", shadow_resolve_names());
-    reader.reject_unknown_keys();
-}
 
 // A setting's value as its declaration's type reads from TOML, checked against the
 // declaration (so a message names the table's key and the allowed values).
@@ -48,6 +42,15 @@ std::optional<SettingValue> read_setting(TomlTableReader& reader, const SettingD
         }
     }
     return value;
+}
+
+// [output]: the tools' settings (kOutputSettingDeclarations).
+void read_output_table(TomlTableReader& reader, SettingsOverrides& o) {
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations) {
+        if (std::optional<SettingValue> value = read_setting(reader, setting))
+            o.settings.assign(setting, std::move(*value));
+    }
+    reader.reject_unknown_keys();
 }
 
 // [shadow]: every setting of kSettingDeclarations, by its config key.

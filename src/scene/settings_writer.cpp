@@ -30,12 +30,6 @@ std::string vec3(const glm::vec3& value) {
 
 std::string boolean(bool value) { return value ? "true" : "false"; }
 
-// A choice as TOML writes it: its name, quoted.
-template <typename Enum, std::size_t N>
-std::string quoted(const ChoiceName<Enum> (&choices)[N], Enum value) {
-    return std::string("\"") + choice_name(choices, value) + "\"";
-}
-
 // One [shadow] key as TOML writes it; manual splits only when there are any. (A stream:
 // GCC 12 at -O3 warns falsely, -Wrestrict, about "literal" + std::string chains.)
 void write_setting(std::ostream& out, const SettingDeclaration& setting, const SettingValue& value) {
@@ -59,8 +53,10 @@ void write_setting(std::ostream& out, const SettingDeclaration& setting, const S
 std::string format_settings_file(const RenderSettings& settings, const Camera& camera, const Light* sun) {
     std::ostringstream out;
     out << "# Written by penumbra view; `penumbra render SCENE --config THIS_FILE` reproduces the view.\n";
-    out << "[output]\nwidth = " << settings.width << "\nheight = " << settings.height
-        << "\nresolve = " << quoted(kShadowResolveChoices, settings.resolve) << "\n\n[shadow]\n";
+    out << "[output]\n";
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations)
+        write_setting(out, setting, setting.get(settings));
+    out << "\n[shadow]\n";
     for (const SettingDeclaration& setting : kSettingDeclarations) write_setting(out, setting, setting.get(settings));
     out << "\n[camera]\neye = " << vec3(camera.eye) << "\ntarget = " << vec3(camera.target)
         << "\nup = " << vec3(camera.up) << "\nfov = " << real(camera.fov_y_degrees)

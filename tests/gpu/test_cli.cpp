@@ -239,9 +239,9 @@ TEST_F(Cli, EverySettingsDocRowAgreesWithItsDeclaration) {
     const std::string docs = read("cli.md") + read("filters.md");
     const RunResult help = run("render --help");
     ASSERT_EQ(help.exit_code, 0) << help.err;
-    // The table row whose first cell is the flag.
+    // The table row whose first cell names the flag.
     const auto row_of = [&](const std::string& flag) {
-        const std::regex row("\\n(\\| `" + flag + "[` \\\\][^\\n]*)");
+        const std::regex row("\\n(\\| [^|\\n]*`" + flag + "[` \\\\][^\\n]*)");
         std::smatch match;
         return std::regex_search(docs, match, row) ? match[1].str() : std::string();
     };
@@ -257,14 +257,18 @@ TEST_F(Cli, EverySettingsDocRowAgreesWithItsDeclaration) {
         return std::holds_alternative<int64_t>(value) ? static_cast<double>(std::get<int64_t>(value))
                                                       : std::get<double>(value);
     };
-    for (const SettingDeclaration& setting : kSettingDeclarations) {
+    std::vector<const SettingDeclaration*> settings;
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations) settings.push_back(&setting);
+    for (const SettingDeclaration& setting : kSettingDeclarations) settings.push_back(&setting);
+    for (const SettingDeclaration* declared : settings) {
+        const SettingDeclaration& setting = *declared;
         const size_t help_at = help.out.find(setting.help);
         ASSERT_NE(help_at, std::string::npos) << setting.name << "'s help line is not in --help";
         const size_t flag_at = help.out.rfind("  --", help_at);
         const std::string flag = help.out.substr(flag_at + 2, help.out.find_first_of(" \n", flag_at + 2) - flag_at - 2);
         const std::string row = row_of(flag);
         ASSERT_FALSE(row.empty()) << flag << " has no table row in docs/cli.md or docs/filters.md";
-        const SettingValue default_value = setting.get(Settings{});
+        const SettingValue default_value = setting.get(RenderSettings{});
         const std::string key = setting.key_in_config();
         EXPECT_TRUE(docs.find("\n" + key + " = ") != std::string::npos ||
                     docs.find("`" + key + "`") != std::string::npos)

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/render_settings.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra {
@@ -52,9 +53,9 @@ TEST(SettingDeclarations, NamesAndConfigKeysAreUniqueAndFound) {
     EXPECT_EQ(find_setting("no_such_setting"), nullptr);
 }
 
-// A valid value other than the default.
-SettingValue other_value(const SettingDeclaration& setting) {
-    const SettingValue current = setting.get(Settings{});
+// A valid value other than the one in `defaults` (a RenderSettings for output settings).
+SettingValue other_value(const SettingDeclaration& setting, const Settings& defaults) {
+    const SettingValue current = setting.get(defaults);
     switch (setting.type) {
         case SettingType::Boolean:
             return !std::get<bool>(current);
@@ -86,7 +87,7 @@ SettingValue other_value(const SettingDeclaration& setting) {
 TEST(SettingDeclarations, EachDeclarationReadsAndWritesItsOwnFieldOnly) {
     const Settings defaults;
     for (const SettingDeclaration& setting : kSettingDeclarations) {
-        const SettingValue value = other_value(setting);
+        const SettingValue value = other_value(setting, defaults);
         ASSERT_EQ(setting_value_problem(setting, value), "") << setting.name;
         ASSERT_NE(value, setting.get(defaults)) << setting.name;
         Settings changed;
@@ -98,6 +99,29 @@ TEST(SettingDeclarations, EachDeclarationReadsAndWritesItsOwnFieldOnly) {
         }
         EXPECT_EQ(requires_recreation(defaults, changed), setting.recreates) << setting.name;
     }
+}
+
+// The tools' own settings ([output]) read and write their RenderSettings fields only.
+TEST(SettingDeclarations, OutputSettingsReadAndWriteTheirOwnFields) {
+    const RenderSettings defaults;
+    for (const SettingDeclaration& setting : kOutputSettingDeclarations) {
+        EXPECT_EQ(setting_value_problem(setting, setting.get(defaults)), "") << setting.name;
+        RenderSettings changed;
+        const SettingValue value = other_value(setting, defaults);
+        setting.set(changed, value);
+        EXPECT_EQ(setting.get(changed), value) << setting.name;
+        for (const SettingDeclaration& other : kOutputSettingDeclarations) {
+            if (&other == &setting) continue;
+            EXPECT_EQ(other.get(changed), other.get(defaults)) << setting.name;
+        }
+        for (const SettingDeclaration& shadow : kSettingDeclarations) {
+            EXPECT_EQ(shadow.get(changed), shadow.get(defaults)) << setting.name << " wrote " << shadow.name;
+        }
+        EXPECT_EQ(find_output_setting(setting.name), &setting);
+    }
+    RenderSettings too_wide;
+    too_wide.width = kMaxImageSize + 1;
+    EXPECT_THROW(validate_render_settings(too_wide, "test"), InputError);
 }
 
 TEST(SettingDeclarations, ValidationNamesTheDeclarationAndItsRange) {

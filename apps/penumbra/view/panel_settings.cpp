@@ -165,7 +165,7 @@ void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* f
         draw_setting_group(settings, "bias", frame);
     }
     if (ImGui::CollapsingHeader("Filter", ImGuiTreeNodeFlags_DefaultOpen)) {
-        combo("resolve", settings.resolve, kShadowResolveChoices);
+        setting_control(*find_output_setting("resolve"), settings, frame);
         draw_setting_group(settings, "filter", frame);
     }
     if (ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) {

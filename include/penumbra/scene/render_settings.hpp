@@ -5,6 +5,10 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
 
 #include "penumbra/settings.hpp"
 
@@ -59,6 +63,71 @@ struct RenderSettings : Settings {
     // scene's [[lights]] list (`--aov shadow:N`), or -1 for the sun (`--aov shadow`).
     int32_t visibility_light = -1;
 };
+
+// The tools' own settings, declared as the ShadowSystem's are (penumbra/settings.hpp):
+// [output] in config and scene files, flags, --help, validation, the viewer and bench
+// reports read these declarations. Their accessors take the Settings a RenderSettings
+// derives from and read the RenderSettings around it: use them on a RenderSettings only.
+namespace setting_detail {
+template <auto Member>
+struct OutputField {
+    static auto& in(Settings& settings) { return static_cast<RenderSettings&>(settings).*Member; }
+    static const auto& in(const Settings& settings) { return static_cast<const RenderSettings&>(settings).*Member; }
+};
+}  // namespace setting_detail
+
+template <auto Member>
+constexpr SettingDeclaration declare_output(SettingDeclaration setting) {
+    using F = setting_detail::OutputField<Member>;
+    using T = std::remove_cvref_t<decltype(F::in(std::declval<Settings&>()))>;
+    setting.type = setting_detail::type_of<T>();
+    setting.get = [](const Settings& settings) { return setting_detail::to_value<T>(F::in(settings)); };
+    setting.set = [](Settings& settings, const SettingValue& value) {
+        setting_detail::from_value(value, F::in(settings));
+    };
+    return setting;
+}
+
+template <const auto& Choices, auto Member>
+constexpr SettingDeclaration declare_output_choice(SettingDeclaration setting) {
+    using F = setting_detail::OutputField<Member>;
+    setting.type = SettingType::Choice;
+    setting.choices = setting_detail::kChoiceNames<Choices>;
+    setting.get = [](const Settings& settings) {
+        return SettingValue(std::string(choice_name(Choices, F::in(settings))));
+    };
+    setting.set = [](Settings& settings, const SettingValue& value) {
+        const std::string* name = std::get_if<std::string>(&value);
+        for (const auto& choice : Choices) {
+            if (name && *name == choice.name) F::in(settings) = choice.value;
+        }
+    };
+    return setting;
+}
+
+inline constexpr SettingDeclaration kOutputSettingDeclarations[] = {
+    declare_output<&RenderSettings::width>({.name = "width",
+                                            .group = "output",
+                                            .label = "width",
+                                            .help = "Image width in pixels",
+                                            .minimum = 1,
+                                            .maximum = kMaxImageSize}),
+    declare_output<&RenderSettings::height>({.name = "height",
+                                             .group = "output",
+                                             .label = "height",
+                                             .help = "Image height in pixels",
+                                             .minimum = 1,
+                                             .maximum = kMaxImageSize}),
+    declare_output_choice<kShadowResolveChoices, &RenderSettings::resolve>(
+        {.name = "resolve",
+         .group = "output",
+         .label = "resolve",
+         .help = "Where shadows are evaluated (forward: in the lighting pass per fragment; deferred: a depth and "
+                 "normal pre-pass, then once per pixel in a compute pass)"}),
+};
+
+// The declaration of the tools' setting called `name`, or nullptr.
+const SettingDeclaration* find_output_setting(std::string_view name);
 
 // Throws InputError naming `origin` and the setting for out-of-range values.
 void validate_render_settings(const RenderSettings& settings, const std::string& origin);

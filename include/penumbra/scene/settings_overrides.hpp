@@ -22,6 +22,7 @@ public:
     // The value given for the setting called `name`, or nullptr.
     const SettingValue* find(std::string_view name) const;
     bool empty() const { return values_.empty(); }
+    // A RenderSettings when an output setting is among them (their accessors need one).
     void apply_to(Settings& settings) const;
 
 private:
@@ -29,11 +30,8 @@ private:
 };
 
 struct SettingsOverrides {
-    // [output]
-    std::optional<uint32_t> width;
-    std::optional<uint32_t> height;
-    std::optional<ShadowResolve> resolve;
-    // [shadow]: the ShadowSystem's settings, by declaration.
+    // [output] and [shadow]: the tools' and the ShadowSystem's settings, by declaration
+    // (kOutputSettingDeclarations, kSettingDeclarations).
     SettingAssignments settings;
     // [camera] and [sun]
     std::optional<glm::vec3> eye;
