@@ -72,6 +72,6 @@ glm::vec3 sun_on_path(LightPath path, const glm::vec3& start, float t) {
 }
 
 const char* camera_path_name(CameraPath path) { return choice_name(kCameraPathChoices, path); }
-const char* light_path_name(LightPath path) { return path == LightPath::Fixed ? "fixed" : "rotate"; }
+const char* light_path_name(LightPath path) { return choice_name(kLightPathChoices, path); }
 
 }  // namespace penumbra::bench

@@ -24,6 +24,8 @@ enum class LightPath {
     Fixed,   // the scene's sun
     Rotate,  // the sun turns once around the vertical, keeping its elevation
 };
+inline constexpr ChoiceName<LightPath> kLightPathChoices[] = {{"fixed", LightPath::Fixed},
+                                                              {"rotate", LightPath::Rotate}};
 
 // The camera at path parameter t of a run of `frames` frames (the walk's speed is per frame).
 Camera camera_on_path(CameraPath path, const Camera& start, float t, uint32_t frames);

@@ -123,7 +123,8 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--camera-path", raw.camera_path,
                      "Camera path: " + choice_list(bench::kCameraPathChoices, bench::CameraPath::Orbit) +
                          " (walk: 1.4 m/s at 60 frames/s; still: the scene's camera)");
-    bench.add_option("--light-path", raw.light_path, "Sun path: fixed (default) | rotate");
+    bench.add_option("--light-path", raw.light_path,
+                     "Sun path: " + choice_list(bench::kLightPathChoices, bench::LightPath::Fixed));
     bench.add_option("--json", raw.json, "Also write the results (and device, settings, scene) as JSON");
     bench.add_option("--ceiling", raw.ceiling,
                      "Measure a ceiling instead: triangles (shadow pass at 512x512, no culling) | taps (full-screen "
@@ -140,9 +141,7 @@ void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_
         job.camera_path = parse_choice(bench_raw.camera_path, "--camera-path", choice_map(bench::kCameraPathChoices));
     }
     if (!bench_raw.light_path.empty()) {
-        job.light_path =
-            parse_choice<bench::LightPath>(bench_raw.light_path, "--light-path",
-                                           {{"fixed", bench::LightPath::Fixed}, {"rotate", bench::LightPath::Rotate}});
+        job.light_path = parse_choice(bench_raw.light_path, "--light-path", choice_map(bench::kLightPathChoices));
     }
     if (!bench_raw.ceiling.empty()) {
         job.ceiling = parse_choice(bench_raw.ceiling, "--ceiling", choice_map(bench::kCeilingChoices));

@@ -106,7 +106,7 @@ struct ShadowSettings {
 };
 
 // How a light without its own `shadow_resolution` gets its map's size
-// (`--local-shadow-sizing`, `[shadow] local_shadow_sizing`).
+// (the setting local_shadow_sizing).
 enum class LocalShadowSizing {
     Coverage,  // each frame, from the light's screen coverage, up to `resolution`
     Fixed,     // always `resolution`
