@@ -89,9 +89,16 @@ LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const Aabb& light_s
     const float near_distance = -light_space_scene_bounds.max.z;
     const float far_distance = -light_space_scene_bounds.min.z;
     const float margin = std::max(kMinDepthMargin, 1e-3f * (far_distance - near_distance));
+    // At least as deep as the cascade is wide, centred on the scene: the depth biases and
+    // their clamp are in depth units, so a range much shallower than the window (a flat
+    // scene under a wide cascade) would shrink them in metres and bring back acne. The
+    // window's width does not change while the stable fit follows the camera.
+    const float half_depth =
+        std::max(0.5f * (far_distance - near_distance) + margin, std::max(box.half_size.x, box.half_size.y));
+    const float centre = 0.5f * (near_distance + far_distance);
     LightOrthoBox ranged = box;
-    ranged.near_distance = near_distance - margin;
-    ranged.far_distance = far_distance + margin;
+    ranged.near_distance = centre - half_depth;
+    ranged.far_distance = centre + half_depth;
     return ranged;
 }
 

@@ -47,9 +47,10 @@ LightOrthoBox fit_tight_box(const std::array<glm::vec3, 8>& light_space_points, 
 inline constexpr float kMinDepthMargin = 0.01f;
 
 // The depth range of the scene bounds along the light, whatever the slice's own, plus a
-// margin: casters between the light and the slice are rendered, every receiver lies
-// inside, and the mapping of depth does not change when the camera moves (so that a
-// cascade's depths can be cached). An empty box leaves the slice's range unchanged.
+// margin, and at least as deep as the window is wide (centred on the scene): casters
+// between the light and the slice are rendered, every receiver lies inside, the biases
+// keep their size in metres, and the mapping of depth does not change when the camera
+// moves (so that a cascade's depths can be cached). An empty box leaves the slice's range.
 LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds);
 
 // Reverse-Z orthographic projection of the box: near_distance -> depth 1, far -> 0.
