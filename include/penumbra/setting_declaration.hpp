@@ -134,9 +134,10 @@ inline constexpr auto kChoiceNames = [] {
 
 }  // namespace setting_detail
 
-template <auto... Path>
-constexpr SettingDeclaration declare(SettingDeclaration setting) {
-    using F = setting_detail::Field<Path...>;
+// The same for any accessor F with static `in(Settings&)` and `in(const Settings&)`
+// returning the field (setting_detail::Field, or a derived settings struct's own).
+template <typename F>
+constexpr SettingDeclaration declare_field(SettingDeclaration setting) {
     using T = std::remove_cvref_t<decltype(F::in(std::declval<Settings&>()))>;
     setting.type = setting_detail::type_of<T>();
     setting.get = [](const Settings& settings) { return setting_detail::to_value<T>(F::in(settings)); };
@@ -146,9 +147,8 @@ constexpr SettingDeclaration declare(SettingDeclaration setting) {
     return setting;
 }
 
-template <const auto& Choices, auto... Path>
-constexpr SettingDeclaration declare_choice(SettingDeclaration setting) {
-    using F = setting_detail::Field<Path...>;
+template <const auto& Choices, typename F>
+constexpr SettingDeclaration declare_choice_field(SettingDeclaration setting) {
     setting.type = SettingType::Choice;
     setting.choices = setting_detail::kChoiceNames<Choices>;
     setting.get = [](const Settings& settings) {
@@ -164,6 +164,16 @@ constexpr SettingDeclaration declare_choice(SettingDeclaration setting) {
         }
     };
     return setting;
+}
+
+template <auto... Path>
+constexpr SettingDeclaration declare(SettingDeclaration setting) {
+    return declare_field<setting_detail::Field<Path...>>(setting);
+}
+
+template <const auto& Choices, auto... Path>
+constexpr SettingDeclaration declare_choice(SettingDeclaration setting) {
+    return declare_choice_field<Choices, setting_detail::Field<Path...>>(setting);
 }
 
 }  // namespace penumbra

@@ -78,31 +78,12 @@ struct OutputField {
 
 template <auto Member>
 constexpr SettingDeclaration declare_output(SettingDeclaration setting) {
-    using F = setting_detail::OutputField<Member>;
-    using T = std::remove_cvref_t<decltype(F::in(std::declval<Settings&>()))>;
-    setting.type = setting_detail::type_of<T>();
-    setting.get = [](const Settings& settings) { return setting_detail::to_value<T>(F::in(settings)); };
-    setting.set = [](Settings& settings, const SettingValue& value) {
-        setting_detail::from_value(value, F::in(settings));
-    };
-    return setting;
+    return declare_field<setting_detail::OutputField<Member>>(setting);
 }
 
 template <const auto& Choices, auto Member>
 constexpr SettingDeclaration declare_output_choice(SettingDeclaration setting) {
-    using F = setting_detail::OutputField<Member>;
-    setting.type = SettingType::Choice;
-    setting.choices = setting_detail::kChoiceNames<Choices>;
-    setting.get = [](const Settings& settings) {
-        return SettingValue(std::string(choice_name(Choices, F::in(settings))));
-    };
-    setting.set = [](Settings& settings, const SettingValue& value) {
-        const std::string* name = std::get_if<std::string>(&value);
-        for (const auto& choice : Choices) {
-            if (name && *name == choice.name) F::in(settings) = choice.value;
-        }
-    };
-    return setting;
+    return declare_choice_field<Choices, setting_detail::OutputField<Member>>(setting);
 }
 
 inline constexpr SettingDeclaration kOutputSettingDeclarations[] = {
