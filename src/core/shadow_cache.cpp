@@ -88,8 +88,4 @@ CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Ca
     return update;
 }
 
-bool caster_may_shadow_rect(const Cascade& cascade, const TexelRect& rect, uint32_t resolution, const Aabb& world_box) {
-    return !intersect(caster_footprint(cascade, world_box, resolution), rect).empty();
-}
-
 }  // namespace penumbra

@@ -71,8 +71,4 @@ inline constexpr size_t kMaxRedrawRects = 16;
 CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Cascade& current, uint32_t resolution,
                                   std::span<const Aabb> changed_static_bounds);
 
-// Caster culling for a redraw: true when a caster inside `world_box` can set a depth
-// inside `rect` of the cascade (its footprint meets the rectangle).
-bool caster_may_shadow_rect(const Cascade& cascade, const TexelRect& rect, uint32_t resolution, const Aabb& world_box);
-
 }  // namespace penumbra

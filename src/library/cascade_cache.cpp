@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <utility>
 
 namespace penumbra::library {
 namespace {
@@ -32,9 +33,23 @@ passes::CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& ca
     draws.reuse = true;
     draws.shift = update.shift;
     draws.restore = update.shift != glm::ivec2(0) || dynamic_over;
+    // Culling for the redraw: a static caster goes into a rectangle its footprint meets.
+    // Each footprint is projected once, then tested against every rectangle.
+    std::vector<std::pair<uint32_t, TexelRect>> footprints;
+    if (!update.redraw.empty()) {
+        for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+            if (!is_static(scene.draws[d])) continue;
+            const TexelRect footprint =
+                cull ? caster_footprint(cascade, scene.draws[d].world_bounds, resolution) : whole_map(resolution);
+            if (!footprint.empty()) footprints.emplace_back(d, footprint);
+        }
+    }
     for (const TexelRect& rect : update.redraw) {
-        const auto in_rect = [&](const Aabb& box) { return caster_may_shadow_rect(cascade, rect, resolution, box); };
-        draws.redraw.push_back({rect, select_draws(scene, cull, is_static, in_rect)});
+        passes::DrawList list;
+        for (const auto& [draw, footprint] : footprints) {
+            if (!intersect(footprint, rect).empty()) list.push_back(draw);
+        }
+        draws.redraw.push_back({rect, std::move(list)});
     }
     draws.store = update.shift != glm::ivec2(0) || !update.redraw.empty();
     return draws;
