@@ -73,7 +73,9 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
                         const std::vector<CascadeDraws>& draws, const BiasSettings& bias,
                         const CasterFaceCulling& culling, gpu::GpuTimer* timer) {
     const auto any = [&](auto&& wanted) { return std::any_of(draws.begin(), draws.end(), wanted); };
-    if (any([](const CascadeDraws& d) { return d.reuse; }) && !cache_) {
+    // A layer that keeps what the last frame left in it needs the cache, and no discard.
+    const bool keep = any([](const CascadeDraws& d) { return d.reuse; });
+    if (keep && !cache_) {
         throw UsageError("ShadowPass::record: a cascade reuses a cache this pass does not keep");
     }
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_CASTER_FRAME,
@@ -85,8 +87,6 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
         gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
         return;
     }
-    // Every layer is drawn from scratch unless one keeps what the last frame left in it.
-    const bool keep = any([](const CascadeDraws& d) { return d.reuse; });
     gpu::ImageState map_state = keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads;
     if (any([](const CascadeDraws& d) { return d.restore; })) {
         gpu::TimedScope scope(timer, cmd, "shadow_cache_restore");

@@ -24,19 +24,6 @@ void combo(const char* label, Enum& value, const std::array<const char*, N>& nam
     if (ImGui::Combo(label, &index, names.data(), static_cast<int>(N))) value = static_cast<Enum>(index);
 }
 
-// A setting's choice from its table (penumbra/settings.hpp), matched by value, not by the
-// enum's numbering, so the list cannot drift from the values.
-template <typename Enum, size_t N>
-void combo(const char* label, Enum& value, const ChoiceName<Enum> (&choices)[N]) {
-    std::array<const char*, N> names{};
-    int index = 0;
-    for (size_t i = 0; i < N; ++i) {
-        names[i] = choices[i].name;
-        if (choices[i].value == value) index = static_cast<int>(i);
-    }
-    if (ImGui::Combo(label, &index, names.data(), static_cast<int>(N))) value = choices[index].value;
-}
-
 // Switching to manual splits starts from the splits of the last frame (the one
 // NumberList setting: cascades - 1 distances below max_distance).
 void manual_splits_control(Settings& settings, const renderer::FrameInfo* frame) {
