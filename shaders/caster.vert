@@ -27,17 +27,22 @@ vec4 layer_position(vec4 world) { return local_shadows.layer_view_projection[cas
 layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS) uniform ShadowBlock {
     PenumbraShadowUniforms shadow;
 };
-// The cascade's clip space through its texel grid (PenumbraCascade): the map texel is
-// computed without contraction (precise: no fused multiply-add that would round it
-// differently for another origin) and snapped to 1/256 texel (what rasterisers keep), so
-// that a cascade moved by whole texels draws every caster exactly that many texels
-// further: a cached cascade's copied texels equal freshly drawn ones.
+// The cascade's clip space through its texel grid (PenumbraCascade). A toroidal cascade
+// wraps around its layer: the layer holds a tile of the world's texel grid, less one
+// layer side where the window crosses the layer's right or bottom edge (caster.tile's
+// bits; the pass scissors each tile's texels). The tile's first grid texel is a whole
+// number and the same whatever the cascade's origin, so a caster lands at the same layer
+// texels, with the same values, in every frame that draws it: a cached cascade's kept
+// texels equal freshly drawn ones. The texel is computed without contraction (precise: no
+// fused multiply-add) and snapped to 1/256 texel (what rasterisers keep).
 vec4 layer_position(vec4 world) {
     const PenumbraCascade cascade = shadow.cascades[caster.layer + PENUMBRA_VIEW_INDEX];
     const vec3 light = (shadow.light_view * world).xyz;
-    precise vec2 texel = light.xy * cascade.texels_per_metre - cascade.texel_origin;
-    texel = round(texel * 256.0) * (1.0 / 256.0);
     const float texels_per_side = 1.0 / shadow.texel_uv;
+    const vec2 wrapped = vec2(float(caster.tile & 1u), float(caster.tile >> 1u));
+    const vec2 tile_origin = cascade.texel_origin - cascade.layer_origin + wrapped * texels_per_side;
+    precise vec2 texel = light.xy * cascade.texels_per_metre - tile_origin;
+    texel = round(texel * 256.0) * (1.0 / 256.0);
     precise vec2 clip = texel * (2.0 / texels_per_side) - 1.0;
     return vec4(clip, light.z * cascade.depth_scale + cascade.depth_offset, 1.0);
 }

@@ -3,7 +3,8 @@
 // storage image into the other (the moments map and its scratch image). Moments are linear
 // in the depth distribution, so blurring them filters the shadow (Donnelly & Lauritzen
 // 2006). Taps beyond the edge of the texels the layer uses clamp to them, so a local
-// light's texels never mix with another's.
+// light's texels never mix with another's, and a toroidal cascade's opposite edges (side
+// by side in the layer where it wraps) never mix either.
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 #include "moments_storage.glsl"
@@ -26,9 +27,9 @@ void main() {
     float weight_sum = 0.0;
     for (int i = -radius; i <= radius; ++i) {
         const float weight = exp(-float(i * i) * inverse_two_sigma_squared);
-        const ivec2 tap = clamp(texel + i * direction, ivec2(0), ivec2(used - 1));
+        const ivec2 tap = penumbra_moments_layer_texel(pass, texel + i * direction);
         sum += weight * PENUMBRA_LOAD_MOMENTS(source, ivec3(tap, layer));
         weight_sum += weight;
     }
-    PENUMBRA_STORE_MOMENTS(target, ivec3(texel, layer), sum / weight_sum);
+    PENUMBRA_STORE_MOMENTS(target, ivec3(penumbra_moments_layer_texel(pass, texel), layer), sum / weight_sum);
 }

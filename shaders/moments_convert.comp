@@ -27,8 +27,8 @@ layout(push_constant) uniform PushBlock { MomentsPushConstants pass; };
 const float kMaxSlopePerTexel = 0.02;
 
 float distance_at(ivec2 texel) {
-    const ivec2 last = ivec2(pass.layer.y) - 1;
-    const float depth = texelFetch(depth_map, ivec3(clamp(texel, ivec2(0), last), int(pass.layer.x)), 0).r;
+    const ivec3 layer_texel = ivec3(penumbra_moments_layer_texel(pass, texel), int(pass.layer.x));
+    const float depth = texelFetch(depth_map, layer_texel, 0).r;
     const float n = pass.depth_range.x;
     const float f = pass.depth_range.y;
     if (f <= 0.0) return 1.0 - depth;  // orthographic (the sun's cascades)
@@ -55,5 +55,5 @@ void main() {
     const float dy = slope(distance, distance_at(texel - ivec2(0, 1)), distance_at(texel + ivec2(0, 1)));
     const vec4 moments =
         penumbra_encode_moments(kPenumbraFilterMode, distance, dx, dy, pass.depth_range.zw, kPenumbraMsmQuantized);
-    PENUMBRA_STORE_MOMENTS(moments_map, ivec3(texel, int(pass.layer.x)), moments);
+    PENUMBRA_STORE_MOMENTS(moments_map, ivec3(penumbra_moments_layer_texel(pass, texel), int(pass.layer.x)), moments);
 }

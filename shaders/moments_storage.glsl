@@ -28,4 +28,13 @@ uvec4 penumbra_pack_moments(vec4 moments) {
 #define PENUMBRA_STORE_MOMENTS(image, texel, moments) imageStore(image, texel, moments)
 #endif
 
+// The texels a layer uses (MomentsPushConstants): `used` per side from layer texel
+// `window.xy`, wrapping around the layer's side `window.z` (a toroidal cascade; a local
+// light's corner starts at 0 and never wraps). Invocations run over used texels; taps
+// beyond the used texels' edges clamp to them.
+ivec2 penumbra_moments_layer_texel(MomentsPushConstants pass, ivec2 used_texel) {
+    const ivec2 last = ivec2(int(pass.layer.y) - 1);
+    return (clamp(used_texel, ivec2(0), last) + ivec2(pass.window.xy)) % int(pass.window.z);
+}
+
 #endif

@@ -20,9 +20,16 @@ GrayImage shadow_map_strip(const FrameImages& images) {
             highest = std::max(highest, depth[i]);
         }
         const float range = std::max(highest - lowest, 1e-12f);
+        // Unwrapped: the cascade's texel (x, y) lies at its layer origin plus (x, y), modulo
+        // the layer's side (toroidal cascades), so the strip shows each cascade as it covers
+        // the ground.
+        const glm::uvec2 origin =
+            layer < images.shadow_map_layer_origins.size() ? images.shadow_map_layer_origins[layer] : glm::uvec2(0);
         for (uint32_t y = 0; y < resolution; ++y) {
             for (uint32_t x = 0; x < resolution; ++x) {
-                const float d = depth[size_t{y} * resolution + x];
+                const uint32_t layer_x = (x + origin.x) % resolution;
+                const uint32_t layer_y = (y + origin.y) % resolution;
+                const float d = depth[size_t{layer_y} * resolution + layer_x];
                 const float t = d <= 0.0f ? -1.0f : (d - lowest) / range;
                 strip.pixels[size_t{y} * strip.width + layer * resolution + x] =
                     t < 0.0f ? 0 : static_cast<uint8_t>(48.0f + 207.0f * t);

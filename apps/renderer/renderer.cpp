@@ -339,6 +339,8 @@ FrameImages Renderer::read_images() const {
     if (settings_.debug == DebugView::ShadowMap) {
         images.shadow_map_resolution = settings_.shadow.cascades.resolution;
         images.shadow_map_layers = static_cast<uint32_t>(settings_.shadow.cascades.count);
+        for (const CascadeInfo& cascade : last_frame_.cascades)
+            images.shadow_map_layer_origins.emplace_back(cascade.layer_origin_x, cascade.layer_origin_y);
         images.shadow_map =
             read_buffer<float>(resources_->readback.shadow_map, resources_->readback.shadow_map.size / sizeof(float));
     }

@@ -38,6 +38,9 @@ struct FrameImages {
     std::vector<float> shadow_map;
     uint32_t shadow_map_resolution = 0;
     uint32_t shadow_map_layers = 0;
+    // Per layer, the layer texel of the cascade's texel (0, 0) (CascadeInfo::layer_origin_x/y:
+    // per-cascade passes wrap each cascade around its layer).
+    std::vector<glm::uvec2> shadow_map_layer_origins;
     // With RenderSettings::geometry_aovs: per pixel, the world position (w = 1 where
     // geometry, 0 none) and the shading normal the shadow lookup used.
     std::vector<glm::vec4> world_position;

@@ -76,6 +76,14 @@ struct PenumbraCascade {
     float depth_offset;
     vec2 texels_per_metre;
     vec2 texel_origin;
+    // Where the cascade lies in its layer of the map: the layer texel of the cascade's
+    // texel 0, whole numbers. Per-cascade passes place a cascade toroidally (texel_origin
+    // modulo the layer's side: a world texel keeps its layer texel while the cascade moves,
+    // and the cascade wraps around the layer's edges; sample with REPEAT addressing at
+    // uv + layer_origin * texel_uv); multiview leaves it 0.
+    vec2 layer_origin;
+    float padding_cascade0;
+    float padding_cascade1;
 };
 
 struct PenumbraShadowUniforms {

@@ -21,13 +21,16 @@
 #define PENUMBRA_LOCATION_UV 1
 
 // One caster draw: its transform, the shadow map layer (a cascade, or a local light's
-// layer; 0 with multiview, which adds gl_ViewIndex) and its alpha test.
+// layer; 0 with multiview, which adds gl_ViewIndex), its alpha test, and for a cascade
+// which tile of the world's texel grid the draw renders (a toroidal cascade wraps around
+// its layer's edges: bit 0, the columns past the right edge, drawn one layer side to the
+// left; bit 1, the rows past the bottom edge; the pass scissors each tile).
 struct CasterPushConstants {
     mat4 model;  // model -> world
     PENUMBRA_UINT layer;
     float alpha_cutoff;  // masked casters: a texel casts where alpha_scale * texture alpha >= cutoff
     float alpha_scale;
-    float padding;
+    PENUMBRA_UINT tile;
 };
 
 // The moments blur pass (shaders/moments_blur.frag).
@@ -39,6 +42,10 @@ struct MomentsPushConstants {
     // x: near plane, y: far plane (the light's range; 0: orthographic, distance = 1 - depth),
     // zw: EVSM exponents (positive, negative)
     vec4 depth_range;
+    // xy: the layer texel of the used texels' first one (a toroidal cascade's
+    // layer_origin; 0 for local lights), z: the layer's side. The used texels wrap around
+    // the layer's edges from there; filters clamp at the used texels' own edges.
+    uvec4 window;
 };
 
 // The screen-space resolve (shaders/visibility_resolve.comp).

@@ -43,6 +43,11 @@ struct Cascade {
     glm::vec2 texel_origin{0.0f};
     float depth_scale = 0.0f;
     float depth_offset = 0.0f;
+    // Where the cascade's window lies in its map layer: the layer texel of window texel 0.
+    // Zero: the layer is the window. Toroidal (place_in_layers): texel_origin modulo the
+    // layer's side, so that a texel of the world grid keeps its place in the layer however
+    // the cascade moves, and the window wraps around the layer's edges.
+    glm::ivec2 layer_origin{0};
 };
 
 struct CascadeSet {

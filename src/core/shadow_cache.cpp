@@ -26,6 +26,43 @@ TexelRect intersect(const TexelRect& a, const TexelRect& b) {
 
 TexelRect whole_map(uint32_t resolution) { return {glm::ivec2(0), glm::ivec2(static_cast<int32_t>(resolution))}; }
 
+void place_in_layers(CascadeSet& set, uint32_t resolution, bool toroidal) {
+    const int64_t side = static_cast<int64_t>(resolution);
+    for (Cascade& cascade : set.cascades) {
+        if (!toroidal) {
+            cascade.layer_origin = glm::ivec2(0);
+            continue;
+        }
+        // The origin is a whole number, at most a few million texels from 0 (float exact).
+        const auto wrap = [&](float origin) {
+            const int64_t value = static_cast<int64_t>(origin) % side;
+            return static_cast<int32_t>(value < 0 ? value + side : value);
+        };
+        cascade.layer_origin = {wrap(cascade.texel_origin.x), wrap(cascade.texel_origin.y)};
+    }
+}
+
+std::vector<LayerPiece> layer_pieces(const TexelRect& window_rect, glm::ivec2 layer_origin, uint32_t resolution) {
+    const int32_t size = static_cast<int32_t>(resolution);
+    // Window texel w lies at layer texel w + origin, less one side past the layer's edge:
+    // the window splits at w = size - origin on each axis.
+    const glm::ivec2 split = glm::ivec2(size) - layer_origin;
+    std::vector<LayerPiece> pieces;
+    for (uint32_t tile = 0; tile < 4; ++tile) {
+        const glm::ivec2 wrapped(static_cast<int32_t>(tile & 1u), static_cast<int32_t>(tile >> 1u));
+        TexelRect part;
+        for (int axis = 0; axis < 2; ++axis) {
+            part.min[axis] = wrapped[axis] ? split[axis] : 0;
+            part.max[axis] = wrapped[axis] ? size : split[axis];
+        }
+        const TexelRect window = intersect(window_rect, part);
+        if (window.empty()) continue;
+        const glm::ivec2 move = layer_origin - wrapped * size;
+        pieces.push_back({window, {window.min + move, window.max + move}, tile});
+    }
+    return pieces;
+}
+
 std::optional<glm::ivec2> whole_texel_shift(const Cascade& cached, const Cascade& current) {
     if (!same_mapping_but_translation(cached, current)) return std::nullopt;
     // A point at grid texel g sits at g - origin in each map.

@@ -32,6 +32,31 @@ TexelRect intersect(const TexelRect& a, const TexelRect& b);
 // The whole map: [0, resolution)^2.
 TexelRect whole_map(uint32_t resolution);
 
+// Toroidal cascades (Settings' per-cascade passes): sets every cascade's layer_origin to
+// its texel_origin modulo `resolution` (zero when `toroidal` is false: the layer is the
+// window). A world texel then stays in one layer texel while the cascade moves by whole
+// texels, as the clipmaps of Tanner et al. 1998 and the scrolling virtual shadow maps of
+// engines keep theirs: a cached cascade keeps its texels where they are instead of copying
+// them, and a cached and an uncached render draw every caster at the same layer texels.
+void place_in_layers(CascadeSet& set, uint32_t resolution, bool toroidal);
+
+// A part of a window rectangle that does not cross the layer's edges: where it lies in the
+// window and in the layer, and which tile of the world grid it is in (bit 0: the window's
+// columns that wrapped past the layer's right edge, bit 1: its rows past the bottom; the
+// caster pass draws each tile with its own offset, CasterPushConstants::tile).
+struct LayerPiece {
+    TexelRect window;
+    TexelRect layer;
+    uint32_t tile = 0;
+    friend bool operator==(const LayerPiece&, const LayerPiece&) = default;
+};
+
+// The pieces of `window_rect` (window texels, inside [0, resolution)^2) in a layer whose
+// window starts at `layer_origin`: one to four, disjoint, their window rectangles covering
+// `window_rect` exactly, each layer rectangle the window one moved by a whole number of
+// layer sides.
+std::vector<LayerPiece> layer_pieces(const TexelRect& window_rect, glm::ivec2 layer_origin, uint32_t resolution);
+
 // How `current` lies against `cached` when it is the same cascade moved in its plane: the
 // same light view, texel size and depth mapping, so that only the window's origin in the
 // world's texel grid differs (Cascade::texel_origin, whole numbers). The shift is in

@@ -1,109 +1,143 @@
 #include "library/cascade_cache.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <utility>
 
 namespace penumbra::library {
 namespace {
 
-// The draws of `scene` that pass `keep` and, with culling, `may_cast`.
-template <typename Keep, typename MayCast>
-passes::DrawList select_draws(const passes::CasterScene& scene, bool cull, Keep keep, MayCast may_cast) {
-    passes::DrawList list;
+using passes::CascadeDraws;
+
+// A draw and the window texels it can reach (caster_footprint; the whole window without
+// culling).
+struct Footprint {
+    uint32_t draw = 0;
+    TexelRect window;
+};
+
+// The footprints of the draws of `scene` that pass `keep`, projected once per cascade and
+// then tested against every piece and rectangle.
+template <typename Keep>
+std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
+                                  uint32_t resolution, Keep keep) {
+    std::vector<Footprint> result;
     for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-        const passes::CasterDraw& draw = scene.draws[d];
-        if (keep(draw) && (!cull || may_cast(draw.world_bounds))) list.push_back(d);
+        if (!keep(scene.draws[d])) continue;
+        const TexelRect window =
+            cull ? caster_footprint(cascade, scene.draws[d].world_bounds, resolution) : whole_map(resolution);
+        if (!window.empty()) result.push_back({d, window});
     }
-    return list;
+    return result;
 }
 
-passes::CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, const passes::CasterScene& scene,
-                                  bool cull, bool dynamic_over, uint32_t resolution) {
-    const auto is_static = [](const passes::CasterDraw& draw) { return !draw.dynamic; };
-    const auto is_dynamic = [](const passes::CasterDraw& draw) { return draw.dynamic; };
-    const auto in_cascade = [&](const Aabb& box) { return caster_may_shadow_cascade(cascade, box); };
-    passes::CascadeDraws draws;
-    draws.dynamic = select_draws(scene, cull, is_dynamic, in_cascade);
+// The regions that draw `window_rect`: its pieces in the layer, each with the casters
+// whose footprint meets it. `cover`, when given, receives per region the layer texels its
+// casters can reach.
+std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const Cascade& cascade,
+                                             const std::vector<Footprint>& casters, uint32_t resolution,
+                                             std::vector<TexelRect>* cover = nullptr) {
+    std::vector<CascadeDraws::Region> regions;
+    for (const LayerPiece& piece : layer_pieces(window_rect, cascade.layer_origin, resolution)) {
+        CascadeDraws::Region region{piece.layer, piece.tile, {}};
+        TexelRect reach;
+        for (const Footprint& caster : casters) {
+            const TexelRect overlap = intersect(caster.window, piece.window);
+            if (overlap.empty()) continue;
+            region.casters.push_back(caster.draw);
+            reach =
+                reach.empty() ? overlap : TexelRect{glm::min(reach.min, overlap.min), glm::max(reach.max, overlap.max)};
+        }
+        if (cover && !reach.empty()) {
+            const glm::ivec2 move = piece.layer.min - piece.window.min;
+            cover->push_back({reach.min + move, reach.max + move});
+        }
+        regions.push_back(std::move(region));
+    }
+    return regions;
+}
+
+bool is_static(const passes::CasterDraw& draw) { return !draw.dynamic; }
+bool is_dynamic(const passes::CasterDraw& draw) { return draw.dynamic; }
+
+CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, const passes::CasterScene& scene,
+                          bool cull, const std::vector<TexelRect>& dynamic_before, bool cache_complete,
+                          uint32_t resolution) {
+    const TexelRect window = whole_map(resolution);
+    CascadeDraws draws;
+    draws.layer_origin = cascade.layer_origin;
+    const std::vector<Footprint> dynamic = footprints(cascade, scene, cull, resolution, is_dynamic);
+    if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &draws.dynamic_cover);
+    const std::vector<Footprint> statics = footprints(cascade, scene, cull, resolution, is_static);
     if (!update.reuse) {
-        draws.casters = select_draws(scene, cull, is_static, in_cascade);
-        draws.store = true;
+        draws.regions = regions_of(window, cascade, statics, resolution);
+        // The cache must hold the static texels the dynamic casters are about to cover.
+        if (!draws.dynamic_cover.empty()) draws.store = {window};
         return draws;
     }
     draws.reuse = true;
     draws.shift = update.shift;
-    draws.restore = update.shift != glm::ivec2(0) || dynamic_over;
-    // Culling for the redraw: a static caster goes into a rectangle its footprint meets.
-    // Each footprint is projected once, then tested against every rectangle.
-    std::vector<std::pair<uint32_t, TexelRect>> footprints;
-    if (!update.redraw.empty()) {
-        for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-            if (!is_static(scene.draws[d])) continue;
-            const TexelRect footprint =
-                cull ? caster_footprint(cascade, scene.draws[d].world_bounds, resolution) : whole_map(resolution);
-            if (!footprint.empty()) footprints.emplace_back(d, footprint);
-        }
-    }
+    draws.restore = dynamic_before;
     for (const TexelRect& rect : update.redraw) {
-        passes::DrawList list;
-        for (const auto& [draw, footprint] : footprints) {
-            if (!intersect(footprint, rect).empty()) list.push_back(draw);
-        }
-        draws.redraw.push_back({rect, std::move(list)});
+        std::vector<CascadeDraws::Region> regions = regions_of(rect, cascade, statics, resolution);
+        draws.regions.insert(draws.regions.end(), regions.begin(), regions.end());
     }
-    draws.store = update.shift != glm::ivec2(0) || !update.redraw.empty();
+    if (cache_complete) {
+        for (const CascadeDraws::Region& region : draws.regions) draws.store.push_back(region.rect);
+    } else if (!draws.dynamic_cover.empty()) {
+        draws.store = {window};
+    }
     return draws;
 }
 
 }  // namespace
 
-void CascadeCache::invalidate() {
-    cached_.clear();
-    dynamic_over_.clear();
-}
+void CascadeCache::invalidate() { layers_.clear(); }
 
-std::vector<passes::CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes::CasterScene& scene, bool cull,
-                                                     bool cached, std::span<const Aabb> changes,
-                                                     uint32_t resolution) const {
-    std::vector<passes::CascadeDraws> draws(set.cascades.size());
+std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes::CasterScene& scene, bool cull,
+                                             bool cached, std::span<const Aabb> changes, uint32_t resolution) const {
+    std::vector<CascadeDraws> draws(set.cascades.size());
     for (size_t c = 0; c < set.cascades.size(); ++c) {
         const Cascade& cascade = set.cascades[c];
         if (!cached) {
             const auto any = [](const passes::CasterDraw&) { return true; };
-            draws[c].casters = select_draws(scene, cull, any,
-                                            [&](const Aabb& box) { return caster_may_shadow_cascade(cascade, box); });
+            draws[c].layer_origin = cascade.layer_origin;
+            draws[c].regions = regions_of(whole_map(resolution), cascade,
+                                          footprints(cascade, scene, cull, resolution, any), resolution);
             continue;
         }
-        const std::optional<Cascade> previous = c < cached_.size() ? cached_[c] : std::nullopt;
-        const bool dynamic_over = c < dynamic_over_.size() && dynamic_over_[c];
-        const CascadeUpdate update = plan_cascade_update(previous, cascade, resolution, changes);
-        draws[c] = cached_draws(update, cascade, scene, cull, dynamic_over, resolution);
+        const std::optional<Layer>& previous = c < layers_.size() ? layers_[c] : std::nullopt;
+        const std::optional<Cascade> kept = previous ? std::optional<Cascade>(previous->cascade) : std::nullopt;
+        const CascadeUpdate update = plan_cascade_update(kept, cascade, resolution, changes);
+        draws[c] =
+            cached_draws(update, cascade, scene, cull, previous ? previous->dynamic_cover : std::vector<TexelRect>{},
+                         previous && previous->cache_complete, resolution);
     }
     return draws;
 }
 
-void CascadeCache::commit(const CascadeSet& set, const std::vector<passes::CascadeDraws>& draws) {
-    cached_.assign(set.cascades.begin(), set.cascades.end());
-    dynamic_over_.clear();
-    for (const passes::CascadeDraws& cascade : draws) dynamic_over_.push_back(!cascade.dynamic.empty());
+void CascadeCache::commit(const CascadeSet& set, const std::vector<CascadeDraws>& draws, uint32_t resolution) {
+    std::vector<std::optional<Layer>> layers(set.cascades.size());
+    for (size_t c = 0; c < set.cascades.size(); ++c) {
+        const CascadeDraws& cascade = draws[c];
+        const bool was_complete = c < layers_.size() && layers_[c] && layers_[c]->cache_complete;
+        const bool stored_all = cascade.store.size() == 1 && cascade.store.front() == whole_map(resolution);
+        layers[c] = Layer{set.cascades[c], stored_all || (cascade.reuse && was_complete), cascade.dynamic_cover};
+    }
+    layers_ = std::move(layers);
 }
 
-CascadeDrawStats cascade_draw_stats(const passes::CascadeDraws& draws, uint32_t resolution) {
+CascadeDrawStats cascade_draw_stats(const CascadeDraws& draws, uint32_t resolution) {
     CascadeDrawStats stats;
-    const int64_t layer = whole_map(resolution).area();
     stats.cache_reused = draws.reuse;
-    stats.draws = static_cast<uint32_t>(draws.casters.size() + draws.dynamic.size());
-    stats.texels_rendered = draws.reuse ? 0u : static_cast<uint64_t>(layer);
-    for (const passes::CascadeDraws::Redraw& redraw : draws.redraw) {
-        stats.draws += static_cast<uint32_t>(redraw.casters.size());
-        stats.texels_rendered += static_cast<uint64_t>(redraw.rect.area());
+    stats.texels_rendered = draws.reuse ? 0u : static_cast<uint64_t>(whole_map(resolution).area());
+    for (const CascadeDraws::Region& region : draws.regions) {
+        stats.draws += static_cast<uint32_t>(region.casters.size());
+        if (draws.reuse) stats.texels_rendered += static_cast<uint64_t>(region.rect.area());
     }
-    const int64_t side = static_cast<int64_t>(resolution);
-    if (draws.restore) {
-        stats.texels_copied += static_cast<uint64_t>(std::max<int64_t>(side - std::abs(draws.shift.x), 0) *
-                                                     std::max<int64_t>(side - std::abs(draws.shift.y), 0));
-    }
-    if (draws.store) stats.texels_copied += static_cast<uint64_t>(layer);
+    for (const CascadeDraws::Region& region : draws.dynamic)
+        stats.draws += static_cast<uint32_t>(region.casters.size());
+    for (const TexelRect& rect : draws.restore) stats.texels_copied += static_cast<uint64_t>(rect.area());
+    for (const TexelRect& rect : draws.store) stats.texels_copied += static_cast<uint64_t>(rect.area());
     return stats;
 }
 

@@ -71,6 +71,7 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
         out.depth_offset = cascade.depth_offset;
         out.texels_per_metre = cascade.texels_per_metre;
         out.texel_origin = cascade.texel_origin;
+        out.layer_origin = glm::vec2(cascade.layer_origin);
         uniforms.light_view = cascade.view;  // one light view for every cascade
     }
     uniforms.cascade_count = sun_casts_shadows ? static_cast<uint32_t>(cascades.cascades.size()) : 0u;

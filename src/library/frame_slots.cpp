@@ -42,13 +42,13 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
                                                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 9 * count},
                                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, count}}};
     pool_ = gpu::create_descriptor_pool(device, 3 * count, sizes);
-    // Hardware depth comparison with bilinear filtering. Clamp-to-edge rather than a
-    // border: the shaders already treat lookups outside the map as lit, and lavapipe
-    // (Mesa 22.3) returns the border colour for in-range taps of linear-compare array
-    // lookups, which halves the visibility of every pixel.
+    // Hardware depth comparison with bilinear filtering. Repeat: a toroidal cascade wraps
+    // around its layer's edges, and the filters clamp every tap to the texels a cascade or
+    // a local light uses (a border colour would also be wrong: lavapipe (Mesa 22.3)
+    // returns it for in-range taps of linear-compare array lookups).
     gpu::SamplerDesc comparison;
     comparison.filter = VK_FILTER_LINEAR;
-    comparison.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    comparison.address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     comparison.compare = true;
     comparison.compare_op = VK_COMPARE_OP_GREATER_OR_EQUAL;
     comparison_sampler_ = gpu::create_sampler(device, comparison);
@@ -56,7 +56,7 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
     // caster depth rather than a blend with the background.
     gpu::SamplerDesc raw;
     raw.filter = VK_FILTER_NEAREST;
-    raw.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    raw.address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     raw_depth_sampler_ = gpu::create_sampler(device, raw);
 
     slots_.reserve(count);

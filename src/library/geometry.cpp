@@ -341,12 +341,14 @@ const passes::CasterScene& Geometry::build_scene() {
     scene_.meshes.clear();
     scene_.draws.clear();
     world_bounds_ = Aabb{};
+    static_bounds_ = Aabb{};
     for (auto& [id, mesh] : meshes_) {
         mesh.scene_index = static_cast<uint32_t>(scene_.meshes.size());
         scene_.meshes.push_back(mesh.caster);
     }
     for (const Instance& instance : instances_) {
         world_bounds_.expand(instance.world_bounds);
+        if (!(instance.flags & kInstanceDynamic)) static_bounds_.expand(instance.world_bounds);
         if (!(instance.flags & kInstanceCastsShadows)) continue;
         const Mesh& mesh = meshes_.at(instance.mesh);
         passes::CasterDraw draw;

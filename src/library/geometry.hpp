@@ -32,11 +32,15 @@ public:
     void set_instance_flags(InstanceId instance, uint32_t flags);
     void remove_instance(InstanceId instance);
 
-    // The casting instances as draws, and the world bounds of every instance (casting or not:
+    // The casting instances as draws, and the world bounds of the instances (casting or not:
     // receivers bound the cascades' depth range too).
     const passes::CasterScene& build_scene();
     const passes::CasterScene& scene() const { return scene_; }  // as the last build_scene() made it
     const Aabb& world_bounds() const { return world_bounds_; }
+    // The bounds that set the cascades' depth range: the static instances' (not
+    // kInstanceDynamic), or every instance's when all are dynamic. Instances that move every
+    // frame would otherwise change the depth mapping, and with it every cached texel.
+    const Aabb& depth_range_bounds() const { return static_bounds_.empty() ? world_bounds_ : static_bounds_; }
     // World bounds, old and new, of every static caster (casting, not kInstanceDynamic)
     // added, moved, changed or removed since they were last forgotten: the texels of the
     // cached cascades they cover are stale.
@@ -96,6 +100,7 @@ private:
     std::vector<Upload> uploads_;
     passes::CasterScene scene_;
     Aabb world_bounds_;
+    Aabb static_bounds_;
     std::vector<Aabb> static_changes_;
 };
 

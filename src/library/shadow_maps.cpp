@@ -60,7 +60,7 @@ void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const p
     const gpu::ImageDesc& map = depth_pass_.shadow_map().desc;
     std::vector<passes::MomentsLayer> layers;
     for (uint32_t cascade = 0; cascade < map.layers; ++cascade) {
-        layers.push_back({cascade, map.width, 0.0f, 0.0f});  // orthographic
+        layers.push_back({cascade, map.width, 0.0f, 0.0f, glm::uvec2(draws[cascade].layer_origin)});  // orthographic
     }
     moments_->record(cmd, layers, clamped_evsm_exponents(settings.filter));
 }

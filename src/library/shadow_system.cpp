@@ -153,7 +153,9 @@ struct ShadowSystem::Impl {
         Clock::time_point start = Clock::now();
         const Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
-        const CascadeSet set = compute_cascades(camera, direction, settings.shadow.cascades, geometry.world_bounds());
+        CascadeSet set = compute_cascades(camera, direction, settings.shadow.cascades, geometry.depth_range_bounds());
+        place_in_layers(set, settings.shadow.cascades.resolution,
+                        settings.shadow.strategy == ShadowStrategy::PerCascade);
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         const bool casts = sun_light && sun_light->cast_shadows;
@@ -186,6 +188,8 @@ struct ShadowSystem::Impl {
             out.cache_reused = stats.cache_reused;
             out.texels_rendered = stats.texels_rendered;
             out.texels_copied = stats.texels_copied;
+            out.layer_origin_x = static_cast<uint32_t>(cascade.layer_origin.x);
+            out.layer_origin_y = static_cast<uint32_t>(cascade.layer_origin.y);
             library::for_each_draw(cascade_draws[c], [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
             info.cascades.push_back(out);
         }
@@ -332,7 +336,8 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
                          &slot.timer);
     // The cache holds this frame's static casters once the commands run; the changes the
     // plan covered are drawn.
-    if (impl.cascades.cached()) impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws);
+    if (impl.cascades.cached())
+        impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
     impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, &slot.timer);
     slot.shadow_maps_recorded = true;

@@ -129,7 +129,7 @@ VkPipeline CasterPipelines::get(const VertexFormats& formats) const {
 
 void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                          const CasterScene& scene, const DrawList& list, uint32_t layer,
-                         const CasterFaceCulling& culling) {
+                         const CasterFaceCulling& culling, uint32_t tile) {
     BoundState bound;
     // Opaque casters first, then masked ones, so that each pipeline is bound about once.
     for (const bool masked_pass : {false, true}) {
@@ -164,7 +164,7 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
                 device->vkCmdSetFrontFace(cmd, front_face);
                 bound.front_face = front_face;
             }
-            const shader::CasterPushConstants constants{draw.model, layer, mesh.alpha_cutoff, mesh.alpha_scale, 0.0f};
+            const shader::CasterPushConstants constants{draw.model, layer, mesh.alpha_cutoff, mesh.alpha_scale, tile};
             device->vkCmdPushConstants(cmd, pipelines.layout(),
                                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants),
                                        &constants);

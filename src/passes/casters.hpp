@@ -110,10 +110,11 @@ struct CasterFaceCulling {
 
 // Records `list` into the current rendering: per draw its pipeline, vertex and index
 // buffers, alpha mask, culling and push constants (`layer`: the cascade or the local
-// layer the vertex shader projects with). Opaque draws first, then masked ones.
+// layer the vertex shader projects with; `tile`: a toroidal cascade's tile,
+// CasterPushConstants::tile). Opaque draws first, then masked ones.
 void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                          const CasterScene& scene, const DrawList& list, uint32_t layer,
-                         const CasterFaceCulling& culling);
+                         const CasterFaceCulling& culling, uint32_t tile = 0);
 
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 

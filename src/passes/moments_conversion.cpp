@@ -84,11 +84,14 @@ MomentsConversion::MomentsConversion(const gpu::Device& device, const gpu::Image
                                      const FilterSettings& filter)
     : device_(device),
       blur_radius_(static_cast<uint32_t>(std::max(filter.blur_radius, 0))),
+      side_(depth_map.desc.width),
       moments_(create_moments_image(device, moments_format(filter), depth_map.desc.width, depth_map.desc.layers)) {
     const VkFormat format = moments_.desc.format;
     gpu::SamplerDesc sampler;
     sampler.filter = filters_linearly(device, format) ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-    sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    // Repeat: a toroidal cascade wraps around its layer's edges (filters clamp their taps
+    // to the texels a layer uses).
+    sampler.address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     sampler_ = gpu::create_sampler(device, sampler);
 
     convert_layout_ = create_set_layout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
@@ -128,7 +131,8 @@ void MomentsConversion::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPip
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
     const shader::MomentsPushConstants constants{
         {layer.layer, layer.resolution, blur_radius_, horizontal ? 1u : 0u},
-        {layer.near_plane, layer.far_plane, evsm_exponents.x, evsm_exponents.y}};
+        {layer.near_plane, layer.far_plane, evsm_exponents.x, evsm_exponents.y},
+        {layer.layer_origin.x, layer.layer_origin.y, side_, 0u}};
     device_->vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     const uint32_t groups = (layer.resolution + kGroupSize - 1) / kGroupSize;
     device_->vkCmdDispatch(cmd, groups, groups, 1);

@@ -28,12 +28,14 @@ VkFormat moments_format(const FilterSettings& filter);
 
 // One layer to convert: its index, the texels per side it uses, and the depth mapping that
 // rendered it: the light's near plane and range for a perspective layer, far_plane 0 for
-// an orthographic one (the sun's cascades).
+// an orthographic one (the sun's cascades). The used texels start at the layer's corner,
+// or for a toroidal cascade at its layer_origin, wrapping around the layer's edges.
 struct MomentsLayer {
     uint32_t layer = 0;
     uint32_t resolution = 0;
     float near_plane = 0.0f;
     float far_plane = 0.0f;
+    glm::uvec2 layer_origin{0};
 };
 
 class MomentsConversion {
@@ -58,6 +60,7 @@ private:
 
     const gpu::Device& device_;
     uint32_t blur_radius_;
+    uint32_t side_;  // of the layers
     gpu::Image moments_;
     std::optional<gpu::Image> scratch_;  // with a blur
     gpu::UniqueSampler sampler_;

@@ -56,11 +56,12 @@ static_assert(offsetof(PenumbraCascade, texel_world_size) == 84);
 static_assert(offsetof(PenumbraCascade, depth_scale) == 88);
 static_assert(offsetof(PenumbraCascade, texels_per_metre) == 96);
 static_assert(offsetof(PenumbraCascade, texel_origin) == 104);
-static_assert(sizeof(PenumbraCascade) == 112);
+static_assert(offsetof(PenumbraCascade, layer_origin) == 112);
+static_assert(sizeof(PenumbraCascade) == 128);
 
 static_assert(offsetof(PenumbraShadowUniforms, light_view) == 64);
 static_assert(offsetof(PenumbraShadowUniforms, cascades) == 128);
-static_assert(offsetof(PenumbraShadowUniforms, to_sun) == 128 + 112 * PENUMBRA_MAX_CASCADES);
+static_assert(offsetof(PenumbraShadowUniforms, to_sun) == 128 + 128 * PENUMBRA_MAX_CASCADES);
 static_assert(offsetof(PenumbraShadowUniforms, cascade_count) == offsetof(PenumbraShadowUniforms, to_sun) + 16);
 static_assert(offsetof(PenumbraShadowUniforms, camera_near) == offsetof(PenumbraShadowUniforms, cascade_count) + 16);
 static_assert(offsetof(PenumbraShadowUniforms, light_bleeding_reduction) ==
@@ -86,9 +87,11 @@ static_assert(sizeof(PenumbraLocalShadows) ==
 
 static_assert(offsetof(CasterPushConstants, layer) == 64);
 static_assert(offsetof(CasterPushConstants, alpha_scale) == 72);
+static_assert(offsetof(CasterPushConstants, tile) == 76);
 static_assert(sizeof(CasterPushConstants) == 80);
 static_assert(offsetof(MomentsPushConstants, depth_range) == 16);
-static_assert(sizeof(MomentsPushConstants) == 32);
+static_assert(offsetof(MomentsPushConstants, window) == 32);
+static_assert(sizeof(MomentsPushConstants) == 48);
 static_assert(offsetof(ResolvePushConstants, width) == 64);
 static_assert(offsetof(ResolvePushConstants, background_depth) == 80);
 static_assert(offsetof(ResolvePushConstants, has_face_normals) == 88);

@@ -88,7 +88,7 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
         return;
     }
     gpu::ImageState map_state = keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads;
-    if (any([](const CascadeDraws& d) { return d.restore; })) {
+    if (any([](const CascadeDraws& d) { return !d.restore.empty(); })) {
         gpu::TimedScope scope(timer, cmd, "shadow_cache_restore");
         gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::TransferDst);
         map_state = gpu::ImageState::TransferDst;
@@ -97,7 +97,7 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
     gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::DepthAttachment);
     record_static(cmd, scene, draws, bias, culling, timer);
     map_state = gpu::ImageState::DepthAttachment;
-    if (any([](const CascadeDraws& d) { return d.store; })) {
+    if (any([](const CascadeDraws& d) { return !d.store.empty(); })) {
         gpu::TimedScope scope(timer, cmd, "shadow_cache_store");
         gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::TransferSrc);
         map_state = gpu::ImageState::TransferSrc;
@@ -114,10 +114,13 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
 void ShadowPass::record_multiview(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                                   const BiasSettings& bias, const CasterFaceCulling& culling,
                                   gpu::GpuTimer* timer) const {
-    // One pass renders every layer, so a draw goes in when any cascade needs it.
+    // One pass renders every layer, so a draw goes in when any cascade needs it (multiview
+    // layers are not toroidal: one region per cascade, tile 0).
     DrawList union_list;
-    for (const CascadeDraws& cascade : draws)
-        union_list.insert(union_list.end(), cascade.casters.begin(), cascade.casters.end());
+    for (const CascadeDraws& cascade : draws) {
+        for (const CascadeDraws::Region& region : cascade.regions)
+            union_list.insert(union_list.end(), region.casters.begin(), region.casters.end());
+    }
     std::sort(union_list.begin(), union_list.end());
     union_list.erase(std::unique(union_list.begin(), union_list.end()), union_list.end());
     gpu::TimedScope scope(timer, cmd, "shadow_multiview");
@@ -126,60 +129,73 @@ void ShadowPass::record_multiview(VkCommandBuffer cmd, const CasterScene& scene,
     device_->vkCmdEndRendering(cmd);
 }
 
-// Step 2: per layer, everything from a cleared layer, or the stale rectangles of a kept one
-// (each cleared, then drawn under a scissor: the rasteriser writes only inside it).
+namespace {
+
+VkRect2D to_vk_rect(const TexelRect& rect) {
+    return {{rect.min.x, rect.min.y},
+            {static_cast<uint32_t>(rect.max.x - rect.min.x), static_cast<uint32_t>(rect.max.y - rect.min.y)}};
+}
+
+}  // namespace
+
+// Each region's casters under its scissor (the rasteriser writes only inside it), with
+// its tile's offset; a kept layer's regions are cleared first.
+void ShadowPass::record_regions(VkCommandBuffer cmd, const CasterScene& scene,
+                                const std::vector<CascadeDraws::Region>& regions, uint32_t cascade, bool clear,
+                                const CasterFaceCulling& culling) const {
+    for (const CascadeDraws::Region& region : regions) {
+        const VkRect2D rect = to_vk_rect(region.rect);
+        if (clear) {
+            const VkClearAttachment attachment{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {.depthStencil = {0.0f, 0}}};
+            const VkClearRect clear_rect{rect, 0, 1};
+            device_->vkCmdClearAttachments(cmd, 1, &attachment, 1, &clear_rect);
+        }
+        if (region.casters.empty()) continue;
+        device_->vkCmdSetScissor(cmd, 0, 1, &rect);
+        record_caster_draws(device_, cmd, pipelines_, scene, region.casters, cascade, culling, region.tile);
+    }
+}
+
+// Step 2: per layer, everything from a cleared layer, or the stale rectangles of a kept one.
 void ShadowPass::record_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                                const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
     for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
         const CascadeDraws& layer = draws[cascade];
-        if (layer.reuse && layer.redraw.empty()) continue;
+        if (layer.reuse && layer.regions.empty()) continue;
         gpu::TimedScope scope(timer, cmd, "shadow_cascade_" + std::to_string(cascade));
-        const VkImageView view = shadow_map_.layer_views[cascade];
-        if (!layer.reuse) {
-            begin_rendering(cmd, view, 0, bias, VK_ATTACHMENT_LOAD_OP_CLEAR);
-            record_caster_draws(device_, cmd, pipelines_, scene, layer.casters, cascade, culling);
-            device_->vkCmdEndRendering(cmd);
-            continue;
-        }
-        begin_rendering(cmd, view, 0, bias, VK_ATTACHMENT_LOAD_OP_LOAD);
-        for (const CascadeDraws::Redraw& redraw : layer.redraw) {
-            const VkRect2D rect{{redraw.rect.min.x, redraw.rect.min.y},
-                                {static_cast<uint32_t>(redraw.rect.max.x - redraw.rect.min.x),
-                                 static_cast<uint32_t>(redraw.rect.max.y - redraw.rect.min.y)}};
-            const VkClearAttachment clear{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {.depthStencil = {0.0f, 0}}};
-            const VkClearRect clear_rect{rect, 0, 1};
-            device_->vkCmdClearAttachments(cmd, 1, &clear, 1, &clear_rect);
-            device_->vkCmdSetScissor(cmd, 0, 1, &rect);
-            record_caster_draws(device_, cmd, pipelines_, scene, redraw.casters, cascade, culling);
-        }
+        begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias,
+                        layer.reuse ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR);
+        record_regions(cmd, scene, layer.regions, cascade, layer.reuse, culling);
         device_->vkCmdEndRendering(cmd);
     }
 }
 
-// Steps 1 and 3: the cache's layer into the map, moved by the cascade's shift (restore),
-// or the map's static casters into the cache (store).
+// Steps 1 and 3: the cache's texels into the map (restore), or the map's static casters
+// into the cache (store); the two images hold a cascade at the same layer texels.
 void ShadowPass::copy_cache(VkCommandBuffer cmd, const std::vector<CascadeDraws>& draws, bool restore) {
     const gpu::ImageState wanted = restore ? gpu::ImageState::TransferSrc : gpu::ImageState::TransferDst;
     gpu::transition(device_, cmd, *cache_, cache_state_, wanted);
     cache_state_ = wanted;
-    const int32_t size = static_cast<int32_t>(resolution_);
+    std::vector<VkImageCopy> regions;
     for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
-        const CascadeDraws& layer = draws[cascade];
-        if (restore ? !layer.restore : !layer.store) continue;
-        const glm::ivec2 shift = restore ? layer.shift : glm::ivec2(0);
-        const glm::ivec2 extent = glm::ivec2(size) - glm::abs(shift);
-        if (extent.x <= 0 || extent.y <= 0) continue;
-        VkImageCopy region{};
-        region.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, cascade, 1};
-        region.dstSubresource = region.srcSubresource;
-        region.srcOffset = {std::max(-shift.x, 0), std::max(-shift.y, 0), 0};
-        region.dstOffset = {std::max(shift.x, 0), std::max(shift.y, 0), 0};
-        region.extent = {static_cast<uint32_t>(extent.x), static_cast<uint32_t>(extent.y), 1};
-        const VkImage source = restore ? cache_->get() : shadow_map_.get();
-        const VkImage destination = restore ? shadow_map_.get() : cache_->get();
-        device_->vkCmdCopyImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination,
-                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        for (const TexelRect& rect : restore ? draws[cascade].restore : draws[cascade].store) {
+            if (rect.empty()) continue;
+            VkImageCopy region{};
+            region.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, cascade, 1};
+            region.dstSubresource = region.srcSubresource;
+            region.srcOffset = {rect.min.x, rect.min.y, 0};
+            region.dstOffset = region.srcOffset;
+            region.extent = {static_cast<uint32_t>(rect.max.x - rect.min.x),
+                             static_cast<uint32_t>(rect.max.y - rect.min.y), 1};
+            regions.push_back(region);
+        }
     }
+    if (regions.empty()) return;
+    const VkImage source = restore ? cache_->get() : shadow_map_.get();
+    const VkImage destination = restore ? shadow_map_.get() : cache_->get();
+    device_->vkCmdCopyImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination,
+                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, static_cast<uint32_t>(regions.size()),
+                            regions.data());
 }
 
 // Step 4: the dynamic casters over the static ones, every frame.
@@ -190,7 +206,7 @@ void ShadowPass::record_dynamic(VkCommandBuffer cmd, const CasterScene& scene, c
     for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
         if (draws[cascade].dynamic.empty()) continue;
         begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias, VK_ATTACHMENT_LOAD_OP_LOAD);
-        record_caster_draws(device_, cmd, pipelines_, scene, draws[cascade].dynamic, cascade, culling);
+        record_regions(cmd, scene, draws[cascade].dynamic, cascade, false, culling);
         device_->vkCmdEndRendering(cmd);
     }
 }

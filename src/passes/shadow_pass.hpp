@@ -6,12 +6,15 @@
 // draws. Multiview strategy: one pass whose view mask covers every cascade; the vertex
 // shader adds gl_ViewIndex to the cascade.
 //
-// With a cache (per-cascade only, core/shadow_cache.hpp), a second layered image keeps
-// each cascade's static casters from frame to frame. A frame then (1) restores the cache
-// into the map where it moved or where dynamic casters were drawn over it, shifted by the
-// cascade's whole-texel move, (2) clears and draws the static casters only in the
-// rectangles that need it (or the whole layer without a usable cache), (3) stores the
-// result back into the cache, and (4) draws the dynamic casters over it.
+// Per-cascade passes place each cascade toroidally in its layer (Cascade::layer_origin):
+// a world texel keeps its layer texel while the cascade moves, so the window wraps around
+// the layer's edges and is drawn as up to four scissored tiles (core/shadow_cache.hpp's
+// layer_pieces). A cached cascade (core/shadow_cache.hpp) therefore keeps its texels in
+// place from frame to frame, and a frame (1) restores, from a second layered image that
+// holds the static casters, the texels where dynamic casters were drawn last frame, (2)
+// clears and draws the static casters only in the rectangles that need it (or the whole
+// layer without a usable cache), (3) copies what the dynamic casters will cover into that
+// image, and (4) draws the dynamic casters over the map.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -29,21 +32,25 @@
 
 namespace penumbra::passes {
 
-// What a frame draws into one cascade.
+// What a frame draws into one cascade. Rectangles are layer texels.
 struct CascadeDraws {
-    // false: clear the layer and draw `casters` (every caster, or every static one with a
-    // cache). true (cached): keep the static casters the map holds, moved by `shift`.
-    bool reuse = false;
-    glm::ivec2 shift{0};
-    bool restore = false;  // reuse: copy the cache into the layer first (moved, or dynamic casters over it)
-    DrawList casters;      // !reuse: the layer's casters
-    struct Redraw {
+    // Casters drawn into one piece of the cascade's window (core/shadow_cache.hpp's
+    // LayerPiece): scissored to `rect`, with the vertex shader's tile offset.
+    struct Region {
         TexelRect rect;
-        DrawList casters;  // the static casters that can reach it
+        uint32_t tile = 0;
+        DrawList casters;
     };
-    std::vector<Redraw> redraw;  // reuse: clear these rectangles and draw their casters
-    bool store = false;          // copy the layer's static casters into the cache
-    DrawList dynamic;            // drawn over the static ones (cached only)
+    glm::ivec2 layer_origin{0};  // Cascade::layer_origin
+    // false: clear the layer and draw `regions` (every caster, or every static one with a
+    // cache). true (cached): keep the layer's texels; clear each region, then draw it.
+    bool reuse = false;
+    glm::ivec2 shift{0};                   // reuse: how many texels the window moved (statistics)
+    std::vector<TexelRect> restore;        // reuse: copied from the cache first (dynamic casters were there)
+    std::vector<Region> regions;           // the static casters (all casters without a cache)
+    std::vector<TexelRect> store;          // copied into the cache after the static casters
+    std::vector<Region> dynamic;           // drawn over the static ones (cached only)
+    std::vector<TexelRect> dynamic_cover;  // texels the dynamic casters may cover (restored next frame)
 };
 
 class ShadowPass {
@@ -77,6 +84,8 @@ private:
                          VkAttachmentLoadOp load) const;
     void record_multiview(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                           const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+    void record_regions(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws::Region>& regions,
+                        uint32_t cascade, bool clear, const CasterFaceCulling& culling) const;
     void record_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                        const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
     void copy_cache(VkCommandBuffer cmd, const std::vector<CascadeDraws>& draws, bool restore);

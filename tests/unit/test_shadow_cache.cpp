@@ -4,6 +4,7 @@
 // every texel it can touch, and the plan redraws what changed and nothing else.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -176,6 +177,79 @@ TEST(ShadowCache, ThePlanRedrawsTheExposedStripsAndTheChangedCastersOnly) {
     // Too much to redraw: everything.
     std::vector<Aabb> many(kMaxRedrawRects + 1, old_box);
     EXPECT_FALSE(plan_cascade_update(before, before, resolution, many).reuse);
+}
+
+TEST(ShadowCache, ToroidalLayersKeepAWorldPointAtOneLayerTexelWhileTheCascadeMoves) {
+    std::mt19937 rng(18);
+    for (int i = 0; i < 200; ++i) {
+        CacheSetup setup = random_setup(rng);
+        const uint32_t resolution = setup.settings.resolution;
+        CascadeSet before = cascades_for(setup);
+        const glm::vec3 step(uniform(rng, -30.0f, 30.0f), 0.0f, uniform(rng, -30.0f, 30.0f));
+        setup.camera.eye += step;
+        setup.camera.target += step;
+        CascadeSet after = cascades_for(setup);
+        place_in_layers(before, resolution, true);
+        place_in_layers(after, resolution, true);
+        const float side = static_cast<float>(resolution);
+        for (size_t c = 0; c < before.cascades.size(); ++c) {
+            for (const Cascade* cascade : {&before.cascades[c], &after.cascades[c]}) {
+                EXPECT_TRUE(glm::all(glm::greaterThanEqual(cascade->layer_origin, glm::ivec2(0))));
+                EXPECT_TRUE(glm::all(glm::lessThan(cascade->layer_origin, glm::ivec2(static_cast<int>(resolution)))));
+            }
+            const glm::vec3 point(uniform(rng, -50.0f, 50.0f), uniform(rng, 0.0f, 5.0f), uniform(rng, -50.0f, 50.0f));
+            const auto layer_texel = [&](const Cascade& cascade) {
+                const glm::vec2 texel = texel_of(cascade, point, resolution) + glm::vec2(cascade.layer_origin);
+                return texel - side * glm::floor(texel / side);  // modulo the layer's side
+            };
+            const glm::vec2 moved = layer_texel(after.cascades[c]) - layer_texel(before.cascades[c]);
+            // The same layer texel (or the same one seen across the wrap).
+            for (int axis = 0; axis < 2; ++axis) {
+                const float wrapped = moved[axis] - side * std::round(moved[axis] / side);
+                EXPECT_NEAR(wrapped, 0.0f, 0.01f) << "case " << i << " cascade " << c;
+            }
+        }
+        place_in_layers(after, resolution, false);
+        for (const Cascade& cascade : after.cascades) EXPECT_EQ(cascade.layer_origin, glm::ivec2(0));
+    }
+}
+
+TEST(ShadowCache, LayerPiecesCoverTheWindowRectangleOnceAtItsWrappedLayerTexels) {
+    std::mt19937 rng(19);
+    const uint32_t resolution = 16;
+    const int size = static_cast<int>(resolution);
+    for (int i = 0; i < 500; ++i) {
+        const auto coordinate = [&](int low, int high) { return std::uniform_int_distribution<int>(low, high)(rng); };
+        const glm::ivec2 origin(coordinate(0, size - 1), coordinate(0, size - 1));
+        const glm::ivec2 a(coordinate(0, size), coordinate(0, size));
+        const glm::ivec2 b(coordinate(0, size), coordinate(0, size));
+        const TexelRect rect{glm::min(a, b), glm::max(a, b)};
+        std::vector<int> covered(resolution * resolution, 0);
+        std::vector<int> layer_covered(resolution * resolution, 0);
+        for (const LayerPiece& piece : layer_pieces(rect, origin, resolution)) {
+            EXPECT_FALSE(piece.window.empty());
+            EXPECT_EQ(intersect(piece.layer, whole_map(resolution)), piece.layer) << "case " << i;
+            EXPECT_EQ(piece.layer.max - piece.layer.min, piece.window.max - piece.window.min);
+            for (int y = piece.window.min.y; y < piece.window.max.y; ++y) {
+                for (int x = piece.window.min.x; x < piece.window.max.x; ++x) {
+                    ++covered[y * size + x];
+                    const glm::ivec2 layer = glm::ivec2(x, y) - piece.window.min + piece.layer.min;
+                    EXPECT_EQ(layer, (glm::ivec2(x, y) + origin) % size) << "case " << i;
+                    // The tile says which axes wrapped.
+                    EXPECT_EQ((piece.tile & 1u) != 0, x + origin.x >= size);
+                    EXPECT_EQ((piece.tile & 2u) != 0, y + origin.y >= size);
+                    ++layer_covered[layer.y * size + layer.x];
+                }
+            }
+        }
+        for (int y = 0; y < size; ++y) {
+            for (int x = 0; x < size; ++x) {
+                const bool inside = x >= rect.min.x && x < rect.max.x && y >= rect.min.y && y < rect.max.y;
+                ASSERT_EQ(covered[y * size + x], inside ? 1 : 0) << "case " << i << " texel " << x << ", " << y;
+            }
+        }
+        for (const int count : layer_covered) ASSERT_LE(count, 1) << "case " << i;
+    }
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ struct PenumbraShadowView {
     float depth;          // reverse-Z depth of the receiver (1 = nearest the light)
     vec2 depth_gradient;  // receiver plane dz/du, dz/dv (0 without receiver-plane bias)
     float texel_uv;       // one texel of the map in UV
-    vec4 uv_bounds;       // every tap is clamped to [xy, zw] (a local light's corner of its layer)
+    vec4 uv_bounds;       // every tap is clamped to [xy, zw] (the texels the view's map uses)
+    vec2 uv_offset;       // the layer UV of the view's UV 0 (a toroidal cascade's layer_origin; samplers repeat)
     // PCSS (Fernando 2005). Distances are along the light's axis, in the units that
     // pcss_depth_to_distance gives a stored depth.
     vec2 pcss_search_radius;       // the blocker search's radius in UV, before its clamp
@@ -29,10 +30,6 @@ struct PenumbraShadowView {
     vec4 pcss_depth_to_distance;   // distance = (x + y d) / (z + w d) of a stored reverse-Z depth d
     float moments_distance;        // the receiver's distance as the moments store it (0..1)
 };
-
-// Bounds that leave every tap where it is (a cascade: lookups outside the map are the
-// sampler's business).
-const vec4 kPenumbraUnboundedUv = vec4(-3.0e38, -3.0e38, 3.0e38, 3.0e38);
 
 // Rotation of the Poisson patterns: interleaved gradient noise per pixel (Jimenez 2014,
 // "Next Generation Post Processing in Call of Duty: Advanced Warfare") plus a golden-ratio
@@ -49,10 +46,14 @@ mat2 penumbra_sample_rotation(vec2 pixel) {
 }
 
 // The UV of a tap `offset` (UV) away from the receiver, inside the view's bounds, so that
-// no tap of a local light reads another light's texels or a neighbouring cube face.
+// no tap of a local light reads another light's texels or a neighbouring cube face, and
+// no tap of a toroidal cascade reads the opposite edge where the cascade wraps.
 vec2 penumbra_view_tap(PenumbraShadowView view, vec2 offset) {
     return clamp(view.uv + offset, view.uv_bounds.xy, view.uv_bounds.zw);
 }
+
+// Where a tap's UV lies in the map layer (the samplers repeat: a toroidal cascade wraps).
+vec2 penumbra_layer_uv(PenumbraShadowView view, vec2 tap_uv) { return tap_uv + view.uv_offset; }
 
 // Bias for the texels a tap actually compares: a bilinear comparison reads texel centres
 // up to one texel away from the tap on each axis, where the receiver's plane has moved
@@ -71,12 +72,12 @@ float penumbra_reference_depth(PenumbraShadowView view, vec2 tap_uv, float stati
 // One hardware comparison tap `offset` (UV) away from the receiver.
 float penumbra_compare_tap(sampler2DArrayShadow map, PenumbraShadowView view, vec2 offset, float static_bias) {
     const vec2 uv = penumbra_view_tap(view, offset);
-    return texture(map, vec4(uv, view.layer, penumbra_reference_depth(view, uv, static_bias)));
+    return texture(map, vec4(penumbra_layer_uv(view, uv), view.layer, penumbra_reference_depth(view, uv, static_bias)));
 }
 
 // hard: one hardware comparison tap, no receiver-plane bias.
 float penumbra_filter_hard(sampler2DArrayShadow map, PenumbraShadowView view) {
-    return texture(map, vec4(penumbra_view_tap(view, vec2(0.0)), view.layer, view.depth));
+    return texture(map, vec4(penumbra_layer_uv(view, penumbra_view_tap(view, vec2(0.0))), view.layer, view.depth));
 }
 
 // pcf: the (2R+1) x (2R+1) grid of comparison taps one texel apart, as (R+1)^2 weighted
@@ -135,7 +136,7 @@ PenumbraBlockerSearch penumbra_find_blockers(sampler2DArray depth_map, PenumbraS
     PenumbraBlockerSearch search = PenumbraBlockerSearch(0.0, 0u);
     for (uint i = 0u; i < kPenumbraSearchTaps; ++i) {
         const vec2 uv = penumbra_view_tap(view, (rotation * penumbra_poisson_tap(kPenumbraSearchTaps, i)) * radius_uv);
-        const float stored = texture(depth_map, vec3(uv, view.layer)).r;
+        const float stored = texture(depth_map, vec3(penumbra_layer_uv(view, uv), view.layer)).r;
         if (stored > penumbra_reference_depth(view, uv, bias)) {  // reverse-Z: larger = nearer the light
             search.average_distance += penumbra_depth_to_distance(view, stored);
             search.count += 1u;
@@ -216,13 +217,15 @@ const float kPenumbraMomentDepthTolerance = 5e-4;
 // moments: the average of a moment vector is the moment vector of the mixed
 // distribution, which is why moments can be prefiltered at all.
 vec4 penumbra_fetch_moments(sampler2DArray moments_map, PenumbraShadowView view, vec2 pixel) {
-    if (!kPenumbraMomentsPoisson) return texture(moments_map, vec3(penumbra_view_tap(view, vec2(0.0)), view.layer));
+    if (!kPenumbraMomentsPoisson) {
+        return texture(moments_map, vec3(penumbra_layer_uv(view, penumbra_view_tap(view, vec2(0.0))), view.layer));
+    }
     const mat2 rotation = penumbra_sample_rotation(pixel);
     const vec2 radius_uv = vec2(penumbra_shadow.poisson_radius_texels * view.texel_uv);
     vec4 sum = vec4(0.0);
     for (uint i = 0u; i < 16u; ++i) {
         const vec2 uv = penumbra_view_tap(view, (rotation * penumbra_poisson_tap(16u, i)) * radius_uv);
-        sum += texture(moments_map, vec3(uv, view.layer));
+        sum += texture(moments_map, vec3(penumbra_layer_uv(view, uv), view.layer));
     }
     return sum / 16.0;
 }

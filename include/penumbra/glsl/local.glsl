@@ -97,6 +97,7 @@ PenumbraShadowView penumbra_local_view(PenumbraLocalShadow light, PenumbraLocalC
     view.depth_gradient = coord.depth_gradient;
     view.texel_uv = penumbra_local_texel_uv();
     view.uv_bounds = vec4(vec2(half_texel), vec2(light.uv_scale - half_texel));
+    view.uv_offset = vec2(0.0);
     view.pcss_search_radius = vec2(search_radius);
     view.pcss_penumbra_scale = vec2(light.radius * uv_per_metre_at_receiver);
     view.pcss_perspective = true;

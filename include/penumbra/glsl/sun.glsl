@@ -125,8 +125,10 @@ void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_
 // serves as distance for the moments and for PCSS, whose light radius per unit of depth
 // (light_radius_uv_per_depth = depth range * tan(theta / 2) / (width, height), for a sun of
 // angular diameter theta) turns the distance from the near plane into the blocker search
-// radius and the receiver-blocker distance into the penumbra radius. Taps are not
-// clamped: the whole layer is this cascade's.
+// radius and the receiver-blocker distance into the penumbra radius. Taps are clamped to
+// the cascade's texels (half a texel inside its edges, as clamp-to-edge addressing would
+// read them): where the cascade wraps around its layer (layer_origin), the texels beyond
+// an edge are the opposite edge's.
 PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord) {
     const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
     // The cascade's depth range is the scene's along the light: a receiver beyond it (a
@@ -139,7 +141,9 @@ PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord)
     view.depth = depth;
     view.depth_gradient = coord.depth_gradient;
     view.texel_uv = penumbra_shadow.texel_uv;
-    view.uv_bounds = kPenumbraUnboundedUv;
+    const float half_texel = 0.5 * penumbra_shadow.texel_uv;
+    view.uv_bounds = vec4(vec2(half_texel), vec2(1.0 - half_texel));
+    view.uv_offset = penumbra_shadow.cascades[cascade].layer_origin * penumbra_shadow.texel_uv;
     view.pcss_search_radius = (1.0 - depth) * light_radius_per_depth;
     view.pcss_penumbra_scale = light_radius_per_depth;
     view.pcss_perspective = false;
