@@ -6,7 +6,8 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|filters|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|filters|all --out DIR
+(cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
 import json
@@ -19,7 +20,7 @@ BASE = ["--width", "1920", "--height", "1080", "--cascades", "4", "--shadow-reso
 UHD = ["--width", "3840", "--height", "2160", "--cascades", "4", "--shadow-resolution", "2048"]
 
 
-def cache_runs(binary):
+def cache_runs(binary, tag=""):
     """Cached cascades off and on along each camera path (issue 15's numbers)."""
     runs = []
     for path, frames in (("orbit", 60), ("walk", 120), ("flythrough", 120), ("still", 60)):
@@ -27,7 +28,7 @@ def cache_runs(binary):
             extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10"]
             if cache == "on":
                 extra.append("--shadow-cache")
-            runs.append((f"cache {cache}, {path} ({frames} frames)", binary, FOREST, BASE + extra))
+            runs.append((f"cache {cache}, {path} ({frames} frames){tag}", binary, FOREST, BASE + extra))
     return runs
 
 
@@ -58,7 +59,7 @@ def median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "filters", "all"], default="all")
+    parser.add_argument("--plan", choices=["cache", "cache-each", "filters", "all"], default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
@@ -67,6 +68,9 @@ def main():
     runs = []
     if args.plan in ("cache", "all"):
         runs += cache_runs(args.cache_binary or names[0])
+    if args.plan == "cache-each":
+        for name in names:
+            runs += cache_runs(name, f" [{name}]")
     if args.plan in ("filters", "all"):
         runs += filter_runs(names)
     os.makedirs(args.out, exist_ok=True)

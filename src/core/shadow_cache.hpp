@@ -4,9 +4,10 @@
 // that cache shadow maps (CryEngine's cached far cascades, Unity HDRP's mixed cached maps,
 // UE5's virtual shadow map pages) keep the depths of casters that did not move; with the
 // stable fit a cascade only ever moves by whole texels in its own plane, and with the
-// scene's depth range along the light (compute_cascades) its depth mapping stays put, so
-// the kept depths are moved by the same whole texels and only the strips the move exposes
-// (and the footprints of static casters that changed) are drawn again.
+// static instances' depth range along the light (compute_cascades) its depth mapping stays
+// put; placed toroidally in its layer (place_in_layers) its kept texels stay where they
+// are, and only the strips the move exposes (and the footprints of static casters that
+// changed) are drawn again.
 // Pure functions; no Vulkan.
 #include <cstdint>
 #include <optional>

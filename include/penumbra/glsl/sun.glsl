@@ -131,9 +131,10 @@ void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_
 // an edge are the opposite edge's.
 PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord) {
     const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
-    // The cascade's depth range is the scene's along the light: a receiver beyond it (a
-    // caller's surface that is no instance) compares as lying on the far side (lit unless
-    // a caster covers it) or on the near side (lit).
+    // The cascade's depth range is the static instances' along the light: a receiver beyond
+    // it (a caller's surface that is no instance, a dynamic instance above or below every
+    // static one) compares as lying on the far side (lit unless a caster covers it) or on
+    // the near side (lit).
     const float depth = clamp(coord.depth, 0.0, 1.0);
     PenumbraShadowView view;
     view.uv = coord.uv;
