@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|filters|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|filters|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -29,6 +29,20 @@ def cache_runs(binary, tag=""):
             if cache == "on":
                 extra.append("--shadow-cache")
             runs.append((f"cache {cache}, {path} ({frames} frames){tag}", binary, FOREST, BASE + extra))
+    return runs
+
+
+def local_runs(binary):
+    """8 static spot and 8 static point lights over the forest, cache off and on (issue 15)."""
+    runs = []
+    lights = f"{FOREST}&spots=8&points=8"
+    for path, frames in (("still", 60), ("walk", 120), ("orbit", 60)):
+        for cache in ("off", "on"):
+            extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10"]
+            if cache == "on":
+                extra.append("--shadow-cache")
+            runs.append((f"local lights, cache {cache}, {path} ({frames} frames)", binary, lights,
+                         BASE + ["--local-shadow-budget", "16"] + extra))
     return runs
 
 
@@ -59,7 +73,7 @@ def median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "filters", "all"], default="all")
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "filters", "all"], default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
@@ -68,14 +82,16 @@ def main():
     runs = []
     if args.plan in ("cache", "all"):
         runs += cache_runs(args.cache_binary or names[0])
+    if args.plan in ("local", "all"):
+        runs += local_runs(args.cache_binary or names[0])
     if args.plan == "cache-each":
         for name in names:
             runs += cache_runs(name, f" [{name}]")
     if args.plan in ("filters", "all"):
         runs += filter_runs(names)
     os.makedirs(args.out, exist_ok=True)
-    rows = ["| run | shadow_sun ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame |",
-            "|---|---|---|---|---|---|---|"]
+    rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame |",
+            "|---|---|---|---|---|---|---|---|---|"]
     results = []
     for index, (label, binary, scene, extra) in enumerate(runs):
         json_path = os.path.join(args.out, f"run{index:02d}.json")
@@ -84,24 +100,32 @@ def main():
         done = subprocess.run(command, capture_output=True, text=True)
         if done.returncode != 0:
             print(done.stderr, file=sys.stderr)
-            rows.append(f"| {label} | failed ({done.returncode}) | | | | | |")
+            rows.append(f"| {label} | failed ({done.returncode}) | | | | | | | |")
             continue
         with open(json_path) as file:
             report = json.load(file)
         drawn = sum(c["texels_rendered"]["mean"] for c in report["cascades"]) if "texels_rendered" in report["cascades"][0] else None
         copied = sum(c["texels_copied"]["mean"] for c in report["cascades"]) if "texels_copied" in report["cascades"][0] else None
-        cells = [median(report, n) for n in ("shadow_sun", "lighting", "visibility", "frame")]
+        cells = [median(report, n) for n in ("shadow_sun", "shadow_local", "lighting", "visibility", "frame")]
+        kept = sum(l["layers_kept"]["mean"] for l in report["local_shadows"]["lights"]
+                   if "layers_kept" in l) if report.get("local_shadows", {}).get("lights") else None
         fmt = lambda v: "" if v is None else (f"{v:.3f}" if isinstance(v, float) else str(v))
         rows.append(f"| {label} | " + " | ".join(fmt(c) for c in cells) +
-                    f" | {fmt(None if drawn is None else round(drawn))} | {fmt(None if copied is None else round(copied))} |")
+                    f" | {fmt(None if drawn is None else round(drawn))} | {fmt(None if copied is None else round(copied))}"
+                    f" | {fmt(None if kept is None else round(kept, 1))} |")
         results.append({"label": label, "binary": binary, "scene": scene, "args": extra, "report": report})
+        write_report(args.out, rows, results)  # after every run: a run cut short keeps what it measured
+    print(write_report(args.out, rows, results))
+
+
+def write_report(out, rows, results):
     device = results[0]["report"]["device"]["name"] if results else "?"
     text = f"Device: {device}\n\n" + "\n".join(rows) + "\n"
-    with open(os.path.join(args.out, "ab.md"), "w") as file:
+    with open(os.path.join(out, "ab.md"), "w") as file:
         file.write(text)
-    with open(os.path.join(args.out, "ab.json"), "w") as file:
+    with open(os.path.join(out, "ab.json"), "w") as file:
         json.dump(results, file, indent=1)
-    print(text)
+    return text
 
 
 if __name__ == "__main__":

@@ -97,9 +97,10 @@ struct LocalShadowReport {
     // Texels per side of each of its layers, per frame: the renderer may size a light's map
     // by its screen coverage, which changes along the camera path.
     CountSummary resolution;
-    float near_plane = 0.0f;  // metres, the smallest of the frames (lights and casters stand still)
-    CountSummary draws;       // per frame, over all its layers
-    CountSummary triangles;   // per frame, over all its layers
+    float near_plane = 0.0f;   // metres, the smallest of the frames (lights and casters stand still)
+    CountSummary draws;        // per frame, over all its layers
+    CountSummary triangles;    // per frame, over all its layers
+    CountSummary layers_kept;  // per frame: its layers a cached frame did not render (--shadow-cache)
 };
 
 struct CeilingReport {

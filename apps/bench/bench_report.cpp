@@ -69,7 +69,8 @@ Json local_shadow_json(const LocalShadowReport& light) {
                 {"resolution", counts_json(light.resolution)},
                 {"near_plane", light.near_plane},
                 {"draws", counts_json(light.draws)},
-                {"triangles", counts_json(light.triangles)}};
+                {"triangles", counts_json(light.triangles)},
+                {"layers_kept", counts_json(light.layers_kept)}};
 }
 
 // The shadowed spot/point lights; their map's bytes are part of "shadow_map_bytes".

@@ -57,6 +57,7 @@ struct LocalShadowSamples {
     std::vector<uint64_t> resolution;  // [frame]
     std::vector<uint64_t> draws;
     std::vector<uint64_t> triangles;
+    std::vector<uint64_t> layers_kept;  // cached local shadows
 };
 
 struct FrameSamples {
@@ -165,6 +166,7 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
         light.resolution.push_back(stats.resolution);
         light.draws.push_back(stats.draws);
         light.triangles.push_back(stats.triangles);
+        light.layers_kept.push_back(stats.layers_kept);
     }
 }
 
@@ -299,6 +301,7 @@ LocalShadowReport summarize_local_shadow(const LocalShadowSamples& samples, cons
     report.near_plane = samples.near_plane;
     report.draws = summarize_counts(samples.draws);
     report.triangles = summarize_counts(samples.triangles);
+    report.layers_kept = summarize_counts(samples.layers_kept);
     return report;
 }
 

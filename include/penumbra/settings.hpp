@@ -101,7 +101,9 @@ struct ShadowSettings {
     CasterCulling caster_culling = CasterCulling::None;
     // Keep each cascade's static casters' depths from frame to frame and draw again only the
     // texels the cascade's move exposes and those of static casters that changed; dynamic
-    // instances (kInstanceDynamic) are drawn over them every frame. Per-cascade strategy only.
+    // instances (kInstanceDynamic) are drawn over them every frame (per-cascade strategy
+    // only). Spot and point lights keep a layer while its light, near plane and size stay
+    // and no caster within its reach moved or is dynamic.
     bool cache_static_casters = false;
 };
 
@@ -296,7 +298,8 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
         {.name = "shadow_cache",
          .group = "bias",
          .label = "cache static casters",
-         .help = "Keep the cascades' static casters from frame to frame; draw only what moved or changed",
+         .help = "Keep static casters' shadows from frame to frame (cascades, spot and point lights); draw only "
+                 "what moved or changed",
          .recreates = true}),
     // The filter and its parameters, for every light (docs/filters.md).
     declare_choice<kShadowFilterChoices, &Settings::shadow, &ShadowSettings::filter, &FilterSettings::mode>(

@@ -171,8 +171,13 @@ struct LocalShadowInfo {
     uint32_t layers = 0;       // 1 for a spot, 6 for a cube (points, spots wider than 60 degrees)
     uint32_t resolution = 0;   // texels per side of each of its layers this frame
     float near_plane = 0.0f;   // metres (the nearest caster)
-    uint32_t draws = 0;        // casters drawn over all its layers
+    uint32_t draws = 0;        // casters drawn over all its layers this frame
     uint64_t triangles = 0;
+    // With cached static casters (Settings::shadow.cache_static_casters): its layers that
+    // still held this light's shadow and were not rendered (all of them for a light whose
+    // position, range, near plane and size are unchanged, with no dynamic caster and no
+    // static change within reach).
+    uint32_t layers_kept = 0;
 };
 
 struct FrameInfo {

@@ -1,5 +1,7 @@
 #include "core/shadow_cache.hpp"
 
+#include "core/local_lights.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -92,6 +94,9 @@ TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32
     // near plane by depth clamp).
     const Aabb clip_box = transform_aabb(world_box, cascade.view_projection);
     if (clip_box.max.z < 0.0f) return {};
+    // Wholly beyond the window's edges: no texel (the common case, kept as cheap as
+    // caster_may_shadow_cascade).
+    if (clip_box.min.x > 1.0f || clip_box.max.x < -1.0f || clip_box.min.y > 1.0f || clip_box.max.y < -1.0f) return {};
     const glm::vec2 low = clip_to_texels(clip_box.min.x, clip_box.min.y, resolution);
     const glm::vec2 high = clip_to_texels(clip_box.max.x, clip_box.max.y, resolution);
     // One texel of margin: rasterisation covers texels whose centres the triangles reach.
@@ -99,6 +104,19 @@ TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32
     const TexelRect rect{glm::ivec2(glm::clamp(glm::floor(low) - 1.0f, glm::vec2(-2.0f), limit)),
                          glm::ivec2(glm::clamp(glm::ceil(high) + 1.0f, glm::vec2(-2.0f), limit))};
     return intersect(rect, whole_map(resolution));
+}
+
+bool may_cast_into_layer(const LocalLayerKey& layer, const Aabb& box) {
+    if (box.empty() || !caster_may_shadow_frustum(layer.view_projection, box)) return false;
+    return layer.sphere.w <= 0.0f || caster_may_shadow_sphere(glm::vec3(layer.sphere), layer.sphere.w, box);
+}
+
+bool local_layer_reusable(const std::optional<LocalLayerKey>& kept, const LocalLayerKey& current,
+                          std::span<const Aabb> changed_static_bounds, std::span<const Aabb> dynamic_bounds) {
+    if (!kept || !(*kept == current)) return false;
+    const auto reaches = [&](const Aabb& box) { return may_cast_into_layer(current, box); };
+    return std::none_of(changed_static_bounds.begin(), changed_static_bounds.end(), reaches) &&
+           std::none_of(dynamic_bounds.begin(), dynamic_bounds.end(), reaches);
 }
 
 int64_t CascadeUpdate::redraw_texels() const {

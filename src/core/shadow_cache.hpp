@@ -97,4 +97,24 @@ inline constexpr size_t kMaxRedrawRects = 16;
 CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Cascade& current, uint32_t resolution,
                                   std::span<const Aabb> changed_static_bounds);
 
+// Cached spot and point lights: a layer of the local map (a spot, or one cube face) as it
+// was rendered. The same key, and no caster change that can reach the layer, means its
+// texels are still right.
+struct LocalLayerKey {
+    glm::mat4 view_projection{1.0f};  // world -> the layer's clip space
+    uint32_t resolution = 0;          // texels per side used
+    glm::vec4 sphere{0.0f};           // cube faces: the light's position and range (w), else w = 0
+    friend bool operator==(const LocalLayerKey&, const LocalLayerKey&) = default;
+};
+
+// Whether a world box can cast into the layer (its frustum, and the light's range for a cube).
+bool may_cast_into_layer(const LocalLayerKey& layer, const Aabb& box);
+
+// Whether a layer rendered for `kept` can be sampled as it is for `current`: the same key
+// (light position, direction, range, near plane and resolution unchanged), no static caster
+// changed where it can cast into the layer (`changed_static_bounds`: old and new bounds),
+// and no dynamic caster that can cast into it (`dynamic_bounds`: drawn every frame).
+bool local_layer_reusable(const std::optional<LocalLayerKey>& kept, const LocalLayerKey& current,
+                          std::span<const Aabb> changed_static_bounds, std::span<const Aabb> dynamic_bounds);
+
 }  // namespace penumbra

@@ -21,6 +21,7 @@ template <typename Keep>
 std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
                                   uint32_t resolution, Keep keep) {
     std::vector<Footprint> result;
+    result.reserve(scene.draws.size());
     for (uint32_t d = 0; d < scene.draws.size(); ++d) {
         if (!keep(scene.draws[d])) continue;
         const TexelRect window =
@@ -39,13 +40,16 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
     std::vector<CascadeDraws::Region> regions;
     for (const LayerPiece& piece : layer_pieces(window_rect, cascade.layer_origin, resolution)) {
         CascadeDraws::Region region{piece.layer, piece.tile, {}};
+        region.casters.reserve(casters.size());
         TexelRect reach;
         for (const Footprint& caster : casters) {
             const TexelRect overlap = intersect(caster.window, piece.window);
             if (overlap.empty()) continue;
             region.casters.push_back(caster.draw);
-            reach =
-                reach.empty() ? overlap : TexelRect{glm::min(reach.min, overlap.min), glm::max(reach.max, overlap.max)};
+            if (cover) {
+                reach = reach.empty() ? overlap
+                                      : TexelRect{glm::min(reach.min, overlap.min), glm::max(reach.max, overlap.max)};
+            }
         }
         if (cover && !reach.empty()) {
             const glm::ivec2 move = piece.layer.min - piece.window.min;
@@ -67,9 +71,9 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     draws.layer_origin = cascade.layer_origin;
     const std::vector<Footprint> dynamic = footprints(cascade, scene, cull, resolution, is_dynamic);
     if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &draws.dynamic_cover);
-    const std::vector<Footprint> statics = footprints(cascade, scene, cull, resolution, is_static);
     if (!update.reuse) {
-        draws.regions = regions_of(window, cascade, statics, resolution);
+        draws.regions =
+            regions_of(window, cascade, footprints(cascade, scene, cull, resolution, is_static), resolution);
         // The cache must hold the static texels the dynamic casters are about to cover.
         if (!draws.dynamic_cover.empty()) draws.store = {window};
         return draws;
@@ -77,6 +81,9 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     draws.reuse = true;
     draws.shift = update.shift;
     draws.restore = dynamic_before;
+    // Static footprints only when something is redrawn (a still camera projects none).
+    const std::vector<Footprint> statics =
+        update.redraw.empty() ? std::vector<Footprint>{} : footprints(cascade, scene, cull, resolution, is_static);
     for (const TexelRect& rect : update.redraw) {
         std::vector<CascadeDraws::Region> regions = regions_of(rect, cascade, statics, resolution);
         draws.regions.insert(draws.regions.end(), regions.begin(), regions.end());

@@ -83,6 +83,7 @@ void LocalMaps::fit(const LocalShadowPlan& plan, uint64_t frame) {
     retired_.retire(std::move(moments_), frame);
     layers_ = layers;
     resolution_ = resolution;
+    ++generation_;
     map_ = std::make_unique<gpu::Image>(
         passes::create_depth_map(device_, std::max(resolution, kPlaceholderResolution), std::max(layers, 1u)));
     if (is_moment_filter(filter_.mode) && layers > 0) {
@@ -111,13 +112,18 @@ void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const pas
     gpu::TimedScope scope(timer, cmd, "shadow_local");
     pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling);
     if (!moments_) return;
+    // Kept layers keep their moments too.
+    std::vector<bool> kept(layers_, false);
+    for (const passes::LocalShadowLayer& layer : layers) kept[layer.layer] = layer.keep;
     std::vector<passes::MomentsLayer> moments_layers;
     for (const LocalShadowSlot& slot : plan.slots) {
         for (uint32_t face = 0; face < slot.view_projection.size(); ++face) {
+            if (kept[slot.first_layer + face]) continue;
             moments_layers.push_back({slot.first_layer + face, slot.resolution, slot.near_plane, slot.far_plane});
         }
     }
-    moments_->record(cmd, moments_layers, clamped_evsm_exponents(settings.filter));
+    const bool keep_others = std::find(kept.begin(), kept.end(), true) != kept.end();
+    moments_->record(cmd, moments_layers, clamped_evsm_exponents(settings.filter), keep_others);
 }
 
 }  // namespace penumbra::library

@@ -57,6 +57,8 @@ public:
     // Makes the map hold `plan`'s layers at its atlas resolution (a 16 x 16 placeholder
     // without shadowed lights); a replaced map is retired.
     void fit(const LocalShadowPlan& plan, uint64_t frame);
+    // Changes whenever fit() replaces the map: nothing an earlier map held can be kept.
+    uint64_t generation() const { return generation_; }
     SampledMaps sampled() const;
     uint64_t memory_bytes() const;  // 0 for the placeholder
 
@@ -74,6 +76,7 @@ private:
     std::unique_ptr<passes::MomentsConversion> moments_;  // moment filters with shadowed lights only
     uint32_t layers_ = 0;                                 // 0: the placeholder
     uint32_t resolution_ = 0;
+    uint64_t generation_ = 0;
 };
 
 }  // namespace penumbra::library

@@ -20,6 +20,7 @@
 #include "library/frame_slots.hpp"
 #include "library/geometry.hpp"
 #include "library/light_checks.hpp"
+#include "library/local_cache.hpp"
 #include "library/retired.hpp"
 #include "library/shadow_maps.hpp"
 #include "passes/shadow_filter_specialization.hpp"
@@ -116,6 +117,7 @@ struct ShadowSystem::Impl {
     size_t planned_static_changes = 0;  // Geometry::static_changes() that plan covered
     LocalShadowPlan plan;
     std::vector<passes::LocalShadowLayer> local_layers;
+    library::LocalShadowCache local_cache;
     passes::CasterFaceCulling cascade_culling;
     std::unique_ptr<gpu::Image> visibility;
     uint32_t visibility_slots = 0;
@@ -208,6 +210,9 @@ struct ShadowSystem::Impl {
         start = Clock::now();
         local.fit(plan, frame);
         local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters);
+        if (settings.shadow.cache_static_casters) {
+            local_cache.plan(local_layers, lights, plan, scene, geometry.static_changes(), local.generation());
+        }
         info.cpu_cull_ms += milliseconds_since(start);
         info.local_shadows.clear();
         for (size_t s = 0; s < plan.slots.size(); ++s) {
@@ -222,6 +227,10 @@ struct ShadowSystem::Impl {
                                 0};
             for (const passes::LocalShadowLayer& layer : local_layers) {
                 if (layer.layer < slot.first_layer || layer.layer >= slot.first_layer + out.layers) continue;
+                if (layer.keep) {
+                    ++out.layers_kept;
+                    continue;
+                }
                 out.draws += static_cast<uint32_t>(layer.draws.size());
                 for (const uint32_t draw : layer.draws) out.triangles += geometry.triangles(draw);
             }
@@ -281,7 +290,10 @@ void ShadowSystem::update_settings(const Settings& settings) {
     }
     // Biases and culling change the depths the cache holds.
     for (const SettingDeclaration& setting : kSettingDeclarations) {
-        if (setting.get(impl_->settings) != setting.get(settings)) impl_->cascade_cache.invalidate();
+        if (setting.get(impl_->settings) != setting.get(settings)) {
+            impl_->cascade_cache.invalidate();
+            impl_->local_cache.invalidate();
+        }
     }
     impl_->settings = settings;
 }
@@ -340,6 +352,7 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
     impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, &slot.timer);
+    if (impl.settings.shadow.cache_static_casters) impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
     slot.shadow_maps_recorded = true;
 }
 

@@ -41,16 +41,24 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, con
                              const std::vector<LocalShadowLayer>& layers, const gpu::Image& map,
                              const BiasSettings& bias, CasterCulling culling) const {
     const uint32_t resolution = map.desc.width;
-    gpu::transition(device_, cmd, map, gpu::ImageState::DiscardAfterShaderReads, gpu::ImageState::DepthAttachment);
+    const bool keep = std::any_of(layers.begin(), layers.end(), [](const LocalShadowLayer& l) { return l.keep; });
+    std::vector<LocalShadowLayer> all_layers;
+    for (const LocalShadowLayer& layer : layers) {
+        if (!layer.keep) all_layers.push_back(layer);
+    }
+    if (!keep) {
+        // Layers nobody renders are still cleared, so that sampling them is defined.
+        std::vector<bool> rendered(map.desc.layers, false);
+        for (const LocalShadowLayer& layer : layers) rendered[layer.layer] = true;
+        for (uint32_t layer = 0; layer < map.desc.layers; ++layer) {
+            if (!rendered[layer]) all_layers.push_back({layer, resolution, {}, VK_FRONT_FACE_COUNTER_CLOCKWISE});
+        }
+    }
+    if (all_layers.empty()) return;  // every layer kept: the map stays ShaderSampled
+    gpu::transition(device_, cmd, map, keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads,
+                    gpu::ImageState::DepthAttachment);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_CASTER_FRAME,
                                      1, &frame_set, 0, nullptr);
-    std::vector<bool> rendered(map.desc.layers, false);
-    std::vector<LocalShadowLayer> all_layers = layers;
-    for (const LocalShadowLayer& layer : layers) rendered[layer.layer] = true;
-    // Layers nobody renders are still cleared, so that sampling them is defined.
-    for (uint32_t layer = 0; layer < map.desc.layers; ++layer) {
-        if (!rendered[layer]) all_layers.push_back({layer, resolution, {}, VK_FRONT_FACE_COUNTER_CLOCKWISE});
-    }
     for (const LocalShadowLayer& layer : all_layers) {
         VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depth.imageView = map.layer_views[layer.layer];

@@ -20,12 +20,14 @@
 namespace penumbra::passes {
 
 // One layer to render: its index, the texels per side it uses, the draws that may cast
-// into it and the winding of faces toward the light in its projection.
+// into it and the winding of faces toward the light in its projection. `keep`: the layer
+// still holds what an earlier frame rendered for it (cached local shadows): not rendered.
 struct LocalShadowLayer {
     uint32_t layer = 0;
     uint32_t resolution = 0;
     DrawList draws;
     VkFrontFace facing_light = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    bool keep = false;
 };
 
 class LocalShadowPass {
@@ -37,8 +39,11 @@ public:
 
     void prepare_pipelines(const VertexFormats& formats) { pipelines_.prepare(formats); }
 
-    // Renders `layers` of `map` (other layers are cleared to "no caster") and leaves the map
-    // in ImageState::ShaderSampled.
+    // Renders `layers` of `map` and leaves the map in ImageState::ShaderSampled. Without a
+    // kept layer the map's earlier contents are discarded and the layers not listed are
+    // cleared to "no caster"; with one, the map is loaded as the last frame left it
+    // (ShaderSampled) and only the layers not kept are rendered (nothing at all when every
+    // layer is kept).
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                 const std::vector<LocalShadowLayer>& layers, const gpu::Image& map, const BiasSettings& bias,
                 CasterCulling culling) const;

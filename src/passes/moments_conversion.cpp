@@ -139,9 +139,12 @@ void MomentsConversion::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPip
 }
 
 void MomentsConversion::record(VkCommandBuffer cmd, const std::vector<MomentsLayer>& layers,
-                               glm::vec2 evsm_exponents) const {
+                               glm::vec2 evsm_exponents, bool keep_others) const {
     using gpu::ImageState;
-    gpu::transition(device_, cmd, moments_, ImageState::DiscardAfterShaderReads, ImageState::ComputeStorage);
+    if (keep_others && layers.empty()) return;
+    gpu::transition(device_, cmd, moments_,
+                    keep_others ? ImageState::ShaderSampled : ImageState::DiscardAfterShaderReads,
+                    ImageState::ComputeStorage);
     for (const MomentsLayer& layer : layers)
         dispatch(cmd, convert_, convert_pipeline_layout_, convert_set_, layer, evsm_exponents, false);
     if (scratch_) {

@@ -52,7 +52,10 @@ public:
 
     // Expects the depth map in ShaderSampled (as the depth passes leave it); leaves the
     // moments in ShaderSampled. `evsm_exponents` are the clamped (positive, negative) ones.
-    void record(VkCommandBuffer cmd, const std::vector<MomentsLayer>& layers, glm::vec2 evsm_exponents) const;
+    // `keep_others`: the moments of layers not listed stay as an earlier frame left them
+    // (cached local shadows; nothing is recorded for an empty list), else they are undefined.
+    void record(VkCommandBuffer cmd, const std::vector<MomentsLayer>& layers, glm::vec2 evsm_exponents,
+                bool keep_others = false) const;
 
 private:
     void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,

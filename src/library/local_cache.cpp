@@ -1,0 +1,39 @@
+#include "library/local_cache.hpp"
+
+namespace penumbra::library {
+
+std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const Light> lights, const LocalShadowPlan& plan) {
+    std::vector<std::optional<LocalLayerKey>> keys(plan.layer_count);
+    for (const LocalShadowSlot& slot : plan.slots) {
+        const Light& light = lights[slot.light];
+        const glm::vec4 sphere = local_shadow_is_cube(light) ? glm::vec4(light.position, light.range) : glm::vec4(0.0f);
+        for (size_t face = 0; face < slot.view_projection.size(); ++face) {
+            const size_t layer = slot.first_layer + face;
+            if (layer < keys.size()) keys[layer] = LocalLayerKey{slot.view_projection[face], slot.resolution, sphere};
+        }
+    }
+    return keys;
+}
+
+void LocalShadowCache::plan(std::vector<passes::LocalShadowLayer>& layers, std::span<const Light> lights,
+                            const LocalShadowPlan& plan, const passes::CasterScene& scene, std::span<const Aabb> changes,
+                            uint64_t map_generation) const {
+    if (map_generation != generation_ || layers_.empty()) return;
+    std::vector<Aabb> dynamic;
+    for (const passes::CasterDraw& draw : scene.draws) {
+        if (draw.dynamic) dynamic.push_back(draw.world_bounds);
+    }
+    const std::vector<std::optional<LocalLayerKey>> keys = local_layer_keys(lights, plan);
+    for (passes::LocalShadowLayer& layer : layers) {
+        if (layer.layer >= keys.size() || !keys[layer.layer]) continue;
+        const std::optional<LocalLayerKey> kept = layer.layer < layers_.size() ? layers_[layer.layer] : std::nullopt;
+        layer.keep = local_layer_reusable(kept, *keys[layer.layer], changes, dynamic);
+    }
+}
+
+void LocalShadowCache::commit(std::span<const Light> lights, const LocalShadowPlan& plan, uint64_t map_generation) {
+    layers_ = local_layer_keys(lights, plan);
+    generation_ = map_generation;
+}
+
+}  // namespace penumbra::library
