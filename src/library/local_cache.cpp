@@ -16,8 +16,8 @@ std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const Light
 }
 
 void LocalShadowCache::plan(std::vector<passes::LocalShadowLayer>& layers, std::span<const Light> lights,
-                            const LocalShadowPlan& plan, const passes::CasterScene& scene, std::span<const Aabb> changes,
-                            uint64_t map_generation) const {
+                            const LocalShadowPlan& plan, const passes::CasterScene& scene,
+                            std::span<const Aabb> changes, uint64_t map_generation) const {
     if (map_generation != generation_ || layers_.empty()) return;
     std::vector<Aabb> dynamic;
     for (const passes::CasterDraw& draw : scene.draws) {

@@ -352,7 +352,8 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
     impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, &slot.timer);
-    if (impl.settings.shadow.cache_static_casters) impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
+    if (impl.settings.shadow.cache_static_casters)
+        impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
     slot.shadow_maps_recorded = true;
 }
 

@@ -138,8 +138,8 @@ void MomentsConversion::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPip
     device_->vkCmdDispatch(cmd, groups, groups, 1);
 }
 
-void MomentsConversion::record(VkCommandBuffer cmd, const std::vector<MomentsLayer>& layers,
-                               glm::vec2 evsm_exponents, bool keep_others) const {
+void MomentsConversion::record(VkCommandBuffer cmd, const std::vector<MomentsLayer>& layers, glm::vec2 evsm_exponents,
+                               bool keep_others) const {
     using gpu::ImageState;
     if (keep_others && layers.empty()) return;
     gpu::transition(device_, cmd, moments_,
