@@ -16,7 +16,8 @@ VkFrontFace facing_light(const glm::mat4& view_projection) {
 }  // namespace
 
 std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                         const passes::CasterScene& scene, bool cull) {
+                                                         const passes::CasterScene& scene, bool cull,
+                                                         const std::vector<bool>& kept) {
     std::vector<passes::LocalShadowLayer> layers;
     for (const LocalShadowSlot& slot : plan.slots) {
         const Light& light = lights[slot.light];
@@ -26,6 +27,11 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> 
                                            slot.resolution,
                                            {},
                                            facing_light(slot.view_projection[face])};
+            if (layer.layer < kept.size() && kept[layer.layer]) {
+                layer.keep = true;
+                layers.push_back(std::move(layer));
+                continue;
+            }
             // With culling, a cube face of a wide spot that its cone cannot reach stays cleared.
             if (cull && cube && !cube_face_reaches_cone(light, face)) {
                 layers.push_back(std::move(layer));

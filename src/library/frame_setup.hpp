@@ -24,9 +24,11 @@ struct CullStats {
 // The layers to render for every shadowed local light: the draws inside each layer's
 // frustum (and, for a cube face, the sphere of the range), none on a wide spot's cube
 // faces its cone cannot reach; every draw when `cull` is off. Each layer knows the winding
-// of faces toward its light.
+// of faces toward its light. Layers whose index `kept` marks (cached local shadows) are
+// listed with `keep` and no draws: nothing is culled for them.
 std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                         const passes::CasterScene& scene, bool cull);
+                                                         const passes::CasterScene& scene, bool cull,
+                                                         const std::vector<bool>& kept = {});
 
 // World bounds of every draw (what local lights fit their near planes to).
 std::vector<Aabb> caster_bounds(const passes::CasterScene& scene);

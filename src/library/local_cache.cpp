@@ -15,20 +15,22 @@ std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const Light
     return keys;
 }
 
-void LocalShadowCache::plan(std::vector<passes::LocalShadowLayer>& layers, std::span<const Light> lights,
-                            const LocalShadowPlan& plan, const passes::CasterScene& scene,
-                            std::span<const Aabb> changes, uint64_t map_generation) const {
-    if (map_generation != generation_ || layers_.empty()) return;
+std::vector<bool> LocalShadowCache::kept_layers(std::span<const Light> lights, const LocalShadowPlan& plan,
+                                                const passes::CasterScene& scene, std::span<const Aabb> changes,
+                                                uint64_t map_generation) const {
+    std::vector<bool> kept(plan.layer_count, false);
+    if (map_generation != generation_ || layers_.empty()) return kept;
     std::vector<Aabb> dynamic;
     for (const passes::CasterDraw& draw : scene.draws) {
         if (draw.dynamic) dynamic.push_back(draw.world_bounds);
     }
     const std::vector<std::optional<LocalLayerKey>> keys = local_layer_keys(lights, plan);
-    for (passes::LocalShadowLayer& layer : layers) {
-        if (layer.layer >= keys.size() || !keys[layer.layer]) continue;
-        const std::optional<LocalLayerKey> kept = layer.layer < layers_.size() ? layers_[layer.layer] : std::nullopt;
-        layer.keep = local_layer_reusable(kept, *keys[layer.layer], changes, dynamic);
+    for (size_t layer = 0; layer < keys.size(); ++layer) {
+        if (!keys[layer]) continue;
+        const std::optional<LocalLayerKey> before = layer < layers_.size() ? layers_[layer] : std::nullopt;
+        kept[layer] = local_layer_reusable(before, *keys[layer], changes, dynamic);
     }
+    return kept;
 }
 
 void LocalShadowCache::commit(std::span<const Light> lights, const LocalShadowPlan& plan, uint64_t map_generation) {

@@ -24,11 +24,13 @@ public:
     // Forgets every layer: the next frame renders them all (settings changed).
     void invalidate() { layers_.clear(); }
 
-    // Marks the layers of `layers` that the map still holds (`keep`), when the map is the
-    // one the cache describes (`map_generation`, LocalMaps::generation()). `changes` are the
-    // world bounds of static casters changed since the last commit().
-    void plan(std::vector<passes::LocalShadowLayer>& layers, std::span<const Light> lights, const LocalShadowPlan& plan,
-              const passes::CasterScene& scene, std::span<const Aabb> changes, uint64_t map_generation) const;
+    // Per layer index of `plan`, whether the map still holds it (nothing to cull or render),
+    // when the map is the one the cache describes (`map_generation`,
+    // LocalMaps::generation()). `changes` are the world bounds of static casters changed
+    // since the last commit().
+    std::vector<bool> kept_layers(std::span<const Light> lights, const LocalShadowPlan& plan,
+                                  const passes::CasterScene& scene, std::span<const Aabb> changes,
+                                  uint64_t map_generation) const;
 
     // The frame was recorded: the map's layers hold `plan`'s lights.
     void commit(std::span<const Light> lights, const LocalShadowPlan& plan, uint64_t map_generation);

@@ -209,10 +209,11 @@ struct ShadowSystem::Impl {
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         local.fit(plan, frame);
-        local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters);
-        if (settings.shadow.cache_static_casters) {
-            local_cache.plan(local_layers, lights, plan, scene, geometry.static_changes(), local.generation());
-        }
+        const std::vector<bool> kept =
+            settings.shadow.cache_static_casters
+                ? local_cache.kept_layers(lights, plan, scene, geometry.static_changes(), local.generation())
+                : std::vector<bool>{};
+        local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters, kept);
         info.cpu_cull_ms += milliseconds_since(start);
         info.local_shadows.clear();
         for (size_t s = 0; s < plan.slots.size(); ++s) {
