@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|filters|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|filters|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -46,6 +46,19 @@ def local_runs(binary):
     return runs
 
 
+def mover_runs(binary):
+    """10 dynamic crowns moving every frame over the forest, cache off and on (issue 15)."""
+    runs = []
+    movers = f"{FOREST}&movers=10"
+    for path, frames in (("still", 60), ("walk", 120), ("orbit", 60)):
+        for cache in ("off", "on"):
+            extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10", "--animate-dynamic"]
+            if cache == "on":
+                extra.append("--shadow-cache")
+            runs.append((f"10 movers, cache {cache}, {path} ({frames} frames)", binary, movers, BASE + extra))
+    return runs
+
+
 def filter_runs(binaries):
     """The filters at 4K, forward and deferred, for every binary given (same-call A/B)."""
     runs = []
@@ -73,7 +86,7 @@ def median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "filters", "all"], default="all")
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "filters", "all"], default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
@@ -82,6 +95,8 @@ def main():
     runs = []
     if args.plan in ("cache", "all"):
         runs += cache_runs(args.cache_binary or names[0])
+    if args.plan in ("movers", "all"):
+        runs += mover_runs(args.cache_binary or names[0])
     if args.plan in ("local", "all"):
         runs += local_runs(args.cache_binary or names[0])
     if args.plan == "cache-each":

@@ -50,6 +50,10 @@ struct BenchJob {
     Ceiling ceiling = Ceiling::None;
     uint32_t taps = 16;     // per pixel, for Ceiling::Taps and Ceiling::ComputeTaps
     bool readback = false;  // read the images back every frame, as `render` does
+    // Moves every dynamic instance of the scene each frame: a 2 m circle about its place
+    // and a turn about its vertical axis, one turn per 120 frames (cached cascades with
+    // moving casters).
+    bool animate_dynamic = false;
     std::optional<std::filesystem::path> json;
     // Called after every frame (warm-up included) with frames done and the total.
     std::function<void(uint32_t done, uint32_t total)> progress;

@@ -43,6 +43,7 @@ Json run_json(const BenchJob& job) {
                 {"camera_path", camera_path_name(job.camera_path)},
                 {"light_path", light_path_name(job.light_path)},
                 {"readback", job.readback},
+                {"animate_dynamic", job.animate_dynamic},
                 {"ceiling", choice_name(kCeilingChoices, job.ceiling)},
                 {"taps", is_tap_ceiling(job.ceiling) ? Json(job.taps) : Json(nullptr)},
                 {"validation", job.render.device.validation}};

@@ -1,10 +1,12 @@
 // run_bench_job: the frame loops of `penumbra bench` and the collection of their samples.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include "bench/bench_job.hpp"
 #include "bench/layer_start_pass.hpp"
 #include "bench/tap_ceiling_pass.hpp"
@@ -177,6 +179,23 @@ Light* find_sun(Scene& scene) {
     return nullptr;
 }
 
+// --animate-dynamic: frame `index` of every dynamic instance's motion, a 2 m circle about its
+// place with a turn about its vertical axis, one turn per 120 frames (phases spread by
+// instance, so that neighbours do not move in step).
+void move_dynamic_instances(renderer::Renderer& renderer, const Scene& scene, uint32_t index) {
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        if (!instance.dynamic) continue;
+        const float angle = 6.2831853f * static_cast<float>(index) / 120.0f + static_cast<float>(i);
+        const glm::vec3 place(instance.world[3]);
+        const glm::mat4 about_place = glm::translate(glm::mat4(1.0f), place) *
+                                      glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0.0f, 1.0f, 0.0f)) *
+                                      glm::translate(glm::mat4(1.0f), -place);
+        const glm::vec3 circle(2.0f * std::cos(angle), 0.0f, 2.0f * std::sin(angle));
+        renderer.move_instance(i, glm::translate(glm::mat4(1.0f), circle) * about_place * instance.world);
+    }
+}
+
 // The renderer's frames along the camera and light paths. The Renderer keeps a reference
 // to `prepared.scene` and reads its sun every frame, so moving the sun here moves it there.
 FrameSamples run_renderer_frames(const renderer::AppContext& context, const BenchJob& job, PreparedJob& prepared,
@@ -194,6 +213,7 @@ FrameSamples run_renderer_frames(const renderer::AppContext& context, const Benc
     for (uint32_t index = 0; index < total; ++index) {
         const float t = path_parameter(job, index);
         if (sun) sun->direction = glm::normalize(sun_on_path(job.light_path, start_sun, t));
+        if (job.animate_dynamic) move_dynamic_instances(renderer, prepared.scene, index);
         const Clock::time_point start = Clock::now();
         renderer.render(camera_on_path(job.camera_path, start_camera, t, job.frames), readback);
         const double wall_ms = milliseconds_since(start);

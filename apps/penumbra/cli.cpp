@@ -133,6 +133,8 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps and compute-taps (default 16)")
         ->check(CLI::Range(1u, bench::kMaxTaps));
     bench.add_flag("--readback", job.readback, "Read the images back every frame, as `render` does");
+    bench.add_flag("--animate-dynamic", job.animate_dynamic,
+                   "Move every dynamic instance each frame (a 2 m circle about its place, one turn per 120 frames)");
 }
 
 void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_raw, bench::BenchJob& job) {

@@ -33,6 +33,7 @@ struct Draw {
     glm::mat4 model{1.0f};
     bool receive_shadows = true;
     glm::vec3 centre{0.0f};  // world space: the centre of the mesh's bounds, for sorting
+    uint32_t mesh = 0;       // Scene::meshes index
 };
 
 struct DrawData {

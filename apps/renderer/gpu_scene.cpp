@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <tuple>
 
+#include "penumbra/errors.hpp"
 #include "renderer/math_conversions.hpp"
 #include "renderer/shader_interface.hpp"
 
@@ -75,9 +77,13 @@ void GpuScene::order_draws_front_to_back(const glm::vec3& eye) {
 }
 
 void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& ranges) {
-    for (const Instance& instance : scene.instances) {
+    for (const Mesh& mesh : scene.meshes) mesh_centres_.push_back(0.5f * (mesh.bounds.min + mesh.bounds.max));
+    instance_draws_.assign(scene.instances.size(), std::nullopt);
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
         const MeshRange& range = ranges.at(instance.mesh);
         if (range.index_count == 0) continue;
+        instance_draws_[i] = static_cast<uint32_t>(draw_data_.draws.size());
         Draw draw;
         draw.first_index = range.first_index;
         draw.index_count = range.index_count;
@@ -85,10 +91,23 @@ void GpuScene::add_draws(const Scene& scene, const std::vector<MeshRange>& range
         draw.material = scene.meshes[instance.mesh].material;
         draw.model = instance.world;
         draw.receive_shadows = instance.receive_shadows;
-        const Aabb& bounds = scene.meshes[instance.mesh].bounds;
-        draw.centre = glm::vec3(instance.world * glm::vec4(0.5f * (bounds.min + bounds.max), 1.0f));
+        draw.centre = glm::vec3(instance.world * glm::vec4(mesh_centres_[instance.mesh], 1.0f));
+        draw.mesh = instance.mesh;
         draw_data_.draws.push_back(draw);
     }
+}
+
+void GpuScene::move_instance(size_t instance, const glm::mat4& world, ShadowSystem& shadows) {
+    if (instance >= instance_draws_.size()) {
+        throw InputError("move_instance: instance " + std::to_string(instance) + " is not in the scene (" +
+                         std::to_string(instance_draws_.size()) + " instances)");
+    }
+    if (instance_draws_[instance]) {
+        Draw& draw = draw_data_.draws[*instance_draws_[instance]];
+        draw.model = world;
+        draw.centre = glm::vec3(world * glm::vec4(mesh_centres_[draw.mesh], 1.0f));
+    }
+    if (instance_casters_[instance]) shadows.set_instance_transform(*instance_casters_[instance], to_mat4(world));
 }
 
 namespace {
@@ -173,8 +192,7 @@ void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
 // UVs read in place from the interleaved vertices; a masked material's texture is its alpha
 // mask. A masked material without a texture has one alpha everywhere: it casts entirely or
 // not at all, as the lighting pass shows it entirely or not at all.
-void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges,
-                                  ShadowSystem& shadows) const {
+void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows) {
     std::vector<MeshId> ids(scene.meshes.size());
     std::vector<bool> casts(scene.meshes.size(), true);
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -196,14 +214,16 @@ void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRang
         casts[m] = !material.alpha_masked || material.has_texture || material.base_color.a >= material.alpha_cutoff;
         ids[m] = shadows.add_mesh(desc);
     }
-    for (const Instance& instance : scene.instances) {
+    instance_casters_.assign(scene.instances.size(), std::nullopt);
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
         if (ranges.at(instance.mesh).index_count == 0) continue;
         const MaterialBinding& material = draw_data_.materials.at(scene.meshes[instance.mesh].material);
         uint32_t flags = kInstanceAlphaMasked;
         if (casts[instance.mesh] && instance.cast_shadows) flags |= kInstanceCastsShadows;
         if (material.double_sided) flags |= kInstanceDoubleSided;
         if (instance.dynamic) flags |= kInstanceDynamic;
-        shadows.add_instance({ids[instance.mesh], to_mat4(instance.world), flags});
+        instance_casters_[i] = shadows.add_instance({ids[instance.mesh], to_mat4(instance.world), flags});
     }
 }
 

@@ -4,6 +4,7 @@
 // material and the draw list of the camera passes. Its meshes and instances are also given
 // to the ShadowSystem as any renderer gives its own: the mesh ranges of these very buffers
 // (nothing is copied), with the material's texture as the alpha mask of masked casters.
+#include <optional>
 #include <vector>
 
 #include "penumbra/gpu/pipeline.hpp"
@@ -20,6 +21,9 @@ public:
     GpuScene(const AppContext& context, const Scene& scene, ShadowSystem& shadows);
 
     const DrawData& draw_data() const { return draw_data_; }
+    // Moves scene instance `instance` (an index into Scene::instances) to `world`: its draw
+    // and its shadow caster. Throws InputError for an index out of range.
+    void move_instance(size_t instance, const glm::mat4& world, ShadowSystem& shadows);
     // Sorts DrawData::order by the distance of each draw's centre from `eye`, nearest first.
     void order_draws_front_to_back(const glm::vec3& eye);
 
@@ -41,7 +45,7 @@ private:
                                                                                    : white_texture_slot();
     }
     void add_draws(const Scene& scene, const std::vector<MeshRange>& ranges);
-    void add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows) const;
+    void add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows);
 
     gpu::Buffer vertices_;
     gpu::Buffer indices_;
@@ -50,6 +54,11 @@ private:
     gpu::UniqueDescriptorSetLayout material_set_layout_;
     gpu::UniqueDescriptorPool descriptor_pool_;
     DrawData draw_data_;
+    // Per scene instance: its draw (an index into draw_data_.draws) and its shadow caster;
+    // std::nullopt for an instance of an empty mesh.
+    std::vector<std::optional<uint32_t>> instance_draws_;
+    std::vector<std::optional<InstanceId>> instance_casters_;
+    std::vector<glm::vec3> mesh_centres_;  // the centre of each mesh's bounds (draw sorting)
 };
 
 }  // namespace penumbra::renderer

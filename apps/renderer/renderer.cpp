@@ -261,6 +261,10 @@ FrameImages Renderer::render(const Camera& camera, ReadbackMode readback) {
     return readback == ReadbackMode::Images ? read_images() : FrameImages{};
 }
 
+void Renderer::move_instance(size_t instance, const glm::mat4& world) {
+    resources_->gpu_scene.move_instance(instance, world, resources_->shadows);
+}
+
 void Renderer::prepare_frame(const Camera& camera) {
     ShadowSystem& shadows = resources_->shadows;
     shadows.set_lights(shadow_lights(scene_.lights));

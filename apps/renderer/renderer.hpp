@@ -94,6 +94,9 @@ public:
     FrameImages render(const Camera& camera, ReadbackMode readback = ReadbackMode::Images);
     const FrameInfo& last_frame() const { return last_frame_; }
     const RenderSettings& settings() const { return settings_; }
+    // Moves scene instance `instance` (an index into Scene::instances) to `world` from the
+    // next frame on: its draw and its shadow caster (flag it dynamic for cached cascades).
+    void move_instance(size_t instance, const glm::mat4& world);
     // The path this renderer resolves shadows with: RenderSettings::resolve made effective
     // (effective_resolve()), Forward or Deferred.
     ShadowResolve resolve() const;

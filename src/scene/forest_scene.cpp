@@ -102,6 +102,19 @@ void add_tree(Scene& scene, uint32_t index, uint32_t count) {
         {kRock, compose_transform(rock_position, {0.0f, glm::degrees(rock_angle), 0.0f}, rock_size)});
 }
 
+// Dynamic crowns on a ring of 25 m around the point the camera looks at, 4 m up: inside
+// the near cascades of the scene's camera, casting on the ground and the trees around.
+void add_movers(Scene& scene, uint32_t movers) {
+    for (uint32_t i = 0; i < movers; ++i) {
+        const float angle = 6.2831853f * static_cast<float>(i) / static_cast<float>(std::max(movers, 1u));
+        const glm::vec3 position{25.0f * std::cos(angle), 4.0f, 25.0f * std::sin(angle)};
+        Instance mover{kCrown, compose_transform(position, glm::vec3(0.0f), {1.5f, 2.5f, 1.5f})};
+        mover.dynamic = true;
+        mover.name = "mover";
+        scene.instances.push_back(mover);
+    }
+}
+
 // Light `index` of `lights` goes by the middle tree of its equal share of the tree indices;
 // tree indices run row by row over the grid, so the lights spread over the whole square.
 uint32_t tree_for_light(uint32_t index, uint32_t lights, uint32_t count) {
@@ -171,9 +184,10 @@ Scene make_forest_scene(const ForestParameters& parameters) {
     for (uint32_t i = 0; i < parameters.points; ++i) scene.lights.push_back(forest_point(i, parameters.points, count));
     add_materials(scene);
     add_meshes(scene);
-    scene.instances.reserve(1 + size_t{3} * count);
+    scene.instances.reserve(1 + size_t{3} * count + parameters.movers);
     scene.instances.push_back({kGround, glm::mat4{1.0f}});
     for (uint32_t index = 0; index < count; ++index) add_tree(scene, index, count);
+    add_movers(scene, parameters.movers);
     return scene;
 }
 
@@ -186,15 +200,16 @@ struct ForestParameterSpec {
     uint32_t ForestParameters::*field;
 };
 
-constexpr std::array<ForestParameterSpec, 4> kForestParameterSpecs{{
+constexpr std::array<ForestParameterSpec, 5> kForestParameterSpecs{{
     {"count", 1, kForestMaxCount, &ForestParameters::count},
     {"spots", 0, kMaxLocalLights, &ForestParameters::spots},
     {"points", 0, kMaxLocalLights, &ForestParameters::points},
     {"spot_angle", 1, 179, &ForestParameters::spot_angle},
+    {"movers", 0, 1000, &ForestParameters::movers},
 }};
 
 // The keys of kForestParameterSpecs, as error messages name them.
-const std::string kForestParameterList = "count=N, spots=N, points=N or spot_angle=N";
+const std::string kForestParameterList = "count=N, spots=N, points=N, spot_angle=N or movers=N";
 
 uint32_t parse_parameter_value(const ForestParameterSpec& spec, const std::string& digits, const std::string& origin) {
     const bool numeric =

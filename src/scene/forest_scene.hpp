@@ -13,7 +13,9 @@
 // trees, both spread over the forest by tree index (docs/bench.md); "&spot_angle=A" sets the
 // spots' outer angle (degrees, default 35; inner = outer - 10), so that spots wider than 60
 // degrees, shadowed by cubes, can be measured. Lights follow the sun in Scene::lights: spots
-// first, then points, so light 1 is the first spot.
+// first, then points, so light 1 is the first spot. "&movers=M" adds M dynamic instances
+// (a tree crown each, 900 triangles, flagged `dynamic`) on a ring in front of the camera,
+// for `bench --animate-dynamic` to move (cached cascades with moving casters).
 #include <cstdint>
 #include <string>
 
@@ -34,13 +36,14 @@ struct ForestParameters {
     uint32_t spots = 0;                             // shadow-casting spot lights aimed down at trees
     uint32_t points = 0;                            // shadow-casting point lights between the trees
     uint32_t spot_angle = kForestDefaultSpotAngle;  // the spots' outer angle, degrees (1..179)
+    uint32_t movers = 0;                            // dynamic crowns on a ring in view
 };
 
 Scene make_forest_scene(uint32_t count);
 Scene make_forest_scene(const ForestParameters& parameters);
 
 // Parses the query after "forest?": "" or "KEY=N" pairs joined by '&', KEY one of count,
-// spots, points, spot_angle, each at most once. Throws InputError naming `origin`, the key and the value.
+// spots, points, spot_angle, movers, each at most once. Throws InputError naming `origin`, the key and the value.
 ForestParameters parse_forest_parameters(const std::string& query, const std::string& origin);
 
 }  // namespace penumbra

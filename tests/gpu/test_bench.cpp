@@ -101,6 +101,29 @@ TEST_F(BenchCli, ShadowCacheReportsTheTexelsItDrawsAndCopies) {
     expect_positive_timings(cached["gpu_ms"], {"lighting", "frame"});
 }
 
+TEST_F(BenchCli, AnimatedDynamicInstancesAreDrawnOverTheCacheEveryFrame) {
+    // Three dynamic crowns circling in view, a still camera: the static casters stay
+    // cached; the movers are drawn every frame, and the static texels they covered last
+    // frame are copied back from the cache (which holds every static texel since the
+    // warm-up: nothing is stored while nothing static is redrawn).
+    const json report = run_json(std::string("'builtin:forest?count=30&movers=3'") + kSmall +
+                                 " --shadow-cache --camera-path still --animate-dynamic");
+    ASSERT_FALSE(report.empty());
+    EXPECT_EQ(report["run"]["animate_dynamic"], true);
+    uint64_t dynamic_draws = 0;
+    for (const json& cascade : report["cascades"]) {
+        EXPECT_EQ(cascade["texels_rendered"]["max"].get<uint64_t>(), 0u) << "no static caster drawn again";
+        if (cascade["draws"]["min"].get<uint64_t>() == 0) continue;
+        dynamic_draws += cascade["draws"]["min"].get<uint64_t>();
+        EXPECT_GT(cascade["texels_copied"]["min"].get<uint64_t>(), 0u) << "the static texels under the movers";
+        EXPECT_LT(cascade["texels_copied"]["max"].get<uint64_t>(), uint64_t{2} * 512 * 512)
+            << "only their footprints, not whole layers";
+    }
+    EXPECT_GT(dynamic_draws, 0u);
+    expect_positive_timings(report["gpu_ms"], {"shadow_dynamic", "shadow_cache_restore"});
+    EXPECT_FALSE(report["gpu_ms"].contains("shadow_cache_store"));
+}
+
 TEST_F(BenchCli, PrintsATableOfMedianP95AndMin) {
     const RunResult result = run(std::string("bench ") + kForest + kSmall + " --camera-path flythrough");
     ASSERT_EQ(result.exit_code, 0) << result.err;

@@ -65,16 +65,18 @@ TEST(ForestLights, BadParametersAreOneLineErrorsNamingKeyAndValue) {
     EXPECT_EQ(message("spots="), "builtin:forest?spots=: spots: expected an integer from 0 to " + limit + ", got \"\"");
     EXPECT_EQ(message("count=0"), "builtin:forest?count=0: count: expected an integer from 1 to 100000, got \"0\"");
     EXPECT_EQ(message("spots=2&spots=3"), "builtin:forest?spots=2&spots=3: spots: given twice");
-    EXPECT_EQ(
-        message("lamps=2"),
-        "builtin:forest?lamps=2: expected count=N, spots=N, points=N or spot_angle=N joined by '&', got \"lamps=2\"");
+    EXPECT_EQ(message("lamps=2"),
+              "builtin:forest?lamps=2: expected count=N, spots=N, points=N, spot_angle=N or movers=N joined by '&', "
+              "got \"lamps=2\"");
     EXPECT_EQ(message("spots"),
-              "builtin:forest?spots: expected count=N, spots=N, points=N or spot_angle=N joined by '&', got \"spots\"");
+              "builtin:forest?spots: expected count=N, spots=N, points=N, spot_angle=N or movers=N joined by '&', got "
+              "\"spots\"");
+    EXPECT_EQ(message("count=4&&spots=1"),
+              "builtin:forest?count=4&&spots=1: expected count=N, spots=N, points=N, spot_angle=N or movers=N joined "
+              "by '&', got \"\"");
     EXPECT_EQ(
-        message("count=4&&spots=1"),
-        "builtin:forest?count=4&&spots=1: expected count=N, spots=N, points=N or spot_angle=N joined by '&', got \"\"");
-    EXPECT_EQ(message("count=4&"),
-              "builtin:forest?count=4&: expected count=N, spots=N, points=N or spot_angle=N after the last '&'");
+        message("count=4&"),
+        "builtin:forest?count=4&: expected count=N, spots=N, points=N, spot_angle=N or movers=N after the last '&'");
     const std::string half = std::to_string(kMaxLocalLights / 2);
     const std::string over_half = std::to_string(kMaxLocalLights / 2 + 1);
     const std::string sum = "spots=" + half + "&points=" + over_half;
@@ -146,6 +148,23 @@ TEST(ForestLights, MoreLightsThanTreesShareTrees) {
     const Scene scene = make_forest_scene(ForestParameters{1, 2, 2});
     EXPECT_EQ(lights_of_type(scene, LightType::Spot).size(), 2u);
     EXPECT_EQ(lights_of_type(scene, LightType::Point).size(), 2u);
+}
+
+TEST(ForestLights, MoversAreDynamicCrownsInView) {
+    const Scene plain = load_scene("builtin:forest?count=20");
+    const Scene scene = load_scene("builtin:forest?count=20&movers=4");
+    ASSERT_EQ(scene.instances.size(), plain.instances.size() + 4);
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        EXPECT_EQ(instance.dynamic, i >= plain.instances.size()) << "instance " << i;
+        if (!instance.dynamic) continue;
+        // On the ring about the point the camera looks at, above the ground.
+        const glm::vec3 place(instance.world[3]);
+        EXPECT_NEAR(glm::length(glm::vec2(place.x, place.z)), 25.0f, 1e-3f);
+        EXPECT_GT(place.y, 0.0f);
+    }
+    EXPECT_EQ(input_error_message([] { load_scene("builtin:forest?movers=1001"); }),
+              "builtin:forest?movers=1001: movers: expected an integer from 0 to 1000, got \"1001\"");
 }
 
 }  // namespace
