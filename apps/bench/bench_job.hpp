@@ -122,6 +122,9 @@ struct BenchResult {
     BenchJob job;                             // without the progress callback
     std::vector<std::string> gpu_pass_order;  // first-seen order, "frame" last
     std::map<std::string, Summary> gpu_ms;
+    // shadow_sun, shadow_local, lighting and frame, per measured frame with timestamps, in
+    // order (plots of time along a camera path).
+    std::map<std::string, std::vector<double>> gpu_ms_per_frame;
     std::vector<std::string> cpu_step_order;
     std::map<std::string, Summary> cpu_ms;
     std::vector<CascadeReport> cascades;

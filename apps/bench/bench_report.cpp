@@ -205,6 +205,7 @@ std::string bench_json(const BenchResult& result) {
         {"settings", settings_json(result.settings)},
         {"run", run_json(result.job)},
         {"gpu_ms", timings_json(result.gpu_pass_order, result.gpu_ms)},
+        {"gpu_ms_per_frame", result.gpu_ms_per_frame},
         {"cpu_ms", timings_json(result.cpu_step_order, result.cpu_ms)},
         {"frames_without_gpu_times", result.frames_without_gpu_times},
         {"cascades", cascades},

@@ -22,6 +22,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// GPU scopes reported frame by frame (BenchResult::gpu_ms_per_frame): present in every
+// frame that has timestamps, so that their series line up.
+constexpr const char* kPerFrameScopes[] = {"shadow_sun", "shadow_local", "lighting", "frame"};
+
 double milliseconds_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
@@ -43,6 +47,12 @@ public:
         }
         if (samples_.contains(last)) order.push_back(last);
         for (const auto& [name, values] : samples_) summaries[name] = summarize(values);
+    }
+
+    // Every sample of `name` in frame order (empty when it never appeared).
+    std::vector<double> series(const std::string& name) const {
+        const auto found = samples_.find(name);
+        return found == samples_.end() ? std::vector<double>{} : found->second;
     }
 
 private:
@@ -327,6 +337,10 @@ LocalShadowReport summarize_local_shadow(const LocalShadowSamples& samples, cons
 
 void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchResult& result) {
     samples.gpu.summarize_into(result.gpu_pass_order, result.gpu_ms, "frame");
+    for (const char* name : kPerFrameScopes) {
+        std::vector<double> series = samples.gpu.series(name);
+        if (!series.empty()) result.gpu_ms_per_frame[name] = std::move(series);
+    }
     samples.cpu.summarize_into(result.cpu_step_order, result.cpu_ms, "frame_wall");
     for (size_t c = 0; c < samples.cascade_draws.size(); ++c) {
         result.cascades.push_back({summarize_counts(samples.cascade_draws[c]),

@@ -122,6 +122,11 @@ TEST_F(BenchCli, AnimatedDynamicInstancesAreDrawnOverTheCacheEveryFrame) {
     EXPECT_GT(dynamic_draws, 0u);
     expect_positive_timings(report["gpu_ms"], {"shadow_dynamic", "shadow_cache_restore"});
     EXPECT_FALSE(report["gpu_ms"].contains("shadow_cache_store"));
+    // Frame by frame, for plots along the path: one value per measured frame.
+    for (const char* scope : {"shadow_sun", "lighting", "frame"}) {
+        ASSERT_TRUE(report["gpu_ms_per_frame"].contains(scope)) << scope;
+        EXPECT_EQ(report["gpu_ms_per_frame"][scope].size(), 3u) << scope;
+    }
 }
 
 TEST_F(BenchCli, PrintsATableOfMedianP95AndMin) {
