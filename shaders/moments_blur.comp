@@ -15,7 +15,8 @@ layout(set = 0, binding = 1, PENUMBRA_MOMENTS_QUALIFIER) uniform writeonly PENUM
 layout(push_constant) uniform PushBlock { MomentsPushConstants pass; };
 
 void main() {
-    const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, pass.region.zw))) return;
+    const ivec2 texel = ivec2(pass.region.xy + gl_GlobalInvocationID.xy);
     const int used = int(pass.layer.y);
     if (any(greaterThanEqual(texel, ivec2(used)))) return;
     const int layer = int(pass.layer.x);

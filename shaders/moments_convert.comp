@@ -48,7 +48,8 @@ float slope(float centre, float before, float after) {
 }
 
 void main() {
-    const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(gl_GlobalInvocationID.xy, pass.region.zw))) return;
+    const ivec2 texel = ivec2(pass.region.xy + gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(texel, ivec2(pass.layer.y)))) return;
     const float distance = distance_at(texel);
     const float dx = slope(distance, distance_at(texel - ivec2(1, 0)), distance_at(texel + ivec2(1, 0)));

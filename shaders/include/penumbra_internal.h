@@ -46,6 +46,9 @@ struct MomentsPushConstants {
     // layer_origin; 0 for local lights), z: the layer's side. The used texels wrap around
     // the layer's edges from there; filters clamp at the used texels' own edges.
     uvec4 window;
+    // The used texels this dispatch writes: x, y the first, z, w how many (all of them
+    // unless a cached cascade changed only some).
+    uvec4 region;
 };
 
 // The screen-space resolve (shaders/visibility_resolve.comp).

@@ -31,12 +31,18 @@ std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterSc
     return result;
 }
 
+// What the dynamic casters can reach: per region, in layer texels and in window texels.
+struct Reach {
+    std::vector<TexelRect> layer;
+    std::vector<TexelRect> window;
+};
+
 // The regions that draw `window_rect`: its pieces in the layer, each with the casters
-// whose footprint meets it. `cover`, when given, receives per region the layer texels its
+// whose footprint meets it. `cover`, when given, receives per region the texels its
 // casters can reach.
 std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const Cascade& cascade,
                                              const std::vector<Footprint>& casters, uint32_t resolution,
-                                             std::vector<TexelRect>* cover = nullptr) {
+                                             Reach* cover = nullptr) {
     std::vector<CascadeDraws::Region> regions;
     for (const LayerPiece& piece : layer_pieces(window_rect, cascade.layer_origin, resolution)) {
         CascadeDraws::Region region{piece.layer, piece.tile, {}};
@@ -53,7 +59,8 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
         }
         if (cover && !reach.empty()) {
             const glm::ivec2 move = piece.layer.min - piece.window.min;
-            cover->push_back({reach.min + move, reach.max + move});
+            cover->layer.push_back({reach.min + move, reach.max + move});
+            cover->window.push_back(reach);
         }
         regions.push_back(std::move(region));
     }
@@ -63,14 +70,43 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
 bool is_static(const passes::CasterDraw& draw) { return !draw.dynamic; }
 bool is_dynamic(const passes::CasterDraw& draw) { return draw.dynamic; }
 
+// The window texels whose depth may differ from the last frame's in a reused cascade (for
+// the moments): what is redrawn, what the dynamic casters reach now and reached last frame
+// (moved with the window), and after a move one texel along the window's edges, whose
+// moments were clamped at the old edges or are clamped at the new ones.
+std::vector<TexelRect> changed_texels(const CascadeUpdate& update, const std::vector<TexelRect>& dynamic_now,
+                                      const std::vector<TexelRect>& dynamic_before, uint32_t resolution) {
+    const TexelRect window = whole_map(resolution);
+    std::vector<TexelRect> changed = update.redraw;
+    changed.insert(changed.end(), dynamic_now.begin(), dynamic_now.end());
+    for (const TexelRect& before : dynamic_before) {
+        const TexelRect moved = intersect({before.min + update.shift, before.max + update.shift}, window);
+        if (!moved.empty()) changed.push_back(moved);
+    }
+    const int32_t side = static_cast<int32_t>(resolution);
+    if (update.shift.x != 0) {
+        changed.push_back({{0, 0}, {1, side}});
+        changed.push_back({{side - 1, 0}, {side, side}});
+    }
+    if (update.shift.y != 0) {
+        changed.push_back({{0, 0}, {side, 1}});
+        changed.push_back({{0, side - 1}, {side, side}});
+    }
+    return changed;
+}
+
 CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, const passes::CasterScene& scene,
-                          bool cull, const std::vector<TexelRect>& dynamic_before, bool cache_complete,
+                          bool cull, const std::vector<TexelRect>& dynamic_before,
+                          const std::vector<TexelRect>& dynamic_window_before, bool cache_complete,
                           uint32_t resolution) {
     const TexelRect window = whole_map(resolution);
     CascadeDraws draws;
     draws.layer_origin = cascade.layer_origin;
     const std::vector<Footprint> dynamic = footprints(cascade, scene, cull, resolution, is_dynamic);
-    if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &draws.dynamic_cover);
+    Reach reach;
+    if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &reach);
+    draws.dynamic_cover = reach.layer;
+    draws.dynamic_window = reach.window;
     if (!update.reuse) {
         draws.regions =
             regions_of(window, cascade, footprints(cascade, scene, cull, resolution, is_static), resolution);
@@ -81,6 +117,7 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     draws.reuse = true;
     draws.shift = update.shift;
     draws.restore = dynamic_before;
+    draws.changed = changed_texels(update, draws.dynamic_window, dynamic_window_before, resolution);
     // Static footprints only when something is redrawn (a still camera projects none).
     const std::vector<Footprint> statics =
         update.redraw.empty() ? std::vector<Footprint>{} : footprints(cascade, scene, cull, resolution, is_static);
@@ -115,9 +152,10 @@ std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes
         const std::optional<Layer>& previous = c < layers_.size() ? layers_[c] : std::nullopt;
         const std::optional<Cascade> kept = previous ? std::optional<Cascade>(previous->cascade) : std::nullopt;
         const CascadeUpdate update = plan_cascade_update(kept, cascade, resolution, changes);
+        const std::vector<TexelRect> none;
         draws[c] =
-            cached_draws(update, cascade, scene, cull, previous ? previous->dynamic_cover : std::vector<TexelRect>{},
-                         previous && previous->cache_complete, resolution);
+            cached_draws(update, cascade, scene, cull, previous ? previous->dynamic_cover : none,
+                         previous ? previous->dynamic_window : none, previous && previous->cache_complete, resolution);
     }
     return draws;
 }
@@ -128,7 +166,8 @@ void CascadeCache::commit(const CascadeSet& set, const std::vector<CascadeDraws>
         const CascadeDraws& cascade = draws[c];
         const bool was_complete = c < layers_.size() && layers_[c] && layers_[c]->cache_complete;
         const bool stored_all = cascade.store.size() == 1 && cascade.store.front() == whole_map(resolution);
-        layers[c] = Layer{set.cascades[c], stored_all || (cascade.reuse && was_complete), cascade.dynamic_cover};
+        layers[c] = Layer{set.cascades[c], stored_all || (cascade.reuse && was_complete), cascade.dynamic_cover,
+                          cascade.dynamic_window};
     }
     layers_ = std::move(layers);
 }

@@ -36,7 +36,8 @@ CascadeMaps::CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_
                   static_cast<uint32_t>(settings.cascades.count), settings.strategy, settings.cache_static_casters),
       depth_sampler_(create_nearest_sampler(device)) {
     if (is_moment_filter(settings.filter.mode)) {
-        moments_.emplace(device, depth_pass_.shadow_map(), depth_sampler_, settings.filter);
+        // Cached cascades update their moments only where the depth changed.
+        moments_.emplace(device, depth_pass_.shadow_map(), depth_sampler_, settings.filter, depth_pass_.cached());
     }
 }
 
@@ -60,7 +61,10 @@ void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const p
     const gpu::ImageDesc& map = depth_pass_.shadow_map().desc;
     std::vector<passes::MomentsLayer> layers;
     for (uint32_t cascade = 0; cascade < map.layers; ++cascade) {
-        layers.push_back({cascade, map.width, 0.0f, 0.0f, glm::uvec2(draws[cascade].layer_origin)});  // orthographic
+        const passes::CascadeDraws& drawn = draws[cascade];
+        passes::MomentsLayer layer{cascade, map.width, 0.0f, 0.0f, glm::uvec2(drawn.layer_origin)};  // orthographic
+        if (drawn.reuse && moments_->partial_updates()) layer.changed = drawn.changed;
+        layers.push_back(std::move(layer));
     }
     moments_->record(cmd, layers, clamped_evsm_exponents(settings.filter));
 }

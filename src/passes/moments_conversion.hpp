@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
+#include "core/shadow_cache.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
@@ -36,19 +37,26 @@ struct MomentsLayer {
     float near_plane = 0.0f;
     float far_plane = 0.0f;
     glm::uvec2 layer_origin{0};
+    // Cached cascades: the used texels whose depth changed since the moments were last
+    // computed (used-texel coordinates, from the layer origin); only the moments they reach
+    // are computed again (needs partial_updates()). std::nullopt: the whole layer.
+    std::optional<std::vector<TexelRect>> changed;
 };
 
 class MomentsConversion {
 public:
     // Moments for every layer of `depth_map`, read with `depth_sampler` (nearest); requires
     // a moment filter (is_moment_filter(filter.mode)).
+    // `partial_updates`: layers may be converted only where their depth changed
+    // (MomentsLayer::changed); with a blur this keeps the unblurred moments in a third image.
     MomentsConversion(const gpu::Device& device, const gpu::Image& depth_map, VkSampler depth_sampler,
-                      const FilterSettings& filter);
+                      const FilterSettings& filter, bool partial_updates = false);
 
     const gpu::Image& moments() const { return moments_; }
     // Bilinear where the device filters the moments format linearly, else nearest.
     VkSampler sampler() const { return sampler_; }
-    uint64_t memory_bytes() const;  // the moments and the blur's scratch image
+    uint64_t memory_bytes() const;  // the moments, the blur's scratch image and the unblurred moments
+    bool partial_updates() const { return partial_updates_; }
 
     // Expects the depth map in ShaderSampled (as the depth passes leave it); leaves the
     // moments in ShaderSampled. `evsm_exponents` are the clamped (positive, negative) ones.
@@ -58,14 +66,21 @@ public:
                 bool keep_others = false) const;
 
 private:
-    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
-                  const MomentsLayer& layer, glm::vec2 evsm_exponents, bool horizontal) const;
+    enum class Step { Convert, Horizontal, Vertical };
+    void dispatch(VkCommandBuffer cmd, const MomentsLayer& layer, glm::vec2 evsm_exponents, Step step) const;
+    void dispatch_region(VkCommandBuffer cmd, const MomentsLayer& layer, glm::vec2 evsm_exponents, Step step,
+                         const TexelRect& region) const;
 
     const gpu::Device& device_;
     uint32_t blur_radius_;
     uint32_t side_;  // of the layers
+    bool partial_updates_;
     gpu::Image moments_;
     std::optional<gpu::Image> scratch_;  // with a blur
+    std::optional<gpu::Image> raw_;      // with a blur and partial updates: the unblurred moments
+    // Whether a recorded frame has written them (their first use must not keep contents).
+    mutable bool raw_initialised_ = false;
+    mutable bool scratch_initialised_ = false;
     gpu::UniqueSampler sampler_;
     gpu::UniqueDescriptorSetLayout convert_layout_;
     gpu::UniqueDescriptorSetLayout blur_layout_;

@@ -51,6 +51,11 @@ struct CascadeDraws {
     std::vector<TexelRect> store;          // copied into the cache after the static casters
     std::vector<Region> dynamic;           // drawn over the static ones (cached only)
     std::vector<TexelRect> dynamic_cover;  // texels the dynamic casters may cover (restored next frame)
+    // reuse: the window texels (from the cascade's texel 0, not layer texels) whose depth may
+    // differ from the last frame's: redrawn, under dynamic casters now or last frame, and the
+    // window's edge texels after a move (the moments conversion updates only around them).
+    std::vector<TexelRect> changed;
+    std::vector<TexelRect> dynamic_window;  // the dynamic casters' reach in window texels
 };
 
 class ShadowPass {

@@ -317,10 +317,12 @@ VisibilityImage2D LibraryTest::read_visibility(const ShadowSystem& shadows, uint
     return result;
 }
 
-std::vector<float> LibraryTest::read_cascade_depths(const ShadowSystem& shadows) {
-    const MapImage map = shadows.shadow_maps().cascades;
+std::vector<uint8_t> LibraryTest::read_map(const MapImage& map) {
+    uint32_t texel_bytes = 4;  // D32_SFLOAT
+    if (map.format == VK_FORMAT_R32G32_SFLOAT || map.format == VK_FORMAT_R16G16B16A16_UNORM) texel_bytes = 8;
+    if (map.format == VK_FORMAT_R32G32B32A32_SFLOAT) texel_bytes = 16;
     const VkDeviceSize layer_texels = VkDeviceSize{map.resolution} * map.resolution;
-    HostBuffer readback(device_, layer_texels * map.layers * sizeof(float), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    HostBuffer readback(device_, layer_texels * map.layers * texel_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     submit([&](VkCommandBuffer cmd) {
         // The contract: SHADER_READ_ONLY with the writes visible to fragment and compute
         // shader reads; chained from those stages, returned to that layout after.
@@ -338,8 +340,15 @@ std::vector<float> LibraryTest::read_cascade_depths(const ShadowSystem& shadows)
                       shader_stages, VK_ACCESS_2_NONE);
         host_read_barrier(cmd);
     });
-    std::vector<float> depths(layer_texels * map.layers);
-    std::memcpy(depths.data(), readback.mapped, depths.size() * sizeof(float));
+    std::vector<uint8_t> bytes(layer_texels * map.layers * texel_bytes);
+    std::memcpy(bytes.data(), readback.mapped, bytes.size());
+    return bytes;
+}
+
+std::vector<float> LibraryTest::read_cascade_depths(const ShadowSystem& shadows) {
+    const std::vector<uint8_t> bytes = read_map(shadows.shadow_maps().cascades);
+    std::vector<float> depths(bytes.size() / sizeof(float));
+    std::memcpy(depths.data(), bytes.data(), depths.size() * sizeof(float));
     return depths;
 }
 

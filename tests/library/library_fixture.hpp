@@ -112,6 +112,8 @@ protected:
     VisibilityImage2D read_visibility(const ShadowSystem& shadows, uint32_t slot);
     // Every layer of the cascades' depth map after the last recorded frame, as floats.
     std::vector<float> read_cascade_depths(const ShadowSystem& shadows);
+    // Every layer of a map (depth, or moments: RG32F, RGBA32F, RGBA16) as its bytes.
+    std::vector<uint8_t> read_map(const MapImage& map);
 
     // Compares visibility with the box at `centre` casting along `direction` (a sun), or
     // from `light_position` (a point light) when given. Pixels within `edge_band` metres of

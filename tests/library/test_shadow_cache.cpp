@@ -81,9 +81,11 @@ ViewDesc path_view(CameraPath path, int f) {
 
 void change_scene(ShadowSystem& shadows, CacheScene& scene, int f) {
     const float t = static_cast<float>(f);
-    // Sliding and spinning (a windmill's blade turns about its own axis).
+    // Sliding and spinning (a windmill's blade turns about its own axis); in frame 16 it
+    // jumps 8 m aside and back in frame 17, so that where it was is far from where it is.
     const glm::mat4 spin = glm::rotate(glm::mat4(1.0f), 0.5f * t, glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f)));
-    const glm::mat4 slide = glm::translate(glm::mat4(1.0f), {3.0f * std::sin(0.3f * t), 2.0f, 0.4f * t});
+    const float jump = f == 16 ? 8.0f : 0.0f;
+    const glm::mat4 slide = glm::translate(glm::mat4(1.0f), {3.0f * std::sin(0.3f * t) + jump, 2.0f, 0.4f * t});
     shadows.set_instance_transform(scene.mover, to_mat4(slide * spin));
     if (f == 6) shadows.set_instance_transform(scene.statics[1], translation({-5.0f, 1.5f, 2.0f}));
     if (f == 9) scene.statics.push_back(shadows.add_instance({scene.box_id, translation({4.0f, 3.0f, -6.0f})}));
@@ -98,6 +100,7 @@ TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters
     Settings uncached_settings = test_settings();
     uncached_settings.shadow.cascades.resolution = 512;
     uncached_settings.shadow.filter.mode = param.filter;
+    uncached_settings.shadow.filter.blur_radius = 5;  // wide: the moments of more texels depend on each depth
     Settings cached_settings = uncached_settings;
     cached_settings.shadow.cache_static_casters = true;
     ShadowSystem uncached(system_desc(uncached_settings));
@@ -131,6 +134,9 @@ TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters
         });
         const VisibilityImage2D expected_visibility = read_visibility(uncached, 0);
         const std::vector<float> expected = read_cascade_depths(uncached);
+        const bool moments = uncached.shadow_maps().cascade_moments.image != VK_NULL_HANDLE;
+        const std::vector<uint8_t> expected_moments =
+            moments ? read_map(uncached.shadow_maps().cascade_moments) : std::vector<uint8_t>{};
         submit([&](VkCommandBuffer cmd) {
             cached.record_shadow_maps(cmd);
             record_ground_visibility(cmd, cached, nullptr, NormalEncoding::SignedFloat);
@@ -138,6 +144,17 @@ TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters
         const VisibilityImage2D actual_visibility = read_visibility(cached, 0);
         const std::vector<float> actual = read_cascade_depths(cached);
         ASSERT_EQ(expected.size(), actual.size());
+        if (moments) {
+            // The moments too, every texel: a cached cascade converts and blurs only around
+            // the texels whose depth changed.
+            const std::vector<uint8_t> actual_moments = read_map(cached.shadow_maps().cascade_moments);
+            ASSERT_EQ(expected_moments.size(), actual_moments.size());
+            const auto [first, second] =
+                std::mismatch(expected_moments.begin(), expected_moments.end(), actual_moments.begin());
+            ASSERT_EQ(first, expected_moments.end())
+                << "frame " << f << ": moments differ at byte " << (first - expected_moments.begin()) << " of "
+                << expected_moments.size();
+        }
         for (size_t i = 0; i < expected.size(); ++i) {
             ASSERT_EQ(expected[i], actual[i])
                 << "frame " << f << " texel " << i % (512 * 512) << " of layer " << i / (512 * 512);
