@@ -141,6 +141,15 @@ ViewDesc look_at_view(Vec3 eye, Vec3 target, Vec3 up, float fov_y_radians, float
 // (image row 0 at the top), reverse-Z (depth 1 at the near plane, 0 at the far plane).
 Mat4 reverse_z_projection(const ViewDesc& view);
 
+// A rectangle of a cascade's texels, counted from the cascade's texel (0, 0) (not the
+// layer's: see CascadeInfo::layer_origin_x).
+struct TexelRegion {
+    uint32_t x = 0;
+    uint32_t y = 0;
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+
 struct CascadeInfo {
     Mat4 view_projection;           // world -> this cascade's clip space (reverse-Z)
     float split_near = 0.0f;        // camera view distance where the cascade starts
@@ -162,6 +171,10 @@ struct CascadeInfo {
     // ((x + layer_origin_x) mod resolution, (y + layer_origin_y) mod resolution).
     uint32_t layer_origin_x = 0;
     uint32_t layer_origin_y = 0;
+    // Where this frame drew: the static casters (the whole cascade unless the cache was
+    // reused; rectangles may overlap) and, with a cache, the dynamic instances' reach.
+    std::vector<TexelRegion> redrawn;
+    std::vector<TexelRegion> dynamic_regions;
 };
 
 struct LocalShadowInfo {

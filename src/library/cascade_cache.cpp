@@ -45,7 +45,7 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
                                              Reach* cover = nullptr) {
     std::vector<CascadeDraws::Region> regions;
     for (const LayerPiece& piece : layer_pieces(window_rect, cascade.layer_origin, resolution)) {
-        CascadeDraws::Region region{piece.layer, piece.tile, {}};
+        CascadeDraws::Region region{piece.layer, piece.tile, {}, piece.window};
         region.casters.reserve(casters.size());
         TexelRect reach;
         for (const Footprint& caster : casters) {

@@ -192,6 +192,14 @@ struct ShadowSystem::Impl {
             out.texels_copied = stats.texels_copied;
             out.layer_origin_x = static_cast<uint32_t>(cascade.layer_origin.x);
             out.layer_origin_y = static_cast<uint32_t>(cascade.layer_origin.y);
+            const auto region_of = [](const TexelRect& rect) {
+                return TexelRegion{static_cast<uint32_t>(rect.min.x), static_cast<uint32_t>(rect.min.y),
+                                   static_cast<uint32_t>(rect.max.x - rect.min.x),
+                                   static_cast<uint32_t>(rect.max.y - rect.min.y)};
+            };
+            for (const passes::CascadeDraws::Region& region : cascade_draws[c].regions)
+                out.redrawn.push_back(region_of(region.window));
+            for (const TexelRect& rect : cascade_draws[c].dynamic_window) out.dynamic_regions.push_back(region_of(rect));
             library::for_each_draw(cascade_draws[c], [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
             info.cascades.push_back(out);
         }

@@ -40,6 +40,7 @@ struct CascadeDraws {
         TexelRect rect;
         uint32_t tile = 0;
         DrawList casters;
+        TexelRect window;  // the same texels counted from the cascade's texel 0 (statistics)
     };
     glm::ivec2 layer_origin{0};  // Cascade::layer_origin
     // false: clear the layer and draw `regions` (every caster, or every static one with a

@@ -122,7 +122,14 @@ TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters
         const ViewDesc view = path_view(param.path, f);
         uncached.prepare(view);
         const FrameInfo& info = cached.prepare(view);
+        EXPECT_TRUE(std::any_of(info.cascades.begin(), info.cascades.end(),
+                                [](const CascadeInfo& cascade) { return !cascade.dynamic_regions.empty(); }))
+            << "frame " << f << ": the moving box is drawn somewhere";
         for (const CascadeInfo& cascade : info.cascades) {
+            // The regions it reports drew the texels it counts.
+            uint64_t redrawn = 0;
+            for (const TexelRegion& region : cascade.redrawn) redrawn += uint64_t{region.width} * region.height;
+            EXPECT_EQ(redrawn, cascade.texels_rendered) << "frame " << f;
             rendered += cascade.texels_rendered;
             copied += cascade.texels_copied;
             full += uint64_t{512} * 512;

@@ -29,8 +29,9 @@ void timing_section(const PanelStats& stats) {
 }
 
 void cascade_table(const renderer::FrameInfo& frame) {
-    if (!ImGui::BeginTable("cascades", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
-    for (const char* heading : {"#", "range (m)", "texels/m", "draws", "triangles"}) ImGui::TableSetupColumn(heading);
+    if (!ImGui::BeginTable("cascades", 8, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+    for (const char* heading : {"#", "range (m)", "texels/m", "draws", "triangles", "cache", "texels drawn", "copied"})
+        ImGui::TableSetupColumn(heading);
     ImGui::TableHeadersRow();
     for (size_t i = 0; i < frame.cascades.size(); ++i) {
         const CascadeInfo& cascade = frame.cascades[i];
@@ -45,13 +46,36 @@ void cascade_table(const renderer::FrameInfo& frame) {
         ImGui::Text("%u", cascade.draws);
         ImGui::TableNextColumn();
         ImGui::Text("%llu", static_cast<unsigned long long>(cascade.triangles));
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(cascade.cache_reused ? "kept" : "drawn");
+        ImGui::TableNextColumn();
+        ImGui::Text("%llu", static_cast<unsigned long long>(cascade.texels_rendered));
+        ImGui::TableNextColumn();
+        ImGui::Text("%llu", static_cast<unsigned long long>(cascade.texels_copied));
     }
     ImGui::EndTable();
 }
 
+// What the frame drew into a cached cascade, outlined over its cells: the static casters'
+// rectangles in red, the dynamic instances' reach in yellow (a cascade drawn whole gets no
+// outline).
+void refreshed_regions(ImDrawList* draw, ImVec2 layer_origin, float layer_side, const CascadeInfo& cascade,
+                       uint32_t resolution) {
+    const float scale = layer_side / static_cast<float>(std::max(resolution, 1u));
+    const auto outline = [&](const TexelRegion& region, ImU32 colour) {
+        const ImVec2 p0(layer_origin.x + region.x * scale, layer_origin.y + region.y * scale);
+        const ImVec2 p1(p0.x + std::max(region.width * scale, 1.0f), p0.y + std::max(region.height * scale, 1.0f));
+        draw->AddRect(p0, p1, colour);
+    };
+    if (cascade.cache_reused) {
+        for (const TexelRegion& region : cascade.redrawn) outline(region, IM_COL32(255, 64, 64, 255));
+    }
+    for (const TexelRegion& region : cascade.dynamic_regions) outline(region, IM_COL32(255, 220, 0, 255));
+}
+
 // The layers as a grid of filled cells (the stock ImGui 1.86 Vulkan backend cannot bind
 // user textures): each cell averages a block of texels of the 8-bit strip.
-void shadow_map_layers(const renderer::GrayImage& strip) {
+void shadow_map_layers(const renderer::GrayImage& strip, const renderer::FrameInfo* frame) {
     if (strip.width == 0 || strip.height == 0) {
         ImGui::TextDisabled("choose debug view \"shadow-map layers\" to show them");
         return;
@@ -73,7 +97,12 @@ void shadow_map_layers(const renderer::GrayImage& strip) {
             }
         }
     }
+    for (uint32_t layer = 0; frame && layer < layers && layer < frame->cascades.size(); ++layer) {
+        refreshed_regions(draw, ImVec2(origin.x + layer * kCells * cell, origin.y), kCells * cell,
+                          frame->cascades[layer], strip.height);
+    }
     ImGui::Dummy(ImVec2(layers * kCells * cell, kCells * cell));
+    if (frame) ImGui::TextDisabled("with the shadow cache: red, static casters drawn again; yellow, dynamic instances");
 }
 
 }  // namespace
@@ -84,7 +113,7 @@ void draw_statistics(const PanelStats& stats) {
         ImGui::Text("shadow distance %.1f m", stats.frame->shadow_distance);
         cascade_table(*stats.frame);
     }
-    if (ImGui::CollapsingHeader("Shadow-map layers")) shadow_map_layers(stats.shadow_map_layers);
+    if (ImGui::CollapsingHeader("Shadow-map layers")) shadow_map_layers(stats.shadow_map_layers, stats.frame);
 }
 
 }  // namespace penumbra::view
