@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|filters|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -59,6 +59,19 @@ def mover_runs(binary):
     return runs
 
 
+def moment_runs(binary):
+    """The moment filters with cached cascades: moments updated only around changed depth (issue 15)."""
+    runs = []
+    for filter_name in ("vsm", "evsm", "msm"):
+        for path, frames in (("walk", 120), ("orbit", 60)):
+            for cache in ("off", "on"):
+                extra = ["--filter", filter_name, "--camera-path", path, "--frames", str(frames), "--warmup", "10"]
+                if cache == "on":
+                    extra.append("--shadow-cache")
+                runs.append((f"{filter_name}, cache {cache}, {path} ({frames} frames)", binary, FOREST, BASE + extra))
+    return runs
+
+
 def filter_runs(binaries):
     """The filters at 4K, forward and deferred, for every binary given (same-call A/B)."""
     runs = []
@@ -86,7 +99,7 @@ def median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "filters", "all"], default="all")
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "all"], default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
@@ -95,6 +108,8 @@ def main():
     runs = []
     if args.plan in ("cache", "all"):
         runs += cache_runs(args.cache_binary or names[0])
+    if args.plan in ("moments", "all"):
+        runs += moment_runs(args.cache_binary or names[0])
     if args.plan in ("movers", "all"):
         runs += mover_runs(args.cache_binary or names[0])
     if args.plan in ("local", "all"):
