@@ -68,6 +68,25 @@ def matrix(scenes_dir):
     runs += [("camera path", "flythrough", None, ["--camera-path", "flythrough"]),
              ("light path", "rotate", None, ["--light-path", "rotate"])]
     runs += local_light_runs()
+    runs += cache_runs()
+    return runs
+
+
+def cache_runs():
+    """Cached shadows (--shadow-cache), off and on in the same run, along each camera path, with
+    ten moving dynamic instances, and with 8 static spots and 8 static points."""
+    runs = []
+    for path in ("orbit", "walk", "flythrough", "still"):
+        runs += [("shadow cache", f"{path}, {cache}", None,
+                  ["--camera-path", path] + (["--shadow-cache"] if cache == "on" else [])) for cache in ("off", "on")]
+    movers = f"{BASELINE_SCENE}&movers=10"
+    runs += [("shadow cache, 10 movers", f"orbit, {cache}", movers,
+              ["--camera-path", "orbit", "--animate-dynamic"] +
+              (["--shadow-cache"] if cache == "on" else [])) for cache in ("off", "on")]
+    lights = f"{BASELINE_SCENE}&spots=8&points=8"
+    runs += [("shadow cache, 8 spots + 8 points", f"still, {cache}", lights,
+              ["--camera-path", "still", "--local-shadow-budget", "16"] +
+              (["--shadow-cache"] if cache == "on" else [])) for cache in ("off", "on")]
     return runs
 
 
