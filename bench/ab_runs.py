@@ -20,55 +20,44 @@ BASE = ["--width", "1920", "--height", "1080", "--cascades", "4", "--shadow-reso
 UHD = ["--width", "3840", "--height", "2160", "--cascades", "4", "--shadow-resolution", "2048"]
 
 
-def cache_runs(binary, tag=""):
-    """Cached cascades off and on along each camera path (issue 15's numbers)."""
+FRAMES = {"orbit": 60, "walk": 120, "flythrough": 120, "still": 60}
+
+
+def cache_pairs(binary, label, scene, paths, extra=(), tag=""):
+    """Cache off and on along each of `paths`, same scene and arguments (issue 15's numbers).
+    Labels read "<label>, cache on, walk (120 frames)<tag>"."""
     runs = []
-    for path, frames in (("orbit", 60), ("walk", 120), ("flythrough", 120), ("still", 60)):
+    for path in paths:
         for cache in ("off", "on"):
-            extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10"]
+            arguments = BASE + list(extra) + ["--camera-path", path, "--frames", str(FRAMES[path]), "--warmup", "10"]
             if cache == "on":
-                extra.append("--shadow-cache")
-            runs.append((f"cache {cache}, {path} ({frames} frames){tag}", binary, FOREST, BASE + extra))
+                arguments.append("--shadow-cache")
+            prefix = f"{label}, " if label else ""
+            runs.append((f"{prefix}cache {cache}, {path} ({FRAMES[path]} frames){tag}", binary, scene, arguments))
     return runs
+
+
+def cache_runs(binary, tag=""):
+    """Cached cascades along each camera path."""
+    return cache_pairs(binary, "", FOREST, ("orbit", "walk", "flythrough", "still"), tag=tag)
 
 
 def local_runs(binary):
-    """8 static spot and 8 static point lights over the forest, cache off and on (issue 15)."""
-    runs = []
-    lights = f"{FOREST}&spots=8&points=8"
-    for path, frames in (("still", 60), ("walk", 120), ("orbit", 60)):
-        for cache in ("off", "on"):
-            extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10"]
-            if cache == "on":
-                extra.append("--shadow-cache")
-            runs.append((f"local lights, cache {cache}, {path} ({frames} frames)", binary, lights,
-                         BASE + ["--local-shadow-budget", "16"] + extra))
-    return runs
+    """8 static spot and 8 static point lights over the forest."""
+    return cache_pairs(binary, "local lights", f"{FOREST}&spots=8&points=8", ("still", "walk", "orbit"),
+                       ["--local-shadow-budget", "16"])
 
 
 def mover_runs(binary):
-    """10 dynamic crowns moving every frame over the forest, cache off and on (issue 15)."""
-    runs = []
-    movers = f"{FOREST}&movers=10"
-    for path, frames in (("still", 60), ("walk", 120), ("orbit", 60)):
-        for cache in ("off", "on"):
-            extra = ["--camera-path", path, "--frames", str(frames), "--warmup", "10", "--animate-dynamic"]
-            if cache == "on":
-                extra.append("--shadow-cache")
-            runs.append((f"10 movers, cache {cache}, {path} ({frames} frames)", binary, movers, BASE + extra))
-    return runs
+    """10 dynamic crowns moving every frame over the forest."""
+    return cache_pairs(binary, "10 movers", f"{FOREST}&movers=10", ("still", "walk", "orbit"), ["--animate-dynamic"])
 
 
 def moment_runs(binary):
-    """The moment filters with cached cascades: moments updated only around changed depth (issue 15)."""
+    """The moment filters with cached cascades: moments updated only around changed depth."""
     runs = []
-    for filter_name in ("vsm", "evsm", "msm"):
-        for path, frames in (("walk", 120), ("orbit", 60)):
-            for cache in ("off", "on"):
-                extra = ["--filter", filter_name, "--camera-path", path, "--frames", str(frames), "--warmup", "10"]
-                if cache == "on":
-                    extra.append("--shadow-cache")
-                runs.append((f"{filter_name}, cache {cache}, {path} ({frames} frames)", binary, FOREST, BASE + extra))
+    for name in ("vsm", "evsm", "msm"):
+        runs += cache_pairs(binary, name, FOREST, ("walk", "orbit"), ["--filter", name])
     return runs
 
 

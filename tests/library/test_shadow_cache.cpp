@@ -43,6 +43,12 @@ CacheScene add_cache_scene(ShadowSystem& shadows) {
     return scene;
 }
 
+// The settings of the cached system compared with an uncached one.
+Settings with_cache(Settings settings) {
+    settings.shadow.cache_static_casters = true;
+    return settings;
+}
+
 enum class CameraPath { Walk, Orbit, Flythrough };
 
 struct CacheCase {
@@ -97,14 +103,12 @@ class ShadowCacheTest : public LibraryTest, public ::testing::WithParamInterface
 
 TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters) {
     const CacheCase param = GetParam();
-    Settings uncached_settings = test_settings();
-    uncached_settings.shadow.cascades.resolution = 512;
-    uncached_settings.shadow.filter.mode = param.filter;
-    uncached_settings.shadow.filter.blur_radius = 5;  // wide: the moments of more texels depend on each depth
-    Settings cached_settings = uncached_settings;
-    cached_settings.shadow.cache_static_casters = true;
-    ShadowSystem uncached(system_desc(uncached_settings));
-    ShadowSystem cached(system_desc(cached_settings));
+    Settings settings = test_settings();
+    settings.shadow.cascades.resolution = 512;
+    settings.shadow.filter.mode = param.filter;
+    settings.shadow.filter.blur_radius = 5;  // wide: the moments of more texels depend on each depth
+    ShadowSystem uncached(system_desc(settings));
+    ShadowSystem cached(system_desc(with_cache(settings)));
     CacheScene uncached_scene = add_cache_scene(uncached);
     CacheScene cached_scene = add_cache_scene(cached);
     constexpr int kFrames = 20;
@@ -233,16 +237,14 @@ LightDesc spot_light(float x) {
 }
 
 TEST_P(LocalShadowCacheTest, CachedSpotAndPointShadowsAreBitIdenticalToUncached) {
-    Settings uncached_settings = test_settings();
-    uncached_settings.shadow.filter.mode = GetParam();
+    Settings settings = test_settings();
+    settings.shadow.filter.mode = GetParam();
     // Small maps: the moment filters' conversion is slow on lavapipe (no sun: the cascades are unused).
-    uncached_settings.local_shadows.resolution = 256;
-    uncached_settings.shadow.cascades.resolution = 512;
-    uncached_settings.shadow.cascades.count = 1;
-    Settings cached_settings = uncached_settings;
-    cached_settings.shadow.cache_static_casters = true;
-    ShadowSystem uncached(system_desc(uncached_settings));
-    ShadowSystem cached(system_desc(cached_settings));
+    settings.local_shadows.resolution = 256;
+    settings.shadow.cascades.resolution = 512;
+    settings.shadow.cascades.count = 1;
+    ShadowSystem uncached(system_desc(settings));
+    ShadowSystem cached(system_desc(with_cache(settings)));
     LocalCacheScene uncached_scene = add_local_cache_scene(uncached);
     LocalCacheScene cached_scene = add_local_cache_scene(cached);
     LightDesc point{LightType::Point, {0.0f, -1.0f, 0.0f}, {3.5f, 6.0f, 0.0f}};
