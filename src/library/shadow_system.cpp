@@ -199,7 +199,8 @@ struct ShadowSystem::Impl {
             };
             for (const passes::CascadeDraws::Region& region : cascade_draws[c].regions)
                 out.redrawn.push_back(region_of(region.window));
-            for (const TexelRect& rect : cascade_draws[c].dynamic_window) out.dynamic_regions.push_back(region_of(rect));
+            for (const TexelRect& rect : cascade_draws[c].dynamic_window)
+                out.dynamic_regions.push_back(region_of(rect));
             library::for_each_draw(cascade_draws[c], [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
             info.cascades.push_back(out);
         }
