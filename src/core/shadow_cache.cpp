@@ -35,8 +35,10 @@ void place_in_layers(CascadeSet& set, uint32_t resolution, bool toroidal) {
             cascade.layer_origin = glm::ivec2(0);
             continue;
         }
-        // The origin is a whole number, at most a few million texels from 0 (float exact).
+        // The origin is a whole number; one beyond +-2^62 texels (a scene near the float
+        // range) is placed at 0, as no int64 holds it.
         const auto wrap = [&](float origin) {
+            if (!std::isfinite(origin) || std::abs(origin) > 4.0e18f) return 0;
             const int64_t value = static_cast<int64_t>(origin) % side;
             return static_cast<int32_t>(value < 0 ? value + side : value);
         };
@@ -93,6 +95,12 @@ TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32
     // side culls, as in caster_may_shadow_cascade (nearer boxes are flattened onto the
     // near plane by depth clamp).
     const Aabb clip_box = transform_aabb(world_box, cascade.view_projection);
+    // A box too large to project (infinite or NaN clip coordinates: bounds near the float
+    // range) may reach every texel.
+    const auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    if (!finite(clip_box.min) || !finite(clip_box.max)) return whole_map(resolution);
     if (clip_box.max.z < 0.0f) return {};
     // Wholly beyond the window's edges: no texel (the common case, kept as cheap as
     // caster_may_shadow_cascade).

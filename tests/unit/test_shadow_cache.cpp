@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -250,6 +251,23 @@ TEST(ShadowCache, LayerPiecesCoverTheWindowRectangleOnceAtItsWrappedLayerTexels)
         }
         for (const int count : layer_covered) ASSERT_LE(count, 1) << "case " << i;
     }
+}
+
+TEST(ShadowCache, BoxesAndOriginsNearTheFloatRangeStayDefined) {
+    // Found by fuzz_shadow_system: bounds whose projection overflows to inf - inf = NaN.
+    std::mt19937 rng(20);
+    CacheSetup setup = random_setup(rng);
+    CascadeSet set = cascades_for(setup);
+    const uint32_t resolution = setup.settings.resolution;
+    const Aabb huge{glm::vec3(-3.0e38f), glm::vec3(3.0e38f)};
+    for (const Cascade& cascade : set.cascades) {
+        EXPECT_EQ(caster_footprint(cascade, huge, resolution), whole_map(resolution)) << "conservative: every texel";
+    }
+    set.cascades.front().texel_origin = glm::vec2(std::numeric_limits<float>::infinity(), 1.0e30f);
+    set.cascades.back().texel_origin = glm::vec2(std::nanf(""), -1.0e30f);
+    place_in_layers(set, resolution, true);
+    EXPECT_EQ(set.cascades.front().layer_origin, glm::ivec2(0));
+    EXPECT_EQ(set.cascades.back().layer_origin, glm::ivec2(0));
 }
 
 }  // namespace
