@@ -39,30 +39,40 @@ struct Reach {
 
 // The regions that draw `window_rect`: its pieces in the layer, each with the casters
 // whose footprint meets it. `cover`, when given, receives per region the texels its
-// casters can reach.
+// casters can reach. One pass over the casters: a footprint meets the pieces on the sides
+// of the layer's wrap lines it reaches (a forest's thousands of casters per cascade).
 std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const Cascade& cascade,
                                              const std::vector<Footprint>& casters, uint32_t resolution,
                                              Reach* cover = nullptr) {
+    const std::vector<LayerPiece> pieces = layer_pieces(window_rect, cascade.layer_origin, resolution);
     std::vector<CascadeDraws::Region> regions;
-    for (const LayerPiece& piece : layer_pieces(window_rect, cascade.layer_origin, resolution)) {
-        CascadeDraws::Region region{piece.layer, piece.tile, {}, piece.window};
-        region.casters.reserve(casters.size());
-        TexelRect reach;
-        for (const Footprint& caster : casters) {
-            const TexelRect overlap = intersect(caster.window, piece.window);
-            if (overlap.empty()) continue;
-            region.casters.push_back(caster.draw);
-            if (cover) {
-                reach = reach.empty() ? overlap
-                                      : TexelRect{glm::min(reach.min, overlap.min), glm::max(reach.max, overlap.max)};
-            }
+    int region_of_tile[4] = {-1, -1, -1, -1};
+    for (const LayerPiece& piece : pieces) {
+        region_of_tile[piece.tile] = static_cast<int>(regions.size());
+        regions.push_back({piece.layer, piece.tile, {}, piece.window});
+    }
+    std::vector<TexelRect> reach(regions.size());
+    const glm::ivec2 split = glm::ivec2(static_cast<int32_t>(resolution)) - cascade.layer_origin;
+    for (const Footprint& caster : casters) {
+        const TexelRect overlap = intersect(caster.window, window_rect);
+        if (overlap.empty()) continue;
+        const bool sides[2][2] = {{overlap.min.x<split.x, overlap.max.x> split.x},
+                                  {overlap.min.y<split.y, overlap.max.y> split.y}};
+        for (uint32_t tile = 0; tile < 4; ++tile) {
+            const int index = region_of_tile[tile];
+            if (index < 0 || !sides[0][tile & 1u] || !sides[1][tile >> 1u]) continue;
+            regions[static_cast<size_t>(index)].casters.push_back(caster.draw);
+            if (!cover) continue;
+            const TexelRect part = intersect(overlap, pieces[static_cast<size_t>(index)].window);
+            TexelRect& total = reach[static_cast<size_t>(index)];
+            total = total.empty() ? part : TexelRect{glm::min(total.min, part.min), glm::max(total.max, part.max)};
         }
-        if (cover && !reach.empty()) {
-            const glm::ivec2 move = piece.layer.min - piece.window.min;
-            cover->layer.push_back({reach.min + move, reach.max + move});
-            cover->window.push_back(reach);
-        }
-        regions.push_back(std::move(region));
+    }
+    for (size_t r = 0; cover && r < regions.size(); ++r) {
+        if (reach[r].empty()) continue;
+        const glm::ivec2 move = pieces[r].layer.min - pieces[r].window.min;
+        cover->layer.push_back({reach[r].min + move, reach[r].max + move});
+        cover->window.push_back(reach[r]);
     }
     return regions;
 }
