@@ -31,19 +31,14 @@ std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterSc
     return result;
 }
 
-// What the dynamic casters can reach: per region, in layer texels and in window texels.
-struct Reach {
-    std::vector<TexelRect> layer;
-    std::vector<TexelRect> window;
-};
-
 // The regions that draw `window_rect`: its pieces in the layer, each with the casters
 // whose footprint meets it. `cover`, when given, receives per region the texels its
-// casters can reach. One pass over the casters: a footprint meets the pieces on the sides
-// of the layer's wrap lines it reaches (a forest's thousands of casters per cascade).
+// casters can reach (window texels, inside the region's piece). One pass over the casters:
+// a footprint meets the pieces on the sides of the layer's wrap lines it reaches (a
+// forest's thousands of casters per cascade).
 std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const Cascade& cascade,
                                              const std::vector<Footprint>& casters, uint32_t resolution,
-                                             Reach* cover = nullptr) {
+                                             std::vector<TexelRect>* cover = nullptr) {
     const std::vector<LayerPiece> pieces = layer_pieces(window_rect, cascade.layer_origin, resolution);
     std::vector<CascadeDraws::Region> regions;
     int region_of_tile[4] = {-1, -1, -1, -1};
@@ -56,11 +51,16 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
     for (const Footprint& caster : casters) {
         const TexelRect overlap = intersect(caster.window, window_rect);
         if (overlap.empty()) continue;
-        const bool sides[2][2] = {{overlap.min.x<split.x, overlap.max.x> split.x},
-                                  {overlap.min.y<split.y, overlap.max.y> split.y}};
+        // Which sides of the wrap lines (split.x, split.y) the footprint reaches.
+        const bool left = overlap.min.x < split.x;
+        const bool right = overlap.max.x > split.x;
+        const bool top = overlap.min.y < split.y;
+        const bool bottom = overlap.max.y > split.y;
         for (uint32_t tile = 0; tile < 4; ++tile) {
             const int index = region_of_tile[tile];
-            if (index < 0 || !sides[0][tile & 1u] || !sides[1][tile >> 1u]) continue;
+            const bool across = (tile & 1u) ? right : left;
+            const bool down = (tile & 2u) ? bottom : top;
+            if (index < 0 || !across || !down) continue;
             regions[static_cast<size_t>(index)].casters.push_back(caster.draw);
             if (!cover) continue;
             const TexelRect part = intersect(overlap, pieces[static_cast<size_t>(index)].window);
@@ -69,10 +69,7 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
         }
     }
     for (size_t r = 0; cover && r < regions.size(); ++r) {
-        if (reach[r].empty()) continue;
-        const glm::ivec2 move = pieces[r].layer.min - pieces[r].window.min;
-        cover->layer.push_back({reach[r].min + move, reach[r].max + move});
-        cover->window.push_back(reach[r]);
+        if (!reach[r].empty()) cover->push_back(reach[r]);
     }
     return regions;
 }
@@ -105,28 +102,38 @@ std::vector<TexelRect> changed_texels(const CascadeUpdate& update, const std::ve
     return changed;
 }
 
+// The layer texels of `window_rects` of a cascade placed at `layer_origin` (each rectangle
+// lies in one piece of the window, as regions_of's reach does).
+std::vector<TexelRect> layer_texels(const std::vector<TexelRect>& window_rects, glm::ivec2 layer_origin,
+                                    uint32_t resolution) {
+    std::vector<TexelRect> rects;
+    for (const TexelRect& rect : window_rects) {
+        for (const LayerPiece& piece : layer_pieces(rect, layer_origin, resolution)) rects.push_back(piece.layer);
+    }
+    return rects;
+}
+
+// `before`: the cascade the map's layer was last drawn for, with where the dynamic casters
+// reached then (its window texels).
 CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, const passes::CasterScene& scene,
-                          bool cull, const std::vector<TexelRect>& dynamic_before,
-                          const std::vector<TexelRect>& dynamic_window_before, bool cache_complete,
-                          uint32_t resolution) {
+                          bool cull, const Cascade* before, const std::vector<TexelRect>& dynamic_window_before,
+                          bool cache_complete, uint32_t resolution) {
     const TexelRect window = whole_map(resolution);
     CascadeDraws draws;
     draws.layer_origin = cascade.layer_origin;
     const std::vector<Footprint> dynamic = footprints(cascade, scene, cull, resolution, is_dynamic);
-    Reach reach;
-    if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &reach);
-    draws.dynamic_cover = reach.layer;
-    draws.dynamic_window = reach.window;
+    if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &draws.dynamic_window);
     if (!update.reuse) {
         draws.regions =
             regions_of(window, cascade, footprints(cascade, scene, cull, resolution, is_static), resolution);
         // The cache must hold the static texels the dynamic casters are about to cover.
-        if (!draws.dynamic_cover.empty()) draws.store = {window};
+        if (!draws.dynamic_window.empty()) draws.store = {window};
         return draws;
     }
     draws.reuse = true;
     draws.shift = update.shift;
-    draws.restore = dynamic_before;
+    // The static texels under last frame's dynamic casters come back from the cache.
+    draws.restore = layer_texels(dynamic_window_before, before->layer_origin, resolution);
     draws.changed = changed_texels(update, draws.dynamic_window, dynamic_window_before, resolution);
     // Static footprints only when something is redrawn (a still camera projects none).
     const std::vector<Footprint> statics =
@@ -137,7 +144,7 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     }
     if (cache_complete) {
         for (const CascadeDraws::Region& region : draws.regions) draws.store.push_back(region.rect);
-    } else if (!draws.dynamic_cover.empty()) {
+    } else if (!draws.dynamic_window.empty()) {
         draws.store = {window};
     }
     return draws;
@@ -164,7 +171,7 @@ std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes
         const CascadeUpdate update = plan_cascade_update(kept, cascade, resolution, changes);
         const std::vector<TexelRect> none;
         draws[c] =
-            cached_draws(update, cascade, scene, cull, previous ? previous->dynamic_cover : none,
+            cached_draws(update, cascade, scene, cull, previous ? &previous->cascade : nullptr,
                          previous ? previous->dynamic_window : none, previous && previous->cache_complete, resolution);
     }
     return draws;
@@ -176,8 +183,7 @@ void CascadeCache::commit(const CascadeSet& set, const std::vector<CascadeDraws>
         const CascadeDraws& cascade = draws[c];
         const bool was_complete = c < layers_.size() && layers_[c] && layers_[c]->cache_complete;
         const bool stored_all = cascade.store.size() == 1 && cascade.store.front() == whole_map(resolution);
-        layers[c] = Layer{set.cascades[c], stored_all || (cascade.reuse && was_complete), cascade.dynamic_cover,
-                          cascade.dynamic_window};
+        layers[c] = Layer{set.cascades[c], stored_all || (cascade.reuse && was_complete), cascade.dynamic_window};
     }
     layers_ = std::move(layers);
 }

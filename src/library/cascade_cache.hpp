@@ -45,8 +45,7 @@ private:
     struct Layer {
         Cascade cascade;                        // the map layer's static texels were drawn for it
         bool cache_complete = false;            // the cache holds the same static texels as the map
-        std::vector<TexelRect> dynamic_cover;   // map texels the dynamic casters were drawn over
-        std::vector<TexelRect> dynamic_window;  // the same, in the cascade's window texels
+        std::vector<TexelRect> dynamic_window;  // window texels the dynamic casters were drawn over
     };
     std::vector<std::optional<Layer>> layers_;
 };

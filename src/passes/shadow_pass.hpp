@@ -46,17 +46,18 @@ struct CascadeDraws {
     // false: clear the layer and draw `regions` (every caster, or every static one with a
     // cache). true (cached): keep the layer's texels; clear each region, then draw it.
     bool reuse = false;
-    glm::ivec2 shift{0};                   // reuse: how many texels the window moved (statistics)
-    std::vector<TexelRect> restore;        // reuse: copied from the cache first (dynamic casters were there)
-    std::vector<Region> regions;           // the static casters (all casters without a cache)
-    std::vector<TexelRect> store;          // copied into the cache after the static casters
-    std::vector<Region> dynamic;           // drawn over the static ones (cached only)
-    std::vector<TexelRect> dynamic_cover;  // texels the dynamic casters may cover (restored next frame)
+    glm::ivec2 shift{0};             // reuse: how many texels the window moved (statistics)
+    std::vector<TexelRect> restore;  // reuse: copied from the cache first (dynamic casters were there)
+    std::vector<Region> regions;     // the static casters (all casters without a cache)
+    std::vector<TexelRect> store;    // copied into the cache after the static casters
+    std::vector<Region> dynamic;     // drawn over the static ones (cached only)
     // reuse: the window texels (from the cascade's texel 0, not layer texels) whose depth may
     // differ from the last frame's: redrawn, under dynamic casters now or last frame, and the
     // window's edge texels after a move (the moments conversion updates only around them).
     std::vector<TexelRect> changed;
-    std::vector<TexelRect> dynamic_window;  // the dynamic casters' reach in window texels
+    // The dynamic casters' reach in window texels, inside one piece each (restored from the
+    // cache next frame; the moments update around it).
+    std::vector<TexelRect> dynamic_window;
 };
 
 class ShadowPass {

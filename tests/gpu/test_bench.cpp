@@ -254,10 +254,16 @@ TEST(BenchStatistics, MedianPercentileAndMin) {
     EXPECT_DOUBLE_EQ(penumbra::bench::summarize({7.0}).p95, 7.0);
 }
 
+// The path's starting camera.
+penumbra::Camera camera_at(const glm::vec3& eye, const glm::vec3& target) {
+    penumbra::Camera camera;
+    camera.eye = eye;
+    camera.target = target;
+    return camera;
+}
+
 TEST(BenchPaths, OrbitCirclesTheTargetAtTheCameraDistance) {
-    penumbra::Camera start;
-    start.eye = {0.0f, 20.0f, 90.0f};
-    start.target = {0.0f, 3.0f, 0.0f};
+    const penumbra::Camera start = camera_at({0.0f, 20.0f, 90.0f}, {0.0f, 3.0f, 0.0f});
     using penumbra::bench::CameraPath;
     for (const float t : {0.0f, 0.25f, 0.5f, 0.9f}) {
         const penumbra::Camera camera = penumbra::bench::camera_on_path(CameraPath::Orbit, start, t, 100);
@@ -269,9 +275,7 @@ TEST(BenchPaths, OrbitCirclesTheTargetAtTheCameraDistance) {
 }
 
 TEST(BenchPaths, FlythroughKeepsTheViewDirectionAndMovesAhead) {
-    penumbra::Camera start;
-    start.eye = {0.0f, 20.0f, 90.0f};
-    start.target = {0.0f, 3.0f, 0.0f};
+    const penumbra::Camera start = camera_at({0.0f, 20.0f, 90.0f}, {0.0f, 3.0f, 0.0f});
     using penumbra::bench::CameraPath;
     const penumbra::Camera half = penumbra::bench::camera_on_path(CameraPath::Flythrough, start, 0.5f, 100);
     EXPECT_NEAR(half.eye.z, 0.0f, 1e-3f);  // over the target halfway
@@ -281,9 +285,7 @@ TEST(BenchPaths, FlythroughKeepsTheViewDirectionAndMovesAhead) {
 }
 
 TEST(BenchPaths, WalkGoesAheadAtWalkingSpeedAndStillStaysPut) {
-    penumbra::Camera start;
-    start.eye = {0.0f, 1.7f, 10.0f};
-    start.target = {0.0f, 1.0f, 0.0f};
+    const penumbra::Camera start = camera_at({0.0f, 1.7f, 10.0f}, {0.0f, 1.0f, 0.0f});
     using penumbra::bench::CameraPath;
     // Frame 30 of 60 at 1.4 m/s and 60 frames a second: 0.7 m ahead, looking the same way.
     const penumbra::Camera walked = penumbra::bench::camera_on_path(CameraPath::Walk, start, 0.5f, 60);
