@@ -5,6 +5,10 @@
 //                         otherwise a cascade
 //   PENUMBRA_MULTIVIEW:   one pass renders every cascade; gl_ViewIndex is added to the layer
 //                         (only this variant needs the device's multiview feature)
+//   PENUMBRA_GPU_DRIVEN:  the layered strategy: one pass renders every cascade from the
+//                         commands shaders/caster_cull.comp wrote; the draw (transform) and
+//                         its cascade come from CullRecord[gl_InstanceIndex], and the vertex
+//                         goes to that layer (gl_Layer: Vulkan 1.2's shaderOutputLayer)
 //   PENUMBRA_MASKED:      also passes the UVs on to the alpha test
 #extension GL_GOOGLE_include_directive : require
 #ifdef PENUMBRA_MULTIVIEW
@@ -13,16 +17,37 @@
 #else
 #define PENUMBRA_VIEW_INDEX 0
 #endif
+#ifdef PENUMBRA_GPU_DRIVEN
+#extension GL_ARB_shader_viewport_layer_array : require
+#endif
 #include "penumbra_internal.h"
 
 layout(push_constant) uniform PushBlock { CasterPushConstants caster; };
+
+#ifdef PENUMBRA_GPU_DRIVEN
+layout(std430, set = PENUMBRA_SET_CASTER_DRAWS, binding = PENUMBRA_BINDING_CULL_INSTANCES) readonly buffer Instances {
+    CullInstance instances[];
+};
+layout(std430, set = PENUMBRA_SET_CASTER_DRAWS, binding = PENUMBRA_BINDING_CULL_RECORDS) readonly buffer Records {
+    CullRecord records[];
+};
+// firstInstance of each command is its own index (caster_cull.comp).
+CullRecord draw_record() { return records[gl_InstanceIndex]; }
+mat4 draw_model() { return instances[draw_record().instance].model; }
+uint draw_layer() { return draw_record().layer; }
+uint draw_tile() { return 0u; }  // layered cascades are not toroidal
+#else
+mat4 draw_model() { return caster.model; }
+uint draw_layer() { return caster.layer + PENUMBRA_VIEW_INDEX; }
+uint draw_tile() { return caster.tile; }
+#endif
 
 #ifdef PENUMBRA_LOCAL_LAYER
 layout(std430, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS) readonly buffer
     LocalBlock {
     PenumbraLocalShadows local_shadows;
 };
-vec4 layer_position(vec4 world) { return local_shadows.layer_view_projection[caster.layer] * world; }
+vec4 layer_position(vec4 world) { return local_shadows.layer_view_projection[draw_layer()] * world; }
 #else
 layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS) uniform ShadowBlock {
     PenumbraShadowUniforms shadow;
@@ -36,10 +61,11 @@ layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTE
 // texels equal freshly drawn ones. The texel is computed without contraction (precise: no
 // fused multiply-add) and snapped to 1/256 texel (what rasterisers keep).
 vec4 layer_position(vec4 world) {
-    const PenumbraCascade cascade = shadow.cascades[caster.layer + PENUMBRA_VIEW_INDEX];
+    const PenumbraCascade cascade = shadow.cascades[draw_layer()];
     const vec3 light = (shadow.light_view * world).xyz;
     const float texels_per_side = 1.0 / shadow.texel_uv;
-    const vec2 wrapped = vec2(float(caster.tile & 1u), float(caster.tile >> 1u));
+    const uint tile = draw_tile();
+    const vec2 wrapped = vec2(float(tile & 1u), float(tile >> 1u));
     const vec2 tile_origin = cascade.texel_origin - cascade.layer_origin + wrapped * texels_per_side;
     precise vec2 texel = light.xy * cascade.texels_per_metre - tile_origin;
     texel = round(texel * 256.0) * (1.0 / 256.0);
@@ -55,7 +81,10 @@ layout(location = 0) out vec2 out_uv;
 #endif
 
 void main() {
-    gl_Position = layer_position(caster.model * vec4(in_position, 1.0));
+    gl_Position = layer_position(draw_model() * vec4(in_position, 1.0));
+#ifdef PENUMBRA_GPU_DRIVEN
+    gl_Layer = int(draw_layer());
+#endif
 #ifdef PENUMBRA_MASKED
     out_uv = in_uv;
 #endif

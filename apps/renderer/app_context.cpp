@@ -22,7 +22,7 @@ gpu::DeviceHandles handles_of(const DeviceDesc& desc) {
 
 gpu::EnabledFeatures features_of(const DeviceDesc& desc) {
     const gpu::FeatureChain chain = gpu::read_feature_chain(*desc.enabled_features);
-    return {chain.multiview, chain.depth_clamp, chain.depth_bias_clamp};
+    return {chain.multiview, chain.depth_clamp, chain.depth_bias_clamp, chain.gpu_driven()};
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest ma
 
 enum class SplitScheme { Uniform, Logarithmic, Practical, Manual };
 enum class FitMode { Stable, Tight };
-enum class ShadowStrategy { PerCascade, Multiview };
+enum class ShadowStrategy { PerCascade, Multiview, Layered };
 // Shadow filters (docs/filters.md): comparison filters over the depth map, and moment
 // filters over a prefilterable moments map converted from the depth pass.
 enum class ShadowFilter { Hard, Pcf, Poisson, Pcss, Vsm, Evsm, Msm };
@@ -140,7 +140,8 @@ inline constexpr ChoiceName<SplitScheme> kSplitSchemeChoices[] = {{"uniform", Sp
                                                                   {"manual", SplitScheme::Manual}};
 inline constexpr ChoiceName<FitMode> kFitModeChoices[] = {{"stable", FitMode::Stable}, {"tight", FitMode::Tight}};
 inline constexpr ChoiceName<ShadowStrategy> kShadowStrategyChoices[] = {{"per-cascade", ShadowStrategy::PerCascade},
-                                                                        {"multiview", ShadowStrategy::Multiview}};
+                                                                        {"multiview", ShadowStrategy::Multiview},
+                                                                        {"layered", ShadowStrategy::Layered}};
 inline constexpr ChoiceName<ShadowFilter> kShadowFilterChoices[] = {
     {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"poisson", ShadowFilter::Poisson},
     {"pcss", ShadowFilter::Pcss}, {"vsm", ShadowFilter::Vsm}, {"evsm", ShadowFilter::Evsm},

@@ -13,6 +13,15 @@
 #define PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS 1    // PenumbraLocalShadows
 #define PENUMBRA_SET_ALPHA_MASK 1
 #define PENUMBRA_BINDING_ALPHA_MASK 0
+// The layered strategy (GPU-driven culling, shaders/caster_cull.comp): set 2 of its caster
+// pipelines and set 1 of the culling dispatch.
+#define PENUMBRA_SET_CASTER_DRAWS 2
+#define PENUMBRA_SET_CULL_DRAWS 1
+#define PENUMBRA_BINDING_CULL_INSTANCES 0  // CullInstance per caster draw
+#define PENUMBRA_BINDING_CULL_BUCKETS 1    // per bucket: its first command
+#define PENUMBRA_BINDING_CULL_RECORDS 2    // per command: CullRecord (gl_InstanceIndex reads it)
+#define PENUMBRA_BINDING_CULL_COMMANDS 3   // VkDrawIndexedIndirectCommand per command
+#define PENUMBRA_BINDING_CULL_COUNTS 4     // per bucket: how many commands the dispatch wrote
 // The moments blur pass and the local moments pass: set 0 holds the image they read.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 
@@ -33,7 +42,32 @@ struct CasterPushConstants {
     PENUMBRA_UINT tile;
 };
 
-// The moments blur pass (shaders/moments_blur.frag).
+// One caster draw as the GPU culls it (the layered strategy): its transform, the world
+// bounds the CPU's culling tests too (caster_footprint), the bucket of draws that share its
+// pipeline state, and its mesh's indexed draw.
+struct CullInstance {
+    mat4 model;
+    vec4 bounds_min;  // w unused
+    vec4 bounds_max;
+    PENUMBRA_UINT bucket;
+    PENUMBRA_UINT index_count;
+    PENUMBRA_UINT first_index;
+    PENUMBRA_INT vertex_offset;
+};
+
+// What one culled command draws: a CullInstance into a cascade (the layer it writes).
+struct CullRecord {
+    PENUMBRA_UINT instance;
+    PENUMBRA_UINT layer;
+};
+
+struct CullPushConstants {
+    PENUMBRA_UINT instance_count;
+    PENUMBRA_UINT layer_count;
+    PENUMBRA_UINT cull;  // 0: every draw into every layer (Settings::shadow.cull_casters off)
+    PENUMBRA_UINT padding;
+};
+
 // The moments compute passes (shaders/moments_convert.comp, moments_blur.comp), per layer.
 struct MomentsPushConstants {
     // x: layer, y: texels per side the layer uses from its top-left corner, z: blur radius

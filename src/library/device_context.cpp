@@ -258,22 +258,31 @@ void Context::pick_present_queue_family() {
 // Exactly the features Penumbra uses (docs/library.md): the required Vulkan 1.3 ones, and
 // every optional one the device supports.
 EnabledFeatures Context::create_device() {
-    VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceVulkan11Features supported11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &supported12};
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported11};
     vk_.vkGetPhysicalDeviceFeatures2(physical_device_, &supported);
     EnabledFeatures enabled;
     enabled.multiview = supported11.multiview == VK_TRUE;
     enabled.depth_clamp = supported.features.depthClamp == VK_TRUE;
     enabled.depth_bias_clamp = supported.features.depthBiasClamp == VK_TRUE;
+    enabled.gpu_driven = supported.features.multiDrawIndirect == VK_TRUE &&
+                         supported.features.drawIndirectFirstInstance == VK_TRUE &&
+                         supported12.drawIndirectCount == VK_TRUE && supported12.shaderOutputLayer == VK_TRUE;
 
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;
     features13.synchronization2 = VK_TRUE;
-    VkPhysicalDeviceVulkan11Features features11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &features13};
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
+    features12.drawIndirectCount = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
+    features12.shaderOutputLayer = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
+    VkPhysicalDeviceVulkan11Features features11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &features12};
     features11.multiview = enabled.multiview ? VK_TRUE : VK_FALSE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features11};
     features.features.depthClamp = enabled.depth_clamp ? VK_TRUE : VK_FALSE;
     features.features.depthBiasClamp = enabled.depth_bias_clamp ? VK_TRUE : VK_FALSE;
+    features.features.multiDrawIndirect = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
+    features.features.drawIndirectFirstInstance = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

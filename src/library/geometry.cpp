@@ -190,6 +190,7 @@ MeshId Geometry::insert_mesh(Mesh mesh) {
     if (mesh.alpha_mask_set != VK_NULL_HANDLE) prepare_pipelines_(passes::vertex_formats(mesh.caster, true));
     const uint32_t id = next_mesh_id_++;
     meshes_.emplace(id, std::move(mesh));
+    ++changes_;
     return MeshId{id};
 }
 
@@ -265,6 +266,7 @@ void Geometry::remove_mesh(MeshId id, uint64_t frame) {
         retired_.retire(FreedDescriptorSet(device_, mesh.alpha_mask_pool, mesh.alpha_mask_set), frame);
     }
     meshes_.erase(id.value);
+    ++changes_;
 }
 
 InstanceId Geometry::add_instance(const InstanceDesc& desc) {
@@ -279,6 +281,7 @@ InstanceId Geometry::add_instance(const InstanceDesc& desc) {
     ++mesh.instances;
     instance_index_.emplace(instance.id, static_cast<uint32_t>(instances_.size()));
     instances_.push_back(instance);
+    ++changes_;
     return InstanceId{instance.id};
 }
 
@@ -314,6 +317,7 @@ void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {
     instance.world = to_glm(world);
     update_bounds(instance);
     note_static_change(instance);
+    ++changes_;
 }
 
 void Geometry::set_instance_flags(InstanceId id, uint32_t flags) {
@@ -322,6 +326,7 @@ void Geometry::set_instance_flags(InstanceId id, uint32_t flags) {
     note_static_change(instance);  // what it was (a static caster's depths go)
     instance.flags = flags;
     note_static_change(instance);  // and what it is
+    ++changes_;
 }
 
 void Geometry::remove_instance(InstanceId id) {
@@ -335,6 +340,7 @@ void Geometry::remove_instance(InstanceId id) {
     }
     instances_.pop_back();
     instance_index_.erase(id.value);
+    ++changes_;
 }
 
 const passes::CasterScene& Geometry::build_scene() {
@@ -361,6 +367,7 @@ const passes::CasterScene& Geometry::build_scene() {
         draw.dynamic = (instance.flags & kInstanceDynamic) != 0;
         scene_.draws.push_back(draw);
     }
+    scene_.version = changes_;
     return scene_;
 }
 

@@ -102,6 +102,7 @@ private:
     Aabb world_bounds_;
     Aabb static_bounds_;
     std::vector<Aabb> static_changes_;
+    uint64_t changes_ = 0;  // mutations so far (CasterScene::version)
 };
 
 }  // namespace penumbra::library

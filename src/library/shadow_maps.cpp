@@ -31,9 +31,11 @@ BiasSettings depth_bias_of(const ShadowSettings& settings) {
 
 // Every filter renders the cascades' depth; the moment filters convert it to moments.
 CascadeMaps::CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                         VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings)
+                         VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings,
+                         uint32_t frames_in_flight)
     : depth_pass_(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution,
-                  static_cast<uint32_t>(settings.cascades.count), settings.strategy, settings.cache_static_casters),
+                  static_cast<uint32_t>(settings.cascades.count), settings.strategy, settings.cache_static_casters,
+                  frames_in_flight),
       depth_sampler_(create_nearest_sampler(device)) {
     if (is_moment_filter(settings.filter.mode)) {
         // Cached cascades update their moments only where the depth changed.
@@ -54,8 +56,9 @@ uint64_t CascadeMaps::memory_bytes() const {
 
 void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                          const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
-                         const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) {
-    depth_pass_.record(cmd, frame_set, scene, draws, depth_bias_of(settings), culling, timer);
+                         const passes::CasterFaceCulling& culling, bool sun_casts, gpu::GpuTimer* timer) {
+    const passes::GpuCullOptions gpu_culling{sun_casts, settings.cull_casters};
+    depth_pass_.record(cmd, frame_set, scene, draws, depth_bias_of(settings), culling, timer, gpu_culling);
     if (!moments_) return;
     gpu::TimedScope scope(timer, cmd, "shadow_moments");
     const gpu::ImageDesc& map = depth_pass_.shadow_map().desc;

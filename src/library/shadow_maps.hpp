@@ -31,7 +31,7 @@ struct SampledMaps {
 class CascadeMaps {
 public:
     CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings);
+                VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings, uint32_t frames_in_flight);
 
     void prepare_pipelines(const passes::VertexFormats& formats);
     SampledMaps sampled() const;
@@ -40,7 +40,7 @@ public:
     bool cached() const { return depth_pass_.cached(); }
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                 const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
-                const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer);
+                const passes::CasterFaceCulling& culling, bool sun_casts, gpu::GpuTimer* timer);
 
 private:
     passes::ShadowPass depth_pass_;

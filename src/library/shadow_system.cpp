@@ -119,6 +119,7 @@ struct ShadowSystem::Impl {
     std::vector<passes::LocalShadowLayer> local_layers;
     library::LocalShadowCache local_cache;
     passes::CasterFaceCulling cascade_culling;
+    bool sun_casts = false;  // prepare(): the sun casts shadows this frame
     std::unique_ptr<gpu::Image> visibility;
     uint32_t visibility_slots = 0;
 
@@ -129,7 +130,7 @@ struct ShadowSystem::Impl {
           retired(frames_in_flight),
           layouts(library::create_frame_set_layouts(device)),
           alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
-          cascades(device, layouts.caster, alpha_mask_layout, settings.shadow),
+          cascades(device, layouts.caster, alpha_mask_layout, settings.shadow, frames_in_flight),
           local(device, layouts.caster, alpha_mask_layout, settings.shadow.filter, retired),
           resolve(device, layouts.sampling, settings.shadow.filter),
           slots(device, frames_in_flight, layouts, resolve.screen_set_layout()),
@@ -163,9 +164,12 @@ struct ShadowSystem::Impl {
         const bool casts = sun_light && sun_light->cast_shadows;
         if (!casts) cascade_cache.invalidate();
         planned_static_changes = geometry.static_changes().size();
-        cascade_draws = casts ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades.cached(),
-                                                   geometry.static_changes(), settings.shadow.cascades.resolution)
-                              : std::vector<passes::CascadeDraws>(set.cascades.size());
+        // The layered strategy culls on the GPU (record_shadow_maps): no lists here.
+        const bool cpu_culls = casts && settings.shadow.strategy != ShadowStrategy::Layered;
+        cascade_draws = cpu_culls ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades.cached(),
+                                                       geometry.static_changes(), settings.shadow.cascades.resolution)
+                                  : std::vector<passes::CascadeDraws>(set.cascades.size());
+        sun_casts = casts;
         planned_cascades = set;
         info.cpu_cull_ms += milliseconds_since(start);
         cascade_culling = {settings.shadow.caster_culling,
@@ -355,7 +359,7 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
     // The scene prepare() culled: instances changed since then show in the next frame.
     const passes::CasterScene& scene = impl.geometry.scene();
     impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
-                         &slot.timer);
+                         impl.sun_casts, &slot.timer);
     // The cache holds this frame's static casters once the commands run; the changes the
     // plan covered are drawn.
     if (impl.cascades.cached())

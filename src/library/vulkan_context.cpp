@@ -35,6 +35,7 @@ gpu::ContextOptions context_options(const VulkanContextOptions& options) {
 struct VulkanContext::State {
     gpu::Context context;
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceVulkan11Features features11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     DeviceDesc desc;
@@ -45,11 +46,17 @@ struct VulkanContext::State {
         const gpu::EnabledFeatures& enabled = context.features();
         features13.dynamicRendering = VK_TRUE;
         features13.synchronization2 = VK_TRUE;
+        const VkBool32 gpu_driven = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
+        features12.drawIndirectCount = gpu_driven;
+        features12.shaderOutputLayer = gpu_driven;
+        features12.pNext = &features13;
         features11.multiview = enabled.multiview ? VK_TRUE : VK_FALSE;
-        features11.pNext = &features13;
+        features11.pNext = &features12;
         features.pNext = &features11;
         features.features.depthClamp = enabled.depth_clamp ? VK_TRUE : VK_FALSE;
         features.features.depthBiasClamp = enabled.depth_bias_clamp ? VK_TRUE : VK_FALSE;
+        features.features.multiDrawIndirect = gpu_driven;
+        features.features.drawIndirectFirstInstance = gpu_driven;
         desc = {
             context.instance(),     context.physical_device(), context.device(), context.queue(),
             context.queue_family(), VK_API_VERSION_1_3,        &features,        context.vk().vkGetInstanceProcAddr};

@@ -127,6 +127,50 @@ VkPipeline CasterPipelines::get(const VertexFormats& formats) const {
     return found->second;
 }
 
+namespace {
+
+// Binds what `draw` needs that `bound` does not hold: its pipeline, mesh streams, alpha mask,
+// face culling and winding.
+void bind_draw_state(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
+                     const CasterScene& scene, const CasterDraw& draw, const CasterFaceCulling& culling,
+                     BoundState& bound) {
+    const CasterMesh& mesh = scene.meshes[draw.mesh];
+    // The pipeline depends on the mesh's vertex formats only: looked up per mesh change,
+    // not per draw (a forest's thousands of draws share a few meshes).
+    if (static_cast<int64_t>(draw.mesh) != bound.mesh) {
+        const VkPipeline pipeline = pipelines.get(vertex_formats(mesh, draw.masked));
+        if (pipeline != bound.pipeline) {
+            device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+            bound.pipeline = pipeline;
+        }
+        bind_mesh(device, cmd, mesh, draw.masked, bound);
+        bound.mesh = draw.mesh;
+    }
+    if (draw.masked && mesh.alpha_mask_set != bound.alpha_mask) {
+        device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
+                                        PENUMBRA_SET_ALPHA_MASK, 1, &mesh.alpha_mask_set, 0, nullptr);
+        bound.alpha_mask = mesh.alpha_mask_set;
+    }
+    const VkCullModeFlags cull = cull_mode(culling.mode, draw.double_sided);
+    if (cull != bound.cull) {
+        device->vkCmdSetCullMode(cmd, cull);
+        bound.cull = cull;
+    }
+    const VkFrontFace front_face = draw.mirrored ? flipped(culling.facing_light) : culling.facing_light;
+    if (front_face != bound.front_face) {
+        device->vkCmdSetFrontFace(cmd, front_face);
+        bound.front_face = front_face;
+    }
+}
+
+void push_caster_constants(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
+                           const shader::CasterPushConstants& constants) {
+    device->vkCmdPushConstants(cmd, pipelines.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(constants), &constants);
+}
+
+}  // namespace
+
 void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                          const CasterScene& scene, const DrawList& list, uint32_t layer,
                          const CasterFaceCulling& culling, uint32_t tile) {
@@ -137,39 +181,30 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
         for (const uint32_t index : list) {
             const CasterDraw& draw = scene.draws[index];
             if (draw.masked != masked_pass) continue;
+            bind_draw_state(device, cmd, pipelines, scene, draw, culling, bound);
             const CasterMesh& mesh = scene.meshes[draw.mesh];
-            // The pipeline depends on the mesh's vertex formats only: looked up per mesh
-            // change, not per draw (a forest's thousands of draws share a few meshes).
-            if (static_cast<int64_t>(draw.mesh) != bound.mesh) {
-                const VkPipeline pipeline = pipelines.get(vertex_formats(mesh, draw.masked));
-                if (pipeline != bound.pipeline) {
-                    device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-                    bound.pipeline = pipeline;
-                }
-                bind_mesh(device, cmd, mesh, draw.masked, bound);
-                bound.mesh = draw.mesh;
-            }
-            if (draw.masked && mesh.alpha_mask_set != bound.alpha_mask) {
-                device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
-                                                PENUMBRA_SET_ALPHA_MASK, 1, &mesh.alpha_mask_set, 0, nullptr);
-                bound.alpha_mask = mesh.alpha_mask_set;
-            }
-            const VkCullModeFlags cull = cull_mode(culling.mode, draw.double_sided);
-            if (cull != bound.cull) {
-                device->vkCmdSetCullMode(cmd, cull);
-                bound.cull = cull;
-            }
-            const VkFrontFace front_face = draw.mirrored ? flipped(culling.facing_light) : culling.facing_light;
-            if (front_face != bound.front_face) {
-                device->vkCmdSetFrontFace(cmd, front_face);
-                bound.front_face = front_face;
-            }
-            const shader::CasterPushConstants constants{draw.model, layer, mesh.alpha_cutoff, mesh.alpha_scale, tile};
-            device->vkCmdPushConstants(cmd, pipelines.layout(),
-                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants),
-                                       &constants);
+            push_caster_constants(device, cmd, pipelines,
+                                  {draw.model, layer, mesh.alpha_cutoff, mesh.alpha_scale, tile});
             device->vkCmdDrawIndexed(cmd, mesh.index_count, 1, first_index(mesh), mesh.vertex_offset, 0);
         }
+    }
+}
+
+void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
+                                  const CasterScene& scene, std::span<const CasterBucket> buckets,
+                                  VkBuffer commands, VkBuffer counts, const CasterFaceCulling& culling) {
+    constexpr VkDeviceSize kCommandSize = sizeof(VkDrawIndexedIndirectCommand);
+    BoundState bound;
+    for (size_t b = 0; b < buckets.size(); ++b) {
+        const CasterBucket& bucket = buckets[b];
+        const CasterDraw& draw = scene.draws[bucket.draw];
+        bound.mesh = -1;  // a bucket's meshes share streams, but not necessarily the mesh
+        bind_draw_state(device, cmd, pipelines, scene, draw, culling, bound);
+        const CasterMesh& mesh = scene.meshes[draw.mesh];
+        // The vertex shader reads the transform and layer per command (CullRecord).
+        push_caster_constants(device, cmd, pipelines, {glm::mat4(1.0f), 0, mesh.alpha_cutoff, mesh.alpha_scale, 0});
+        device->vkCmdDrawIndexedIndirectCount(cmd, commands, bucket.first_command * kCommandSize, counts,
+                                              b * sizeof(uint32_t), bucket.capacity, kCommandSize);
     }
 }
 

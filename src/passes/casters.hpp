@@ -55,6 +55,8 @@ struct CasterDraw {
 struct CasterScene {
     std::vector<CasterMesh> meshes;
     std::vector<CasterDraw> draws;
+    // Changes whenever meshes or draws change (GPU culling uploads the draws again).
+    uint64_t version = 0;
 };
 
 // Indices into CasterScene::draws to render into one layer.
@@ -115,6 +117,22 @@ struct CasterFaceCulling {
 void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                          const CasterScene& scene, const DrawList& list, uint32_t layer,
                          const CasterFaceCulling& culling, uint32_t tile = 0);
+
+// A group of draws that share their pipeline, vertex and index buffers, alpha mask, face
+// culling and winding (they differ in transform, first index and vertex offset): the
+// layered strategy draws each bucket with one indirect draw whose commands the GPU's
+// culling wrote (caster_culling.hpp).
+struct CasterBucket {
+    uint32_t draw = 0;           // a draw of the bucket (index into CasterScene::draws): its state
+    uint32_t first_command = 0;  // where its commands start in the commands buffer
+    uint32_t capacity = 0;       // room for that many commands (its draws times the layers)
+};
+
+// Records one vkCmdDrawIndexedIndirectCount per bucket: `commands` holds
+// VkDrawIndexedIndirectCommands, `counts` one uint32_t count per bucket.
+void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
+                                  const CasterScene& scene, std::span<const CasterBucket> buckets,
+                                  VkBuffer commands, VkBuffer counts, const CasterFaceCulling& culling);
 
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 

@@ -72,6 +72,14 @@ static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms,
 static_assert(sizeof(PenumbraShadowUniforms) % 16 == 0);
 static_assert(sizeof(PenumbraShadowUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
 
+static_assert(offsetof(CullInstance, bounds_min) == 64);
+static_assert(offsetof(CullInstance, bounds_max) == 80);
+static_assert(offsetof(CullInstance, bucket) == 96);
+static_assert(offsetof(CullInstance, vertex_offset) == 108);
+static_assert(sizeof(CullInstance) == 112);
+static_assert(sizeof(CullRecord) == 8);
+static_assert(sizeof(CullPushConstants) == 16);
+
 static_assert(offsetof(PenumbraLocalShadow, range) == 12);
 static_assert(offsetof(PenumbraLocalShadow, first_layer) == 16);
 static_assert(offsetof(PenumbraLocalShadow, uv_scale) == 32);

@@ -24,33 +24,69 @@ void require_multiview(const gpu::Device& device, uint32_t cascade_count) {
     }
 }
 
-CasterPipelineTemplate depth_template(const gpu::Device& device, VkPipelineLayout layout, uint32_t view_mask) {
+void require_gpu_driven(const gpu::Device& device) {
+    if (!device.features().gpu_driven) {
+        throw DeviceError(
+            "shadow strategy layered: the device was not created with the features GPU-driven culling needs "
+            "(VkPhysicalDeviceFeatures::multiDrawIndirect and drawIndirectFirstInstance, "
+            "VkPhysicalDeviceVulkan12Features::drawIndirectCount and shaderOutputLayer)");
+    }
+}
+
+uint32_t view_mask_of(ShadowStrategy strategy, uint32_t cascade_count) {
+    return strategy == ShadowStrategy::Multiview ? (1u << cascade_count) - 1u : 0u;
+}
+
+CasterPipelineTemplate depth_template(const gpu::Device& device, VkPipelineLayout layout, ShadowStrategy strategy,
+                                      uint32_t cascade_count) {
     CasterPipelineTemplate pipelines;
-    const bool multiview = view_mask != 0;
-    pipelines.opaque_vertex = multiview ? shaders::caster_multiview_vert() : shaders::caster_cascade_vert();
-    pipelines.masked_vertex =
-        multiview ? shaders::caster_multiview_masked_vert() : shaders::caster_cascade_masked_vert();
+    switch (strategy) {
+        case ShadowStrategy::Multiview:
+            pipelines.opaque_vertex = shaders::caster_multiview_vert();
+            pipelines.masked_vertex = shaders::caster_multiview_masked_vert();
+            break;
+        case ShadowStrategy::Layered:
+            pipelines.opaque_vertex = shaders::caster_layered_vert();
+            pipelines.masked_vertex = shaders::caster_layered_masked_vert();
+            break;
+        case ShadowStrategy::PerCascade:
+            pipelines.opaque_vertex = shaders::caster_cascade_vert();
+            pipelines.masked_vertex = shaders::caster_cascade_masked_vert();
+            break;
+    }
     pipelines.masked_fragment = shaders::caster_masked_frag();
     pipelines.layout = layout;
     pipelines.depth_bias = true;
     // Casters in front of a cascade's near plane are flattened onto it instead of clipped.
     pipelines.depth_clamp = device.depth_clamp_supported();
-    pipelines.view_mask = view_mask;
+    pipelines.view_mask = view_mask_of(strategy, cascade_count);
     return pipelines;
 }
 
+// Sets: the frame's uniforms, the alpha mask, and for the layered strategy the culled draws.
 gpu::UniquePipelineLayout create_caster_layout(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                                               VkDescriptorSetLayout alpha_mask_set_layout) {
-    const VkDescriptorSetLayout set_layouts[] = {frame_set_layout, alpha_mask_set_layout};
+                                               VkDescriptorSetLayout alpha_mask_set_layout,
+                                               const GpuCasterCulling* gpu_culling) {
+    static_assert(PENUMBRA_SET_CASTER_FRAME == 0 && PENUMBRA_SET_ALPHA_MASK == 1 && PENUMBRA_SET_CASTER_DRAWS == 2);
+    std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, alpha_mask_set_layout};
+    if (gpu_culling) set_layouts.push_back(gpu_culling->draws_set_layout());
     const VkPushConstantRange push_range = caster_push_constant_range();
     return gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+}
+
+std::unique_ptr<GpuCasterCulling> create_gpu_culling(const gpu::Device& device, ShadowStrategy strategy,
+                                                     VkDescriptorSetLayout frame_set_layout,
+                                                     uint32_t frames_in_flight) {
+    if (strategy != ShadowStrategy::Layered) return nullptr;
+    require_gpu_driven(device);
+    return std::make_unique<GpuCasterCulling>(device, frame_set_layout, frames_in_flight);
 }
 
 }  // namespace
 
 ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                        VkDescriptorSetLayout alpha_mask_set_layout, uint32_t resolution, uint32_t cascade_count,
-                       ShadowStrategy strategy, bool cached)
+                       ShadowStrategy strategy, bool cached, uint32_t frames_in_flight)
     : device_(device),
       resolution_(resolution),
       cascade_count_(cascade_count),
@@ -59,9 +95,9 @@ ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_se
                                    cached && strategy == ShadowStrategy::PerCascade
                                        ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
                                        : VkImageUsageFlags{0})),
-      pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout)),
-      pipelines_(device, depth_template(device, pipeline_layout_,
-                                        strategy == ShadowStrategy::Multiview ? (1u << cascade_count) - 1u : 0u)) {
+      gpu_culling_(create_gpu_culling(device, strategy, frame_set_layout, frames_in_flight)),
+      pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
+      pipelines_(device, depth_template(device, pipeline_layout_, strategy, cascade_count)) {
     if (strategy == ShadowStrategy::Multiview) require_multiview(device, cascade_count);
     if (cached && strategy == ShadowStrategy::PerCascade) {
         cache_ = std::make_unique<gpu::Image>(
@@ -71,7 +107,7 @@ ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_se
 
 void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                         const std::vector<CascadeDraws>& draws, const BiasSettings& bias,
-                        const CasterFaceCulling& culling, gpu::GpuTimer* timer) {
+                        const CasterFaceCulling& culling, gpu::GpuTimer* timer, GpuCullOptions gpu_culling) {
     const auto any = [&](auto&& wanted) { return std::any_of(draws.begin(), draws.end(), wanted); };
     // A layer that keeps what the last frame left in it needs the cache, and no discard.
     const bool keep = any([](const CascadeDraws& d) { return d.reuse; });
@@ -80,6 +116,10 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
     }
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_CASTER_FRAME,
                                      1, &frame_set, 0, nullptr);
+    if (strategy_ == ShadowStrategy::Layered) {
+        record_layered(cmd, frame_set, scene, bias, culling, timer, gpu_culling);
+        return;
+    }
     if (strategy_ == ShadowStrategy::Multiview) {
         gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
                         gpu::ImageState::DepthAttachment);
@@ -127,6 +167,26 @@ void ShadowPass::record_multiview(VkCommandBuffer cmd, const CasterScene& scene,
     begin_rendering(cmd, shadow_map_.view, (1u << cascade_count_) - 1u, bias, VK_ATTACHMENT_LOAD_OP_CLEAR);
     record_caster_draws(device_, cmd, pipelines_, scene, union_list, 0, culling);
     device_->vkCmdEndRendering(cmd);
+}
+
+// The GPU culls every caster against every cascade, then one pass draws each bucket's
+// commands into the layers they name (window-aligned layers, as multiview's).
+void ShadowPass::record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
+                                const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer,
+                                GpuCullOptions options) {
+    {
+        gpu::TimedScope scope(timer, cmd, "shadow_cull");
+        gpu_culling_->record_cull(cmd, frame_set, scene, options.casts ? cascade_count_ : 0u, options.cull);
+    }
+    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
+                    gpu::ImageState::DepthAttachment);
+    {
+        gpu::TimedScope scope(timer, cmd, "shadow_layered");
+        begin_rendering(cmd, shadow_map_.view, 0, bias, VK_ATTACHMENT_LOAD_OP_CLEAR, cascade_count_);
+        gpu_culling_->record_draws(cmd, pipelines_, scene, culling);
+        device_->vkCmdEndRendering(cmd);
+    }
+    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
 }
 
 namespace {
@@ -212,7 +272,7 @@ void ShadowPass::record_dynamic(VkCommandBuffer cmd, const CasterScene& scene, c
 }
 
 void ShadowPass::begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias,
-                                 VkAttachmentLoadOp load) const {
+                                 VkAttachmentLoadOp load, uint32_t layers) const {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -221,7 +281,7 @@ void ShadowPass::begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t
     depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: 0 is the far plane (no caster)
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {resolution_, resolution_}};
-    info.layerCount = view_mask == 0 ? 1 : 0;
+    info.layerCount = view_mask == 0 ? layers : 0;
     info.viewMask = view_mask;
     info.pDepthAttachment = &depth;
     device_->vkCmdBeginRendering(cmd, &info);

@@ -4,7 +4,10 @@
 // fragment shader, alpha-masked casters whose fragment shader discards below the mask's
 // cutoff. Per-cascade strategy: one rendering pass per layer with that cascade's culled
 // draws. Multiview strategy: one pass whose view mask covers every cascade; the vertex
-// shader adds gl_ViewIndex to the cascade.
+// shader adds gl_ViewIndex to the cascade. Layered strategy: the GPU culls every caster
+// against every cascade (caster_culling.hpp) and one pass over the layered map draws
+// them, each command into its cascade's layer; the CPU neither culls nor records per
+// caster.
 //
 // Per-cascade passes place each cascade toroidally in its layer (Cascade::layer_origin):
 // a world texel keeps its layer texel while the cascade moves, so the window wraps around
@@ -22,6 +25,7 @@
 #include <vector>
 
 #include "core/shadow_cache.hpp"
+#include "passes/caster_culling.hpp"
 #include "passes/casters.hpp"
 #include "penumbra/gpu/barriers.hpp"
 #include "penumbra/gpu/device.hpp"
@@ -60,15 +64,25 @@ struct CascadeDraws {
     std::vector<TexelRect> dynamic_window;
 };
 
+// What the layered strategy's GPU culling draws this frame (the other strategies draw the
+// CPU's lists).
+struct GpuCullOptions {
+    bool casts = true;  // false: nothing (the sun casts no shadow)
+    bool cull = true;   // false: every caster into every cascade
+};
+
 class ShadowPass {
 public:
     // `frame_set_layout` is set 0 of the caster pipelines (the frame's uniforms), and
     // `alpha_mask_set_layout` set 1. Multiview throws DeviceError without the multiview
     // feature, InputError for more cascades than the device renders views in one pass.
-    // `cached`: also keep a cache of the static casters (ignored by the multiview strategy).
+    // The layered strategy throws DeviceError without the GPU-driven features
+    // (EnabledFeatures::gpu_driven). `cached`: also keep a cache of the static casters
+    // (per-cascade strategy only). `frames_in_flight`: the layered strategy's culling
+    // keeps replaced buffers that long.
     ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                VkDescriptorSetLayout alpha_mask_set_layout, uint32_t resolution, uint32_t cascade_count,
-               ShadowStrategy strategy, bool cached);
+               ShadowStrategy strategy, bool cached, uint32_t frames_in_flight = 2);
 
     const gpu::Image& shadow_map() const { return shadow_map_; }
     uint32_t cascade_count() const { return cascade_count_; }
@@ -80,17 +94,25 @@ public:
     // ImageState::ShaderSampled. draws[c] is cascade c's; a reuse needs cached() and the
     // previous frame's map and cache, recorded earlier on the same queue. With a timer,
     // each cascade's rendering is a scope "shadow_cascade_<c>" (multiview: one,
-    // "shadow_multiview"), and the cache's copies and dynamic casters "shadow_cache_restore",
-    // "shadow_cache_store" and "shadow_dynamic".
+    // "shadow_multiview"; layered: "shadow_cull" and "shadow_layered"), and the cache's
+    // copies and dynamic casters "shadow_cache_restore", "shadow_cache_store" and
+    // "shadow_dynamic". The layered strategy ignores `draws`' lists: the GPU culls, as
+    // `gpu_culling` says.
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                 const std::vector<CascadeDraws>& draws, const BiasSettings& bias, const CasterFaceCulling& culling,
-                gpu::GpuTimer* timer = nullptr);
+                gpu::GpuTimer* timer = nullptr, GpuCullOptions gpu_culling = {});
+
+    // The layered strategy's culling (nullptr for the others).
+    const GpuCasterCulling* gpu_culling() const { return gpu_culling_.get(); }
 
 private:
     void begin_rendering(VkCommandBuffer cmd, VkImageView view, uint32_t view_mask, const BiasSettings& bias,
-                         VkAttachmentLoadOp load) const;
+                         VkAttachmentLoadOp load, uint32_t layers = 1) const;
     void record_multiview(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                           const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+    void record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
+                        const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer,
+                        GpuCullOptions options);
     void record_regions(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws::Region>& regions,
                         uint32_t cascade, bool clear, const CasterFaceCulling& culling) const;
     void record_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
@@ -106,6 +128,7 @@ private:
     gpu::Image shadow_map_;
     std::unique_ptr<gpu::Image> cache_;  // the static casters of each cascade (cached only)
     gpu::ImageState cache_state_ = gpu::ImageState::Undefined;
+    std::unique_ptr<GpuCasterCulling> gpu_culling_;  // layered strategy only
     gpu::UniquePipelineLayout pipeline_layout_;
     CasterPipelines pipelines_;
 };

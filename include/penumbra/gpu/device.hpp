@@ -28,6 +28,10 @@ struct EnabledFeatures {
     bool multiview = false;         // VkPhysicalDeviceVulkan11Features::multiview (multiview strategy)
     bool depth_clamp = false;       // VkPhysicalDeviceFeatures::depthClamp
     bool depth_bias_clamp = false;  // VkPhysicalDeviceFeatures::depthBiasClamp
+    // The layered strategy's GPU-driven culling: VkPhysicalDeviceFeatures::multiDrawIndirect
+    // and drawIndirectFirstInstance, VkPhysicalDeviceVulkan12Features::drawIndirectCount and
+    // shaderOutputLayer, all four.
+    bool gpu_driven = false;
 };
 
 // The handles a Device is made from.

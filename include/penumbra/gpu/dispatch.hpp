@@ -104,6 +104,8 @@ namespace penumbra::gpu {
     X(vkCmdSetFrontFace)                \
     X(vkCmdDraw)                        \
     X(vkCmdDrawIndexed)                 \
+    X(vkCmdDrawIndexedIndirectCount)    \
+    X(vkCmdFillBuffer)                  \
     X(vkCmdDispatch)                    \
     X(vkCmdCopyBuffer)                  \
     X(vkCmdCopyBufferToImage)           \

@@ -11,6 +11,14 @@ struct FeatureChain {
     bool multiview = false;          // Vulkan11Features or MultiviewFeatures
     bool depth_clamp = false;        // VkPhysicalDeviceFeatures
     bool depth_bias_clamp = false;
+    bool multi_draw_indirect = false;           // VkPhysicalDeviceFeatures
+    bool draw_indirect_first_instance = false;  // VkPhysicalDeviceFeatures
+    bool draw_indirect_count = false;           // Vulkan12Features
+    bool shader_output_layer = false;           // Vulkan12Features
+    // Everything the layered strategy's GPU-driven culling needs (EnabledFeatures::gpu_driven).
+    bool gpu_driven() const {
+        return multi_draw_indirect && draw_indirect_first_instance && draw_indirect_count && shader_output_layer;
+    }
 };
 
 // Walks the pNext chain; structures it does not know are skipped.

@@ -23,7 +23,7 @@ constexpr uint32_t kPattern = 0x2a5a7e01;
 
 penumbra::gpu::EnabledFeatures features_of(const penumbra::DeviceDesc& desc) {
     const penumbra::gpu::FeatureChain chain = penumbra::gpu::read_feature_chain(*desc.enabled_features);
-    return {chain.multiview, chain.depth_clamp, chain.depth_bias_clamp};
+    return {chain.multiview, chain.depth_clamp, chain.depth_bias_clamp, chain.gpu_driven()};
 }
 
 // Uploads a pattern into a device-local buffer, copies it back into a readback buffer and

@@ -1,0 +1,280 @@
+#include "passes/caster_culling.hpp"
+
+#include <algorithm>
+#include <array>
+#include <compare>
+#include <cstring>
+#include <map>
+
+#include "passes/shader_interface.hpp"
+#include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/one_time_commands.hpp"
+#include "penumbra_shaders.hpp"
+
+namespace penumbra::passes {
+namespace {
+
+constexpr uint32_t kWorkgroupSize = 64;  // caster_cull.comp's local_size_x
+
+// What draws of one bucket share (record_indirect_caster_draws binds it once). Opaque
+// buckets sort first, as the per-draw recording orders them.
+struct BucketKey {
+    bool masked = false;
+    VkBuffer positions = VK_NULL_HANDLE;
+    VkDeviceSize positions_offset = 0;
+    uint32_t positions_stride = 0;
+    VkFormat positions_format = VK_FORMAT_UNDEFINED;
+    VkBuffer uvs = VK_NULL_HANDLE;
+    VkDeviceSize uvs_offset = 0;
+    uint32_t uvs_stride = 0;
+    VkFormat uvs_format = VK_FORMAT_UNDEFINED;
+    VkBuffer index_buffer = VK_NULL_HANDLE;
+    VkIndexType index_type = VK_INDEX_TYPE_UINT32;
+    VkDescriptorSet alpha_mask = VK_NULL_HANDLE;
+    float alpha_cutoff = 0.0f;
+    float alpha_scale = 0.0f;
+    bool double_sided = false;
+    bool mirrored = false;
+    auto operator<=>(const BucketKey&) const = default;
+};
+
+BucketKey bucket_key(const CasterScene& scene, const CasterDraw& draw) {
+    const CasterMesh& mesh = scene.meshes[draw.mesh];
+    BucketKey key;
+    key.masked = draw.masked;
+    key.positions = mesh.positions.buffer;
+    key.positions_offset = mesh.positions.offset;
+    key.positions_stride = mesh.positions.stride;
+    key.positions_format = mesh.positions.format;
+    if (draw.masked) {
+        key.uvs = mesh.uvs.buffer;
+        key.uvs_offset = mesh.uvs.offset;
+        key.uvs_stride = mesh.uvs.stride;
+        key.uvs_format = mesh.uvs.format;
+        key.alpha_mask = mesh.alpha_mask_set;
+        key.alpha_cutoff = mesh.alpha_cutoff;
+        key.alpha_scale = mesh.alpha_scale;
+    }
+    key.index_buffer = mesh.index_buffer;
+    key.index_type = mesh.index_type;
+    key.double_sided = draw.double_sided;
+    key.mirrored = draw.mirrored;
+    return key;
+}
+
+shader::CullInstance cull_instance(const CasterScene& scene, const CasterDraw& draw, uint32_t bucket) {
+    const CasterMesh& mesh = scene.meshes[draw.mesh];
+    const VkDeviceSize index_size = mesh.index_type == VK_INDEX_TYPE_UINT16 ? 2 : 4;
+    shader::CullInstance instance{};
+    instance.model = draw.model;
+    instance.bounds_min = glm::vec4(draw.world_bounds.min, 0.0f);
+    instance.bounds_max = glm::vec4(draw.world_bounds.max, 0.0f);
+    instance.bucket = bucket;
+    instance.index_count = mesh.index_count;
+    instance.first_index = static_cast<uint32_t>(mesh.index_offset / index_size);
+    instance.vertex_offset = mesh.vertex_offset;
+    return instance;
+}
+
+gpu::UniqueDescriptorSetLayout create_draws_set_layout(const gpu::Device& device) {
+    constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT;
+    std::array<VkDescriptorSetLayoutBinding, 5> bindings{};
+    const uint32_t numbers[] = {PENUMBRA_BINDING_CULL_INSTANCES, PENUMBRA_BINDING_CULL_BUCKETS,
+                                PENUMBRA_BINDING_CULL_RECORDS, PENUMBRA_BINDING_CULL_COMMANDS,
+                                PENUMBRA_BINDING_CULL_COUNTS};
+    for (size_t i = 0; i < bindings.size(); ++i) {
+        bindings[i] = {numbers[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr};
+    }
+    return gpu::create_descriptor_set_layout(device, bindings);
+}
+
+gpu::UniquePipelineLayout create_cull_layout(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                                             VkDescriptorSetLayout draws_set_layout) {
+    static_assert(PENUMBRA_SET_CASTER_FRAME == 0 && PENUMBRA_SET_CULL_DRAWS == 1);
+    const VkDescriptorSetLayout sets[] = {frame_set_layout, draws_set_layout};
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(shader::CullPushConstants)};
+    return gpu::create_pipeline_layout(device, sets, {&push, 1});
+}
+
+void write(void* destination, size_t offset, const void* source, size_t bytes) {
+    std::memcpy(static_cast<std::byte*>(destination) + offset, source, bytes);
+}
+
+}  // namespace
+
+GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
+                                   uint32_t frames_in_flight)
+    : device_(device),
+      frames_in_flight_(std::max(frames_in_flight, 1u)),
+      draws_set_layout_(create_draws_set_layout(device)),
+      layout_(create_cull_layout(device, frame_set_layout, draws_set_layout_)),
+      pipeline_(gpu::create_compute_pipeline(device, {VK_SHADER_STAGE_COMPUTE_BIT, shaders::caster_cull_comp(), {}},
+                                             layout_)),
+      staging_(frames_in_flight_) {}
+
+void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32_t buckets) {
+    if (buffers_ && buffers_->draw_capacity >= draws && buffers_->command_capacity >= commands &&
+        buffers_->bucket_capacity >= buckets) {
+        return;
+    }
+    // Frames in flight may still read the old buffers: kept until they are complete.
+    if (buffers_) replaced_.emplace_back(records_ + frames_in_flight_, std::move(buffers_));
+    auto buffers = std::make_unique<Buffers>();
+    // Grown with headroom so that a scene that keeps growing does not replace them each frame.
+    buffers->draw_capacity = std::max(draws + draws / 2, 64u);
+    buffers->command_capacity = std::max(commands + commands / 2, 64u);
+    buffers->bucket_capacity = std::max(buckets + buckets / 2, 16u);
+    constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    constexpr VkBufferUsageFlags kCopied = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    const auto create = [&](VkDeviceSize size, VkBufferUsageFlags usage) {
+        return gpu::create_buffer(device_, size, kStorage | kCopied | usage, gpu::MemoryKind::DeviceLocal);
+    };
+    buffers->instances = create(VkDeviceSize{buffers->draw_capacity} * sizeof(shader::CullInstance), 0);
+    buffers->buckets = create(VkDeviceSize{buffers->bucket_capacity} * sizeof(uint32_t), 0);
+    buffers->records = create(VkDeviceSize{buffers->command_capacity} * sizeof(shader::CullRecord), 0);
+    buffers->commands = create(VkDeviceSize{buffers->command_capacity} * sizeof(VkDrawIndexedIndirectCommand),
+                               VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    buffers->counts = create(VkDeviceSize{buffers->bucket_capacity} * sizeof(uint32_t),
+                             VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5};
+    buffers->pool = gpu::create_descriptor_pool(device_, 1, {&size, 1});
+    buffers->set = gpu::allocate_descriptor_set(device_, buffers->pool, draws_set_layout_);
+    const gpu::Buffer* bound[] = {&buffers->instances, &buffers->buckets, &buffers->records, &buffers->commands,
+                                  &buffers->counts};
+    const uint32_t numbers[] = {PENUMBRA_BINDING_CULL_INSTANCES, PENUMBRA_BINDING_CULL_BUCKETS,
+                                PENUMBRA_BINDING_CULL_RECORDS, PENUMBRA_BINDING_CULL_COMMANDS,
+                                PENUMBRA_BINDING_CULL_COUNTS};
+    for (size_t i = 0; i < std::size(bound); ++i) {
+        gpu::write_storage_buffer(device_, buffers->set, numbers[i], bound[i]->get(), bound[i]->size);
+    }
+    buffers_ = std::move(buffers);
+}
+
+// Groups the draws into buckets (each with room for its draws in every layer) and copies
+// them, through this frame's staging buffer, into the device buffers.
+void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count) {
+    std::map<BucketKey, uint32_t> bucket_of;
+    std::vector<uint32_t> draws_in_bucket;
+    buckets_.clear();
+    draw_bucket_.assign(scene.draws.size(), 0);
+    for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+        const auto [found, inserted] =
+            bucket_of.try_emplace(bucket_key(scene, scene.draws[d]), static_cast<uint32_t>(bucket_of.size()));
+        if (inserted) {
+            buckets_.push_back({d, 0, 0});
+            draws_in_bucket.push_back(0);
+        }
+        draw_bucket_[d] = found->second;
+        ++draws_in_bucket[found->second];
+    }
+    // Buckets in key order (opaque first), each with its commands after the previous one's.
+    std::vector<CasterBucket> ordered;
+    std::vector<uint32_t> new_index(buckets_.size());
+    uint32_t first_command = 0;
+    for (const auto& [key, bucket] : bucket_of) {
+        new_index[bucket] = static_cast<uint32_t>(ordered.size());
+        const uint32_t capacity = draws_in_bucket[bucket] * layer_count;
+        ordered.push_back({buckets_[bucket].draw, first_command, capacity});
+        first_command += capacity;
+    }
+    buckets_ = std::move(ordered);
+    for (uint32_t& bucket : draw_bucket_) bucket = new_index[bucket];
+
+    const auto draws = static_cast<uint32_t>(scene.draws.size());
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    ensure_capacity(draws, first_command, bucket_count);
+    const VkDeviceSize instance_bytes = VkDeviceSize{draws} * sizeof(shader::CullInstance);
+    const VkDeviceSize bucket_bytes = VkDeviceSize{bucket_count} * sizeof(uint32_t);
+    // The staging buffer of this frame in flight: the frame that used it last is complete.
+    gpu::Buffer& staging = staging_[records_ % frames_in_flight_];
+    if (staging.size < instance_bytes + bucket_bytes) {
+        staging = gpu::create_buffer(device_, instance_bytes + bucket_bytes + instance_bytes / 2,
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryKind::HostUpload);
+    }
+    for (uint32_t d = 0; d < draws; ++d) {
+        const shader::CullInstance instance = cull_instance(scene, scene.draws[d], draw_bucket_[d]);
+        write(staging.mapped, d * sizeof(instance), &instance, sizeof(instance));
+    }
+    for (uint32_t b = 0; b < bucket_count; ++b) {
+        write(staging.mapped, instance_bytes + b * sizeof(uint32_t), &buckets_[b].first_command, sizeof(uint32_t));
+    }
+    const VkBufferCopy instances{0, 0, instance_bytes};
+    const VkBufferCopy firsts{instance_bytes, 0, bucket_bytes};
+    device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->instances.get(), 1, &instances);
+    device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->buckets.get(), 1, &firsts);
+    draw_count_ = draws;
+    layer_count_ = layer_count;
+    uploaded_version_ = scene.version;
+}
+
+void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
+                                   uint32_t layer_count, bool cull) {
+    ++records_;
+    std::erase_if(replaced_, [&](const auto& entry) { return entry.first <= records_; });
+    // The previous frame's draws and dispatch read what this one overwrites.
+    gpu::memory_barrier(device_, cmd,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                            VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
+                        VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    if (scene.version != uploaded_version_ || layer_count != layer_count_ ||
+        scene.draws.size() != draw_count_) {
+        upload(cmd, scene, layer_count);
+    }
+    if (buckets_.empty()) return;
+    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0, VkDeviceSize{buckets_.size()} * sizeof(uint32_t), 0);
+    gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    const VkDescriptorSet sets[] = {frame_set, buffers_->set};
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets, 0, nullptr);
+    const shader::CullPushConstants constants{draw_count_, layer_count_, cull ? 1u : 0u, 0u};
+    device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+    device_->vkCmdDispatch(cmd, (draw_count_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+    gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+void GpuCasterCulling::record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
+                                    const CasterFaceCulling& culling) const {
+    if (buckets_.empty()) return;
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
+                                     PENUMBRA_SET_CASTER_DRAWS, 1, &buffers_->set, 0, nullptr);
+    record_indirect_caster_draws(device_, cmd, pipelines, scene, buckets_, buffers_->commands.get(),
+                                 buffers_->counts.get(), culling);
+}
+
+CulledDraws GpuCasterCulling::read_back(const gpu::OneTimeCommands& commands) const {
+    CulledDraws result;
+    result.draws_per_layer.resize(layer_count_);
+    if (buckets_.empty()) return result;
+    const VkDeviceSize count_bytes = VkDeviceSize{buckets_.size()} * sizeof(uint32_t);
+    const VkDeviceSize record_bytes = buffers_->records.size;
+    const gpu::Buffer readback = gpu::create_buffer(device_, count_bytes + record_bytes,
+                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryKind::HostReadback);
+    commands.submit_and_wait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy counts{0, 0, count_bytes};
+        const VkBufferCopy records{0, count_bytes, record_bytes};
+        device_->vkCmdCopyBuffer(cmd, buffers_->counts.get(), readback.get(), 1, &counts);
+        device_->vkCmdCopyBuffer(cmd, buffers_->records.get(), readback.get(), 1, &records);
+        gpu::transfer_to_host_barrier(device_, cmd);
+    });
+    const auto* bytes = static_cast<const std::byte*>(readback.mapped);
+    for (size_t b = 0; b < buckets_.size(); ++b) {
+        uint32_t count = 0;
+        std::memcpy(&count, bytes + b * sizeof(uint32_t), sizeof(count));
+        count = std::min(count, buckets_[b].capacity);
+        for (uint32_t c = 0; c < count; ++c) {
+            shader::CullRecord record{};
+            std::memcpy(&record, bytes + count_bytes + (buckets_[b].first_command + c) * sizeof(record),
+                        sizeof(record));
+            if (record.layer < layer_count_) result.draws_per_layer[record.layer].push_back(record.instance);
+        }
+    }
+    for (std::vector<uint32_t>& draws : result.draws_per_layer) std::sort(draws.begin(), draws.end());
+    return result;
+}
+
+}  // namespace penumbra::passes

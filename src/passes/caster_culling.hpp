@@ -1,0 +1,92 @@
+#pragma once
+// GPU-driven caster culling for the layered strategy: the caster draws, grouped into
+// buckets of one pipeline state (CasterBucket), live in device buffers uploaded when the
+// scene changes; each frame a compute pass (shaders/caster_cull.comp) tests every draw
+// against every cascade, as the CPU's culling does, and writes indexed indirect commands
+// and per-bucket counts; one layered rendering pass then draws each bucket with one
+// vkCmdDrawIndexedIndirectCount, the vertex shader sending each command to its cascade's
+// layer. The CPU records a few draws per frame however many casters the scene has.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "passes/casters.hpp"
+#include "penumbra/gpu/device.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
+
+namespace penumbra::passes {
+
+// What the GPU's culling wrote, read back (tests compare it with the CPU's culling).
+struct CulledDraws {
+    // Per layer, the CasterScene::draws indices the GPU selected, sorted.
+    std::vector<std::vector<uint32_t>> draws_per_layer;
+};
+
+class GpuCasterCulling {
+public:
+    // `frame_set_layout` is set 0 of the culling dispatch (the shadow uniforms' cascades);
+    // `frames_in_flight`: how many frames may run at once (replaced buffers live that long).
+    GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout, uint32_t frames_in_flight);
+
+    // Set PENUMBRA_SET_CASTER_DRAWS of the layered caster pipelines (and of the dispatch).
+    VkDescriptorSetLayout draws_set_layout() const { return draws_set_layout_; }
+
+    // Uploads `scene`'s draws when its version or the layer count changed, then records the
+    // culling of every draw against `layer_count` cascades (every draw into every layer when
+    // `cull` is off), and makes the commands ready for the indirect draws.
+    void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, uint32_t layer_count,
+                     bool cull);
+
+    // Records the culled draws into the current rendering: one indirect draw per bucket.
+    // `pipelines` were made with PENUMBRA_GPU_DRIVEN vertex shaders and a layout whose set
+    // PENUMBRA_SET_CASTER_DRAWS is draws_set_layout().
+    void record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
+                      const CasterFaceCulling& culling) const;
+
+    const std::vector<CasterBucket>& buckets() const { return buckets_; }
+
+    // Copies what the last recorded culling wrote to the host (a one-time submission after
+    // the frame's commands completed; tests).
+    CulledDraws read_back(const gpu::OneTimeCommands& commands) const;
+
+private:
+    // The device buffers, sized for a number of draws and commands; replaced (not resized)
+    // when the scene outgrows them, since frames in flight may still read the old ones.
+    struct Buffers {
+        gpu::Buffer instances;  // CullInstance per draw
+        gpu::Buffer buckets;    // first command per bucket
+        gpu::Buffer records;    // CullRecord per command
+        gpu::Buffer commands;   // VkDrawIndexedIndirectCommand per command
+        gpu::Buffer counts;     // per bucket
+        gpu::UniqueDescriptorPool pool;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        uint32_t draw_capacity = 0;
+        uint32_t command_capacity = 0;
+        uint32_t bucket_capacity = 0;
+    };
+
+    void upload(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count);
+    void ensure_capacity(uint32_t draws, uint32_t commands, uint32_t buckets);
+
+    const gpu::Device& device_;
+    uint32_t frames_in_flight_;
+    gpu::UniqueDescriptorSetLayout draws_set_layout_;
+    gpu::UniquePipelineLayout layout_;
+    gpu::UniquePipeline pipeline_;
+    std::unique_ptr<Buffers> buffers_;
+    // Replaced buffers, with the number of record_cull() calls after which they are unused.
+    std::vector<std::pair<uint64_t, std::unique_ptr<Buffers>>> replaced_;
+    std::vector<gpu::Buffer> staging_;  // one per frame in flight
+    uint64_t records_ = 0;              // record_cull() calls so far
+    std::vector<CasterBucket> buckets_;
+    std::vector<uint32_t> draw_bucket_;  // per draw
+    uint32_t draw_count_ = 0;
+    uint32_t layer_count_ = 0;
+    uint64_t uploaded_version_ = ~uint64_t{0};
+};
+
+}  // namespace penumbra::passes
