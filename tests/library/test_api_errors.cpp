@@ -97,6 +97,20 @@ TEST_F(DeviceChecks, MultiviewStrategyWithoutTheFeatureIsNamed) {
     expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "multiview");
 }
 
+// The layered strategy needs the GPU-driven features (indirect counts, first instance,
+// shaderOutputLayer): a chain without them names them.
+TEST_F(DeviceChecks, LayeredStrategyWithoutTheGpuDrivenFeaturesIsNamed) {
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    features13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+    Settings settings = test_settings();
+    settings.shadow.strategy = ShadowStrategy::Layered;
+    ShadowSystemDesc desc = system_desc(settings);
+    desc.device.enabled_features = &features;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "drawIndirectCount and shaderOutputLayer");
+}
+
 TEST_F(DeviceChecks, FramesInFlightOutOfRange) {
     expect_error<InputError>([&] { ShadowSystem shadows(system_desc(test_settings(), 0)); }, "frames_in_flight");
     expect_error<InputError>([&] { ShadowSystem shadows(system_desc(test_settings(), 9)); }, "frames_in_flight");

@@ -443,8 +443,10 @@ TEST_F(ShadowSystemFrames, AlphaMaskedAndOpaqueInstancesOfOneMesh) {
     const MeshArrays quad = quad_mesh(true);
     std::vector<Vec2> uvs;
     for (const Vec3& p : quad.positions) uvs.push_back({(p.x + 1.0f) * 0.5f, (p.z + 1.0f) * 0.5f});
-    const auto shadowed_pixels = [&](bool opaque_instance, bool masked_instance) {
-        ShadowSystem shadows(system_desc());
+    const auto shadowed_pixels = [&](bool opaque_instance, bool masked_instance, ShadowStrategy strategy) {
+        Settings settings = test_settings();
+        settings.shadow.strategy = strategy;
+        ShadowSystem shadows(system_desc(settings));
         shadows.add_instance({shadows.add_mesh(ground.data()), Mat4{}});
         MeshData data = quad.data();
         data.uvs = uvs;
@@ -460,12 +462,17 @@ TEST_F(ShadowSystemFrames, AlphaMaskedAndOpaqueInstancesOfOneMesh) {
         const VisibilityImage2D image = render_visibility(shadows);
         return std::count_if(image.values.begin(), image.values.end(), [](float v) { return v < 0.5f; });
     };
-    const long opaque = shadowed_pixels(true, false);
-    const long masked = shadowed_pixels(false, true);
-    // The whole quad: 4 m^2 at (7.2 cm)^2 per pixel, about 770 pixels; the mask keeps half.
-    EXPECT_NEAR(static_cast<double>(opaque), 770.0, 80.0);
-    EXPECT_NEAR(static_cast<double>(masked), 0.5 * static_cast<double>(opaque), 40.0);
-    EXPECT_EQ(shadowed_pixels(true, true), opaque + masked);
+    // The layered strategy draws the opaque and the masked instance from two buckets of
+    // GPU-culled commands, with the same alpha test.
+    for (const ShadowStrategy strategy : {ShadowStrategy::PerCascade, ShadowStrategy::Layered}) {
+        SCOPED_TRACE(choice_name(kShadowStrategyChoices, strategy));
+        const long opaque = shadowed_pixels(true, false, strategy);
+        const long masked = shadowed_pixels(false, true, strategy);
+        // The whole quad: 4 m^2 at (7.2 cm)^2 per pixel, about 770 pixels; the mask keeps half.
+        EXPECT_NEAR(static_cast<double>(opaque), 770.0, 80.0);
+        EXPECT_NEAR(static_cast<double>(masked), 0.5 * static_cast<double>(opaque), 40.0);
+        EXPECT_EQ(shadowed_pixels(true, true, strategy), opaque + masked);
+    }
     vkDestroySampler(device_.device, sampler, nullptr);
 }
 

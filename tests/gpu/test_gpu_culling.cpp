@@ -1,0 +1,167 @@
+// The layered strategy's GPU culling (shaders/caster_cull.comp) must submit exactly the
+// casters the CPU's culling selects (caster_footprint non-empty), per cascade: random
+// cameras, sun directions and boxes (small, large, crossing the cascades' edges, empty,
+// and beyond the float range), with culling on and off, and again after the scene
+// changes (the draws are uploaded anew). Run on the device with validation.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "core/camera_math.hpp"
+#include "core/cascades.hpp"
+#include "core/shadow_cache.hpp"
+#include "passes/caster_culling.hpp"
+#include "passes/shader_interface.hpp"
+#include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/resources.hpp"
+#include "renderer/app_context.hpp"
+
+namespace penumbra::testing {
+namespace {
+
+constexpr uint32_t kResolution = 1024;
+
+struct Case {
+    CascadeSet cascades;
+    passes::CasterScene scene;
+};
+
+// Boxes over a 200 m square: most small (trees), some large, a few empty or enormous.
+passes::CasterScene random_scene(std::mt19937& random, uint32_t draws, uint64_t version) {
+    std::uniform_real_distribution<float> place(-100.0f, 100.0f);
+    std::uniform_real_distribution<float> size(0.1f, 6.0f);
+    std::uniform_int_distribution<int> kind(0, 99);
+    passes::CasterScene scene;
+    scene.version = version;
+    scene.meshes.resize(3);
+    scene.meshes[1].index_type = VK_INDEX_TYPE_UINT16;
+    for (passes::CasterMesh& mesh : scene.meshes) mesh.index_count = 36;
+    for (uint32_t d = 0; d < draws; ++d) {
+        passes::CasterDraw draw;
+        draw.mesh = d % 3;
+        draw.masked = d % 5 == 0;
+        draw.double_sided = d % 7 == 0;
+        draw.mirrored = d % 11 == 0;
+        const glm::vec3 centre(place(random), place(random) * 0.1f + 5.0f, place(random));
+        const glm::vec3 half(size(random), size(random) * 2.0f, size(random));
+        draw.world_bounds = {centre - half, centre + half};
+        const int k = kind(random);
+        if (k < 3) draw.world_bounds = {centre - half * 20.0f, centre + half * 20.0f};  // large
+        if (k == 3) draw.world_bounds = Aabb{};                                         // empty
+        if (k == 4) draw.world_bounds = {glm::vec3(-3e38f), glm::vec3(3e38f)};          // inf once projected
+        draw.model = glm::translate(glm::mat4(1.0f), centre);
+        scene.draws.push_back(draw);
+    }
+    return scene;
+}
+
+CascadeSet random_cascades(std::mt19937& random, FitMode fit) {
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const glm::vec3 eye(unit(random) * 60.0f, 2.0f + (unit(random) + 1.0f) * 10.0f, unit(random) * 60.0f);
+    const glm::vec3 target = eye + glm::vec3(unit(random), unit(random) * 0.5f - 0.2f, unit(random));
+    const glm::mat4 view = glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
+    const CameraView camera = make_camera_view(view, glm::radians(60.0f), 16.0f / 9.0f, 0.1f, 120.0f);
+    const glm::vec3 sun = glm::normalize(glm::vec3(unit(random), -0.3f - (unit(random) + 1.0f), unit(random)));
+    CascadeSettings settings;
+    settings.resolution = kResolution;
+    settings.fit = fit;
+    settings.max_distance = 100.0f;
+    return compute_cascades(camera, sun, settings,
+                            Aabb{glm::vec3(-120.0f, -1.0f, -120.0f), glm::vec3(120.0f, 30.0f, 120.0f)});
+}
+
+// Per cascade, the draws the CPU's culling selects (every draw without culling).
+std::vector<std::vector<uint32_t>> cpu_selection(const Case& test, bool cull) {
+    std::vector<std::vector<uint32_t>> selected(test.cascades.cascades.size());
+    for (size_t c = 0; c < selected.size(); ++c) {
+        for (uint32_t d = 0; d < test.scene.draws.size(); ++d) {
+            const bool casts =
+                !cull ||
+                !caster_footprint(test.cascades.cascades[c], test.scene.draws[d].world_bounds, kResolution).empty();
+            if (casts) selected[c].push_back(d);
+        }
+    }
+    return selected;
+}
+
+class GpuCulling : public ::testing::Test {
+protected:
+    GpuCulling() : options_(validating()), context_(options_) {
+        const VkDescriptorSetLayoutBinding binding{PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS,
+                                                   VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+                                                   nullptr};
+        frame_layout_ = gpu::create_descriptor_set_layout(context_, {&binding, 1});
+        const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+        pool_ = gpu::create_descriptor_pool(context_, 1, {&size, 1});
+        frame_set_ = gpu::allocate_descriptor_set(context_, pool_, frame_layout_);
+        uniforms_ = gpu::create_buffer(context_, sizeof(shader::PenumbraShadowUniforms),
+                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload);
+        gpu::write_uniform_buffer(context_, frame_set_, PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS, uniforms_.get(),
+                                  uniforms_.size);
+    }
+
+    static VulkanContextOptions validating() {
+        VulkanContextOptions options;
+        options.validation = true;
+        return options;
+    }
+
+    // Culls `test` on the GPU and returns its selection per cascade.
+    passes::CulledDraws cull_on_gpu(passes::GpuCasterCulling& culling, const Case& test, bool cull) {
+        shader::PenumbraShadowUniforms uniforms{};
+        for (size_t c = 0; c < test.cascades.cascades.size(); ++c) {
+            uniforms.cascades[c].view_projection = test.cascades.cascades[c].view_projection;
+        }
+        std::memcpy(uniforms_.mapped, &uniforms, sizeof(uniforms));
+        const auto layers = static_cast<uint32_t>(test.cascades.cascades.size());
+        context_.submit_and_wait(
+            [&](VkCommandBuffer cmd) { culling.record_cull(cmd, frame_set_, test.scene, layers, cull); });
+        return culling.read_back(context_.one_time());
+    }
+
+    VulkanContextOptions options_;
+    renderer::AppContext context_;
+    gpu::UniqueDescriptorSetLayout frame_layout_;
+    gpu::UniqueDescriptorPool pool_;
+    VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
+    gpu::Buffer uniforms_;
+};
+
+TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerCascade) {
+    ASSERT_TRUE(context_.features().gpu_driven) << "the test device lacks the layered strategy's features";
+    passes::GpuCasterCulling culling(context_, frame_layout_, 2);
+    std::mt19937 random(20261125);
+    size_t compared = 0, selected = 0;
+    Case test;
+    for (int trial = 0; trial < 12; ++trial) {
+        test.cascades = random_cascades(random, trial % 2 ? FitMode::Tight : FitMode::Stable);
+        // The scene changes every other trial (a new version is uploaded), and grows; in
+        // between only the cascades move (the uploaded draws are reused).
+        if (trial % 2 == 0) {
+            test.scene =
+                random_scene(random, 400u + 150u * static_cast<uint32_t>(trial / 2), static_cast<uint64_t>(trial / 2));
+        }
+        for (const bool cull : {true, false}) {
+            const std::vector<std::vector<uint32_t>> expected = cpu_selection(test, cull);
+            const passes::CulledDraws gpu = cull_on_gpu(culling, test, cull);
+            ASSERT_EQ(gpu.draws_per_layer.size(), expected.size());
+            for (size_t c = 0; c < expected.size(); ++c) {
+                EXPECT_EQ(gpu.draws_per_layer[c], expected[c])
+                    << "trial " << trial << " cull " << cull << " cascade " << c;
+                if (!cull) continue;
+                compared += test.scene.draws.size();
+                selected += expected[c].size();
+            }
+        }
+        EXPECT_GT(culling.buckets().size(), 4u) << "the draws' flags make several buckets";
+    }
+    // Culling must have mattered: some casters in, many out.
+    EXPECT_GT(selected, compared / 20);
+    EXPECT_LT(selected, compared * 3 / 4);
+    EXPECT_TRUE(options_.validation_log->messages.empty()) << options_.validation_log->messages.front();
+}
+
+}  // namespace
+}  // namespace penumbra::testing
