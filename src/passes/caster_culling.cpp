@@ -134,8 +134,8 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
     buffers->records = create(VkDeviceSize{buffers->command_capacity} * sizeof(shader::CullRecord), 0);
     buffers->commands = create(VkDeviceSize{buffers->command_capacity} * sizeof(VkDrawIndexedIndirectCommand),
                                VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
-    buffers->counts = create(VkDeviceSize{buffers->bucket_capacity} * sizeof(uint32_t),
-                             VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    buffers->counts =
+        create(VkDeviceSize{buffers->bucket_capacity} * sizeof(uint32_t), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5};
     buffers->pool = gpu::create_descriptor_pool(device_, 1, {&size, 1});
     buffers->set = gpu::allocate_descriptor_set(device_, buffers->pool, draws_set_layout_);
@@ -217,8 +217,7 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
                             VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
                         VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    if (scene.version != uploaded_version_ || layer_count != layer_count_ ||
-        scene.draws.size() != draw_count_) {
+    if (scene.version != uploaded_version_ || layer_count != layer_count_ || scene.draws.size() != draw_count_) {
         upload(cmd, scene, layer_count);
     }
     if (buckets_.empty()) return;

@@ -191,8 +191,8 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
 }
 
 void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
-                                  const CasterScene& scene, std::span<const CasterBucket> buckets,
-                                  VkBuffer commands, VkBuffer counts, const CasterFaceCulling& culling) {
+                                  const CasterScene& scene, std::span<const CasterBucket> buckets, VkBuffer commands,
+                                  VkBuffer counts, const CasterFaceCulling& culling) {
     constexpr VkDeviceSize kCommandSize = sizeof(VkDrawIndexedIndirectCommand);
     BoundState bound;
     for (size_t b = 0; b < buckets.size(); ++b) {

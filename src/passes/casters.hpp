@@ -131,8 +131,8 @@ struct CasterBucket {
 // Records one vkCmdDrawIndexedIndirectCount per bucket: `commands` holds
 // VkDrawIndexedIndirectCommands, `counts` one uint32_t count per bucket.
 void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
-                                  const CasterScene& scene, std::span<const CasterBucket> buckets,
-                                  VkBuffer commands, VkBuffer counts, const CasterFaceCulling& culling);
+                                  const CasterScene& scene, std::span<const CasterBucket> buckets, VkBuffer commands,
+                                  VkBuffer counts, const CasterFaceCulling& culling);
 
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 
