@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -80,15 +80,37 @@ def filter_runs(binaries):
     return runs
 
 
+FOREST_10M = "builtin:forest?count=10000"  # 10 M triangles, 30,001 instances
+
+
+def strategy_runs(binary):
+    """The three shadow strategies (CPU culling per cascade, multiview, GPU-driven layered)
+    on the 1 M and 10 M forests, orbiting (the cascades move every frame), 1080p and 4K."""
+    runs = []
+    for scene_label, scene in (("1 M", FOREST), ("10 M", FOREST_10M)):
+        for size_label, size in (("1080p", BASE), ("4K", UHD)):
+            for strategy in ("per-cascade", "multiview", "layered"):
+                runs.append((f"{scene_label}, {size_label}, {strategy}", binary, scene,
+                             size + ["--shadow-strategy", strategy, "--camera-path", "orbit", "--frames", "60",
+                                     "--warmup", "10"]))
+    return runs
+
+
 def median(report, name):
     entry = report["gpu_ms"].get(name)
+    return entry["median"] if entry else None
+
+
+def cpu_median(report, name):
+    entry = report.get("cpu_ms", {}).get(name)
     return entry["median"] if entry else None
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "all"], default="all")
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "all"],
+                        default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
@@ -108,9 +130,11 @@ def main():
             runs += cache_runs(name, f" [{name}]")
     if args.plan in ("filters", "all"):
         runs += filter_runs(names)
+    if args.plan in ("strategies", "all"):
+        runs += strategy_runs(args.cache_binary or names[0])
     os.makedirs(args.out, exist_ok=True)
-    rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame |",
-            "|---|---|---|---|---|---|---|---|---|"]
+    rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame | CPU culling ms | CPU recording ms |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
     results = []
     for index, (label, binary, scene, extra) in enumerate(runs):
         json_path = os.path.join(args.out, f"run{index:02d}.json")
@@ -119,7 +143,7 @@ def main():
         done = subprocess.run(command, capture_output=True, text=True)
         if done.returncode != 0:
             print(done.stderr, file=sys.stderr)
-            rows.append(f"| {label} | failed ({done.returncode}) | | | | | | | |")
+            rows.append(f"| {label} | failed ({done.returncode}) | | | | | | | | | |")
             continue
         with open(json_path) as file:
             report = json.load(file)
@@ -131,7 +155,8 @@ def main():
         fmt = lambda v: "" if v is None else (f"{v:.3f}" if isinstance(v, float) else str(v))
         rows.append(f"| {label} | " + " | ".join(fmt(c) for c in cells) +
                     f" | {fmt(None if drawn is None else round(drawn))} | {fmt(None if copied is None else round(copied))}"
-                    f" | {fmt(None if kept is None else round(kept, 1))} |")
+                    f" | {fmt(None if kept is None else round(kept, 1))} | {fmt(cpu_median(report, 'culling'))}"
+                    f" | {fmt(cpu_median(report, 'recording'))} |")
         results.append({"label": label, "binary": binary, "scene": scene, "args": extra, "report": report})
         write_report(args.out, rows, results)  # after every run: a run cut short keeps what it measured
     print(write_report(args.out, rows, results))

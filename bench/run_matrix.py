@@ -42,7 +42,7 @@ FILTERS = [
 
 def matrix(scenes_dir):
     runs = [("baseline", "forest 1M, 1080p, 4x2048", None, [])]
-    runs += [("strategy", s, None, ["--shadow-strategy", s]) for s in ("per-cascade", "multiview")]
+    runs += [("strategy", s, None, ["--shadow-strategy", s]) for s in ("per-cascade", "multiview", "layered")]
     runs += [("culling", "on", None, []), ("culling", "off", None, ["--no-cull"])]
     runs += [("filter", name, None, args) for name, args in FILTERS]
     runs += [("cascades", str(c), None, ["--cascades", str(c)]) for c in (1, 2, 4, 8)]

@@ -185,6 +185,17 @@ TEST_F(BenchCli, MultiviewIsOneTimedShadowPass) {
     EXPECT_EQ(report["run"]["light_path"], "rotate");
 }
 
+// The layered strategy: the GPU's culling and the one layered pass are timed; the CPU
+// culls no cascade (the forest's casters are culled on the GPU) and reports no draws.
+TEST_F(BenchCli, LayeredIsAGpuCullAndOneLayeredPass) {
+    const json report = run_json(std::string(kForest) + kSmall + " --shadow-strategy layered");
+    ASSERT_FALSE(report.empty());
+    expect_positive_timings(report["gpu_ms"], {"shadow_cull", "shadow_layered", "lighting", "frame"});
+    EXPECT_FALSE(report["gpu_ms"].contains("shadow_cascade_0"));
+    EXPECT_FALSE(report["gpu_ms"].contains("shadow_multiview"));
+    for (const json& cascade : report["cascades"]) EXPECT_EQ(cascade["draws"]["max"].get<double>(), 0.0);
+}
+
 TEST_F(BenchCli, TriangleCeilingCountsEveryTriangleInEveryCascade) {
     const uint64_t triangles = triangles_submitted_by(penumbra::load_scene("builtin:forest?count=30"));
     const json report = run_json(std::string(kForest) + kSmall + " --ceiling triangles");

@@ -5,9 +5,8 @@
 // cascade's depth map equals the per-cascade one (read through its toroidal layer origin)
 // up to the rasteriser's rounding, and so does the ground's visibility. Equal maps need
 // equal draw sets: a caster the GPU dropped, or drew into the wrong layer, changes
-// thousands of texels. (Multiview is not compared: on lavapipe its clipped triangles land
-// in view 0 — the ground of cascade 1 drawn into layer 0 — which the per-cascade and
-// layered passes do not do; see the 2026-11-26 closing note.)
+// thousands of texels. (Multiview is not compared texel by texel: on lavapipe, triangles
+// covering whole raster tiles land in view 0 — docs/techniques.md, known driver issues.)
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
