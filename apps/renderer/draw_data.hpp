@@ -36,6 +36,15 @@ struct Draw {
     uint32_t mesh = 0;       // Scene::meshes index
 };
 
+// Consecutive draws of DrawData::order with the same mesh, material and shadow receiving,
+// drawn as one instanced draw: instance slots [first_instance, first_instance + count) of
+// the frame's instance list name their draws.
+struct DrawBatch {
+    uint32_t draw = 0;  // the first draw (mesh, material, flags)
+    uint32_t first_instance = 0;
+    uint32_t count = 0;
+};
+
 struct DrawData {
     VkBuffer vertex_buffer = VK_NULL_HANDLE;  // penumbra::Vertex
     VkBuffer index_buffer = VK_NULL_HANDLE;   // uint32
@@ -45,6 +54,10 @@ struct DrawData {
     // depth test rejects what lies behind before it is shaded; every camera pass of a frame
     // uses the same order.
     std::vector<uint32_t> order;
+    // The order as batches: single-sided materials first ([0]), then double-sided ones ([1]).
+    std::vector<DrawBatch> batches[2];
+    VkBuffer draw_models = VK_NULL_HANDLE;     // mat4 per draw (RENDERER_BINDING_DRAW_MODELS)
+    VkBuffer instance_draws = VK_NULL_HANDLE;  // uint per instance slot (RENDERER_BINDING_INSTANCE_DRAWS)
     VkDescriptorSetLayout material_set_layout = VK_NULL_HANDLE;
 };
 

@@ -29,7 +29,6 @@ gpu::VertexLayout scene_vertex_layout() {
 
 shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBinding& material) {
     shader::DrawPushConstants constants{};
-    constants.model = draw.model;
     constants.base_color = material.base_color;
     constants.material = {material.alpha_cutoff, material.roughness, material.metallic, 0.0f};
     constants.emissive = glm::vec4(material.emissive, 0.0f);
@@ -46,8 +45,9 @@ void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, ui
     device->vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
-                 const Draw& draw, bool bind_material) {
+void record_batch(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                  const DrawBatch& batch, bool bind_material) {
+    const Draw& draw = data.draws[batch.draw];
     const MaterialBinding& material = data.materials[draw.material];
     if (bind_material) {
         device->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, RENDERER_SET_MATERIAL, 1,
@@ -56,7 +56,8 @@ void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayou
     const shader::DrawPushConstants constants = draw_push_constants(draw, material);
     device->vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(constants), &constants);
-    device->vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+    device->vkCmdDrawIndexed(cmd, draw.index_count, batch.count, draw.first_index, draw.vertex_offset,
+                             batch.first_instance);
 }
 
 VkRenderingAttachmentInfo cleared_color_attachment(VkImageView view, VkClearColorValue clear) {
@@ -110,11 +111,10 @@ void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipel
         device->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                                   double_sided_pass ? double_sided : single_sided);
         uint32_t bound_material = UINT32_MAX;  // a pipeline change keeps the set (same layout)
-        for (size_t i = 0; i < data.draws.size(); ++i) {
-            const Draw& draw = data.draws[data.order.empty() ? i : data.order[i]];
-            if (data.materials[draw.material].double_sided != double_sided_pass) continue;
-            record_draw(device, cmd, layout, data, draw, draw.material != bound_material);
-            bound_material = draw.material;
+        for (const DrawBatch& batch : data.batches[double_sided_pass ? 1 : 0]) {
+            const uint32_t material = data.draws[batch.draw].material;
+            record_batch(device, cmd, layout, data, batch, material != bound_material);
+            bound_material = material;
         }
     }
 }

@@ -25,9 +25,9 @@ shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBi
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 
 // Binds the material's descriptor set (unless `bind_material` is false: the set bound is
-// already the draw's) and push constants, then issues the indexed draw.
-void record_draw(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
-                 const Draw& draw, bool bind_material = true);
+// already the batch's) and push constants, then issues the batch's instanced draw.
+void record_batch(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
+                  const DrawBatch& batch, bool bind_material = true);
 
 VkPushConstantRange draw_push_constant_range();
 
@@ -50,9 +50,11 @@ void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
                             uint32_t width, uint32_t height);
 
 // Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
-// passes do, in DrawData::order (nearest first): single-sided materials with
-// `single_sided` (back faces culled), then double-sided ones with `double_sided`. Passes that must cover the same
-// fragments (the lighting and geometry-AOV passes) share this order, so depth ties resolve identically.
+// passes do, in DrawData::order (nearest first) as DrawData::batches: single-sided materials
+// with `single_sided` (back faces culled), then double-sided ones with `double_sided`. The
+// frame set (RENDERER_SET_FRAME) must be bound: it holds the batches' model matrices. Passes
+// that must cover the same fragments (the lighting and geometry-AOV passes) share this
+// order, so depth ties resolve identically.
 void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,
                          VkPipeline single_sided, VkPipeline double_sided);
 

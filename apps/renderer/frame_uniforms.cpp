@@ -29,10 +29,12 @@ int32_t visibility_slot(const std::vector<Light>& lights, int32_t visibility_lig
 }  // namespace
 
 gpu::UniqueDescriptorSetLayout create_frame_set_layout(const gpu::Device& device) {
-    const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+    const std::array<VkDescriptorSetLayoutBinding, 4> bindings{{
         {RENDERER_BINDING_FRAME_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {RENDERER_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {RENDERER_BINDING_DRAW_MODELS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {RENDERER_BINDING_INSTANCE_DRAWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
     }};
     return gpu::create_descriptor_set_layout(device, bindings);
 }

@@ -44,7 +44,10 @@ private:
         return texture >= 0 && static_cast<size_t>(texture) < white_texture_slot() ? static_cast<size_t>(texture)
                                                                                    : white_texture_slot();
     }
-    void add_draws(const Scene& scene, const std::vector<MeshRange>& ranges);
+    void add_draws(const AppContext& context, const Scene& scene, const std::vector<MeshRange>& ranges);
+    // DrawData::batches from DrawData::order, and the instance slots they name.
+    void build_batches();
+    void write_draw_model(uint32_t draw);
     void add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows);
 
     gpu::Buffer vertices_;
@@ -54,6 +57,8 @@ private:
     gpu::UniqueDescriptorSetLayout material_set_layout_;
     gpu::UniqueDescriptorPool descriptor_pool_;
     DrawData draw_data_;
+    gpu::Buffer draw_models_;     // mat4 per draw, host-visible (the renderer waits for every frame)
+    gpu::Buffer instance_slots_;  // uint per instance slot of the frame's batches: its draw
     // Per scene instance: its draw (an index into draw_data_.draws) and its shadow caster;
     // std::nullopt for an instance of an empty mesh.
     std::vector<std::optional<uint32_t>> instance_draws_;

@@ -156,12 +156,16 @@ struct Renderer::Resources {
           commands(context),
           timer(context, kMaxTimedScopes) {
         const std::array<VkDescriptorPoolSize, 2> sizes{
-            {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}}};
+            {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}}};
         descriptor_pool = gpu::create_descriptor_pool(context, 1, sizes);
         frame_set = gpu::allocate_descriptor_set(context, descriptor_pool, frame_set_layout);
         gpu::write_uniform_buffer(context, frame_set, RENDERER_BINDING_FRAME_UNIFORMS, frame_uniforms.get(),
                                   frame_uniforms.size);
         gpu::write_storage_buffer(context, frame_set, RENDERER_BINDING_LIGHTS, lights.get(), lights.size);
+        const DrawData& draws = gpu_scene.draw_data();
+        gpu::write_storage_buffer(context, frame_set, RENDERER_BINDING_DRAW_MODELS, draws.draw_models, VK_WHOLE_SIZE);
+        gpu::write_storage_buffer(context, frame_set, RENDERER_BINDING_INSTANCE_DRAWS, draws.instance_draws,
+                                  VK_WHOLE_SIZE);
         if (settings.geometry_aovs) {
             geometry_aovs.emplace(context, frame_set_layout, gpu_scene.draw_data().material_set_layout, settings.width,
                                   settings.height);

@@ -28,10 +28,10 @@ static_assert(offsetof(LocalLight, shadow_index) == 52);
 static_assert(offsetof(LocalLight, visibility_slot) == 56);
 static_assert(sizeof(LocalLight) == 64);
 static_assert(sizeof(LocalLights) == 64 * RENDERER_MAX_LOCAL_LIGHTS);
-static_assert(offsetof(DrawPushConstants, base_color) == 64);
-static_assert(offsetof(DrawPushConstants, flags) == 96);
-static_assert(offsetof(DrawPushConstants, emissive) == 112);
-// 128 bytes: the push-constant size every Vulkan device supports (maxPushConstantsSize).
-static_assert(sizeof(DrawPushConstants) == 128);
+static_assert(offsetof(DrawPushConstants, material) == 16);
+static_assert(offsetof(DrawPushConstants, flags) == 32);
+static_assert(offsetof(DrawPushConstants, emissive) == 48);
+// At most 128 bytes: the push-constant size every Vulkan device supports (maxPushConstantsSize).
+static_assert(sizeof(DrawPushConstants) == 64);
 
 }  // namespace penumbra::renderer::shader

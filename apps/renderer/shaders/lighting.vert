@@ -6,7 +6,12 @@
 layout(std140, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_FRAME_UNIFORMS) uniform FrameBlock {
     FrameUniforms frame;
 };
-layout(push_constant) uniform PushBlock { DrawPushConstants draw; };
+layout(std430, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_DRAW_MODELS) readonly buffer ModelBlock {
+    mat4 draw_models[];
+};
+layout(std430, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_INSTANCE_DRAWS) readonly buffer InstanceBlock {
+    uint instance_draws[];
+};
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -17,10 +22,12 @@ layout(location = 1) out vec3 out_world_normal;
 layout(location = 2) out vec2 out_uv;
 
 void main() {
-    const vec4 world = draw.model * vec4(in_position, 1.0);
+    // gl_InstanceIndex counts from the batch's firstInstance: its slot in this frame's order.
+    const mat4 model = draw_models[instance_draws[gl_InstanceIndex]];
+    const vec4 world = model * vec4(in_position, 1.0);
     out_world_position = world.xyz;
     // Inverse transpose keeps normals perpendicular under non-uniform scale.
-    out_world_normal = transpose(inverse(mat3(draw.model))) * in_normal;
+    out_world_normal = transpose(inverse(mat3(model))) * in_normal;
     out_uv = in_uv;
     gl_Position = frame.view_projection * world;
 }

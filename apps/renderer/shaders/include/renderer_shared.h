@@ -15,6 +15,10 @@
 #define RENDERER_SET_FRAME 0
 #define RENDERER_BINDING_FRAME_UNIFORMS 0
 #define RENDERER_BINDING_LIGHTS 1
+// The camera passes draw batches of instances: the model matrix of every draw (by draw
+// index), and per instance slot of this frame's batches the draw it is (gl_InstanceIndex).
+#define RENDERER_BINDING_DRAW_MODELS 2
+#define RENDERER_BINDING_INSTANCE_DRAWS 3
 #define RENDERER_SET_MATERIAL 1
 #define RENDERER_BINDING_BASE_COLOR_TEXTURE 0
 #define RENDERER_BINDING_EMISSIVE_TEXTURE 1
@@ -65,8 +69,9 @@ struct LocalLights {
     LocalLight lights[RENDERER_MAX_LOCAL_LIGHTS];
 };
 
+// One batch of a camera pass: instances of one mesh with one material (their model
+// matrices come from RENDERER_BINDING_DRAW_MODELS through RENDERER_BINDING_INSTANCE_DRAWS).
 struct DrawPushConstants {
-    mat4 model;       // model -> world
     vec4 base_color;  // linear RGBA factor
     vec4 material;    // x: alpha cutoff, y: roughness, z: metallic
     // x: 1 when the material has an emissive texture, y: 1 when it has a base colour
