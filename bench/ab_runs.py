@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|goals|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -84,15 +84,32 @@ FOREST_10M = "builtin:forest?count=10000"  # 10 M triangles, 30,001 instances
 
 
 def strategy_runs(binary):
-    """The three shadow strategies (CPU culling per cascade, multiview, GPU-driven layered)
-    on the 1 M and 10 M forests, orbiting (the cascades move every frame), 1080p and 4K."""
+    """The three shadow strategies (CPU culling per cascade, multiview, GPU-driven layered),
+    and per-cascade with the static caster cache, on the 1 M and 10 M forests, orbiting (the
+    cascades move every frame), 1080p and 4K."""
     runs = []
     for scene_label, scene in (("1 M", FOREST), ("10 M", FOREST_10M)):
         for size_label, size in (("1080p", BASE), ("4K", UHD)):
-            for strategy in ("per-cascade", "multiview", "layered"):
+            for strategy in ("per-cascade", "multiview", "layered", "per-cascade+cache"):
+                options = ["--shadow-strategy", strategy.split("+")[0]] + (["--shadow-cache"] if "+cache" in strategy else [])
                 runs.append((f"{scene_label}, {size_label}, {strategy}", binary, scene,
-                             size + ["--shadow-strategy", strategy, "--camera-path", "orbit", "--frames", "60",
-                                     "--warmup", "10"]))
+                             size + options + ["--camera-path", "orbit", "--frames", "60", "--warmup", "10"]))
+    return runs
+
+
+def goal_runs(binary):
+    """Issue 14's frame goals: PCF R=2 at 4K forward, deferred, and deferred with cached
+    cascades (orbit); 8 spots + 8 points culled on the CPU and on the GPU."""
+    runs = []
+    pcf = ["--filter", "pcf", "--pcf-radius", "2", "--camera-path", "orbit", "--frames", "60", "--warmup", "10"]
+    for label, extra in (("forward", ["--resolve", "forward"]), ("deferred", ["--resolve", "deferred"]),
+                         ("deferred + cache", ["--resolve", "deferred", "--shadow-cache"])):
+        runs.append((f"pcf R=2, 4K, {label}, orbit", binary, FOREST, UHD + pcf + extra))
+    lights = f"{FOREST}&spots=8&points=8"
+    local = ["--local-shadow-budget", "16", "--camera-path", "orbit", "--frames", "60", "--warmup", "10"]
+    for strategy in ("per-cascade", "layered"):
+        runs.append((f"8 spots + 8 points, 1080p, {strategy}, orbit", binary, lights,
+                     BASE + local + ["--shadow-strategy", strategy]))
     return runs
 
 
@@ -109,7 +126,7 @@ def cpu_median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "all"],
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "goals", "all"],
                         default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
@@ -132,6 +149,8 @@ def main():
         runs += filter_runs(names)
     if args.plan in ("strategies", "all"):
         runs += strategy_runs(args.cache_binary or names[0])
+    if args.plan in ("goals", "all"):
+        runs += goal_runs(args.cache_binary or names[0])
     os.makedirs(args.out, exist_ok=True)
     rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame | CPU culling ms | CPU recording ms |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]

@@ -5,10 +5,11 @@
 //                         otherwise a cascade
 //   PENUMBRA_MULTIVIEW:   one pass renders every cascade; gl_ViewIndex is added to the layer
 //                         (only this variant needs the device's multiview feature)
-//   PENUMBRA_GPU_DRIVEN:  the layered strategy: one pass renders every cascade from the
-//                         commands shaders/caster_cull.comp wrote; the draw (transform) and
-//                         its cascade come from CullRecord[gl_InstanceIndex], and the vertex
-//                         goes to that layer (gl_Layer: Vulkan 1.2's shaderOutputLayer)
+//   PENUMBRA_GPU_DRIVEN:  the layered strategy: draws the commands shaders/caster_cull.comp
+//                         wrote; the draw (transform) and its layer come from
+//                         CullRecord[gl_InstanceIndex]. For cascades one pass renders them
+//                         all and the vertex goes to its layer (gl_Layer: Vulkan 1.2's
+//                         shaderOutputLayer); a local layer is still one pass per layer
 //   PENUMBRA_MASKED:      also passes the UVs on to the alpha test
 #extension GL_GOOGLE_include_directive : require
 #ifdef PENUMBRA_MULTIVIEW
@@ -17,7 +18,8 @@
 #else
 #define PENUMBRA_VIEW_INDEX 0
 #endif
-#ifdef PENUMBRA_GPU_DRIVEN
+#if defined(PENUMBRA_GPU_DRIVEN) && !defined(PENUMBRA_LOCAL_LAYER)
+#define PENUMBRA_WRITES_LAYER
 #extension GL_ARB_shader_viewport_layer_array : require
 #endif
 #include "penumbra_internal.h"
@@ -82,7 +84,7 @@ layout(location = 0) out vec2 out_uv;
 
 void main() {
     gl_Position = layer_position(draw_model() * vec4(in_position, 1.0));
-#ifdef PENUMBRA_GPU_DRIVEN
+#ifdef PENUMBRA_WRITES_LAYER
     gl_Layer = int(draw_layer());
 #endif
 #ifdef PENUMBRA_MASKED

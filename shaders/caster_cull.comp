@@ -1,15 +1,19 @@
 #version 460
 // GPU-driven caster culling (the layered strategy): one invocation per caster draw tests its
-// world bounds against every cascade and appends, for each cascade it can shadow, one
-// indexed indirect command to its bucket (the draws sharing one pipeline state). The
-// command's firstInstance is its own index, which the layered vertex shader
-// (caster.vert, PENUMBRA_GPU_DRIVEN) reads the draw and its layer back from.
+// world bounds against every layer and appends, for each layer it can shadow, one indexed
+// indirect command to that layer's region of its bucket (the draws sharing one pipeline
+// state). The command's firstInstance is its own index, which the GPU-driven vertex shaders
+// (caster.vert, PENUMBRA_GPU_DRIVEN) read the draw and its layer back from.
 //
-// The test is the CPU culling's (core/shadow_cache.cpp caster_footprint, the non-empty
-// case) in the same operations and order, so that both select the same casters: the box
-// bounded in clip space by Arvo's method (scene.hpp transform_aabb), culled only beyond the
-// far side (depth < 0, reverse-Z) and outside the window's [-1, 1] rectangle; a box whose
-// projection is not finite may reach every texel.
+// The tests are the CPU culling's, in the same operations and order, so that both select
+// the same casters:
+// - cascades (core/shadow_cache.cpp caster_footprint, the non-empty case): the box bounded
+//   in clip space by Arvo's method (scene.hpp transform_aabb), culled only beyond the far
+//   side (depth < 0, reverse-Z) and outside the window's [-1, 1] rectangle; a box whose
+//   projection is not finite may reach every texel;
+// - spot and point layers (core/local_lights.cpp caster_may_shadow_frustum and, for cube
+//   faces, caster_may_shadow_sphere): the box's positive vertex against the frustum's five
+//   Gribb-Hartmann planes, and its closest point within the light's range.
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
@@ -17,6 +21,10 @@ layout(local_size_x = 64) in;
 
 layout(std140, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS) uniform ShadowBlock {
     PenumbraShadowUniforms shadow;
+};
+layout(std430, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS) readonly buffer
+    LocalBlock {
+    PenumbraLocalShadows local_shadows;
 };
 layout(std430, set = PENUMBRA_SET_CULL_DRAWS, binding = PENUMBRA_BINDING_CULL_INSTANCES) readonly buffer Instances {
     CullInstance instances[];
@@ -39,7 +47,7 @@ layout(push_constant) uniform PushBlock { CullPushConstants cull; };
 
 bool finite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
-bool may_shadow(mat4 view_projection, vec3 box_min, vec3 box_max) {
+bool may_shadow_cascade(mat4 view_projection, vec3 box_min, vec3 box_max) {
     precise vec3 low = view_projection[3].xyz;
     precise vec3 high = view_projection[3].xyz;
     for (int column = 0; column < 3; ++column) {
@@ -55,6 +63,45 @@ bool may_shadow(mat4 view_projection, vec3 box_min, vec3 box_max) {
     return !(low.x > 1.0 || high.x < -1.0 || low.y > 1.0 || high.y < -1.0);
 }
 
+// glm's dot: (x + y) + z.
+float dot3(vec3 a, vec3 b) {
+    precise float xy = a.x * b.x + a.y * b.y;
+    precise float result = xy + a.z * b.z;
+    return result;
+}
+
+bool may_shadow_frustum(mat4 view_projection, vec3 box_min, vec3 box_max) {
+    const mat4 m = transpose(view_projection);
+    vec4 planes[5] = vec4[5](m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2]);
+    for (int p = 0; p < 5; ++p) {
+        precise vec4 plane = planes[p];
+        const vec3 positive = mix(box_min, box_max, greaterThanEqual(plane.xyz, vec3(0.0)));
+        precise float distance = dot3(plane.xyz, positive) + plane.w;
+        if (distance < 0.0) return false;
+    }
+    return true;
+}
+
+bool may_shadow_sphere(vec3 centre, float radius, vec3 box_min, vec3 box_max) {
+    precise vec3 offset = clamp(centre, box_min, box_max) - centre;
+    precise float squared = dot3(offset, offset);
+    precise float radius_squared = radius * radius;
+    return squared <= radius_squared;
+}
+
+bool layer_enabled(uint layer) { return (cull.layer_mask[layer / 128u][(layer / 32u) % 4u] & (1u << (layer % 32u))) != 0u; }
+
+void emit(uint index, uint bucket, uint layer, CullInstance instance) {
+    const uint command = layer * cull.instance_count + bucket_first_command[bucket] +
+                         atomicAdd(counts[layer * cull.bucket_count + bucket], 1u);
+    records[command] = CullRecord(index, layer);
+    commands[5 * command + 0] = instance.index_count;
+    commands[5 * command + 1] = 1u;
+    commands[5 * command + 2] = instance.first_index;
+    commands[5 * command + 3] = uint(instance.vertex_offset);
+    commands[5 * command + 4] = command;
+}
+
 void main() {
     const uint index = gl_GlobalInvocationID.x;
     if (index >= cull.instance_count) return;
@@ -63,14 +110,28 @@ void main() {
     const vec3 box_max = instance.bounds_max.xyz;
     // An empty box casts nothing (without culling every draw goes into every layer).
     if (cull.cull != 0 && any(greaterThan(box_min, box_max))) return;
-    for (uint layer = 0; layer < cull.layer_count; ++layer) {
-        if (cull.cull != 0 && !may_shadow(shadow.cascades[layer].view_projection, box_min, box_max)) continue;
-        const uint command = bucket_first_command[instance.bucket] + atomicAdd(counts[instance.bucket], 1u);
-        records[command] = CullRecord(index, layer);
-        commands[5 * command + 0] = instance.index_count;
-        commands[5 * command + 1] = 1u;
-        commands[5 * command + 2] = instance.first_index;
-        commands[5 * command + 3] = uint(instance.vertex_offset);
-        commands[5 * command + 4] = command;
+    if (cull.mode == PENUMBRA_CULL_CASCADES) {
+        for (uint layer = 0; layer < cull.layer_count; ++layer) {
+            if (!layer_enabled(layer)) continue;
+            if (cull.cull != 0 && !may_shadow_cascade(shadow.cascades[layer].view_projection, box_min, box_max))
+                continue;
+            emit(index, instance.bucket, layer, instance);
+        }
+        return;
+    }
+    for (uint light = 0; light < local_shadows.light_count; ++light) {
+        const PenumbraLocalShadow shadowed = local_shadows.lights[light];
+        if (shadowed.first_layer < 0) continue;
+        const uint faces = shadowed.cube != 0u ? 6u : 1u;
+        const bool in_range =
+            shadowed.cube == 0u || may_shadow_sphere(shadowed.position, shadowed.range, box_min, box_max);
+        for (uint face = 0; face < faces; ++face) {
+            const uint layer = uint(shadowed.first_layer) + face;
+            if (layer >= cull.layer_count || !layer_enabled(layer)) continue;
+            const bool casts =
+                in_range && may_shadow_frustum(local_shadows.layer_view_projection[layer], box_min, box_max);
+            if (cull.cull != 0 && !casts) continue;
+            emit(index, instance.bucket, layer, instance);
+        }
     }
 }

@@ -18,10 +18,10 @@
 #define PENUMBRA_SET_CASTER_DRAWS 2
 #define PENUMBRA_SET_CULL_DRAWS 1
 #define PENUMBRA_BINDING_CULL_INSTANCES 0  // CullInstance per caster draw
-#define PENUMBRA_BINDING_CULL_BUCKETS 1    // per bucket: its first command
+#define PENUMBRA_BINDING_CULL_BUCKETS 1    // per bucket: its first command within a layer's commands
 #define PENUMBRA_BINDING_CULL_RECORDS 2    // per command: CullRecord (gl_InstanceIndex reads it)
 #define PENUMBRA_BINDING_CULL_COMMANDS 3   // VkDrawIndexedIndirectCommand per command
-#define PENUMBRA_BINDING_CULL_COUNTS 4     // per bucket: how many commands the dispatch wrote
+#define PENUMBRA_BINDING_CULL_COUNTS 4     // per layer and bucket: how many commands the dispatch wrote
 // The moments blur pass and the local moments pass: set 0 holds the image they read.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 
@@ -61,11 +61,23 @@ struct CullRecord {
     PENUMBRA_UINT layer;
 };
 
+#define PENUMBRA_CULL_CASCADES 0      // layers are the sun's cascades (PenumbraShadowUniforms)
+#define PENUMBRA_CULL_LOCAL_LAYERS 1  // layers are spot/point light layers (PenumbraLocalShadows)
+
+// The commands of layer L, bucket B start at L * instance_count + the bucket's first
+// command, and its count is counts[L * bucket_count + B].
 struct CullPushConstants {
     PENUMBRA_UINT instance_count;
     PENUMBRA_UINT layer_count;
-    PENUMBRA_UINT cull;  // 0: every draw into every layer (Settings::shadow.cull_casters off)
-    PENUMBRA_UINT padding;
+    PENUMBRA_UINT cull;  // 0: every draw into every culled layer (Settings::shadow.cull_casters off)
+    PENUMBRA_UINT mode;  // PENUMBRA_CULL_*
+    PENUMBRA_UINT bucket_count;
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT padding2;
+    // Bit L % 32 of word L / 32: layer L is culled and drawn (0: kept from an earlier frame,
+    // or nothing can reach it).
+    uvec4 layer_mask[2];
 };
 
 // The moments compute passes (shaders/moments_convert.comp, moments_blur.comp), per layer.

@@ -184,8 +184,9 @@ bool caster_may_shadow_frustum(const glm::mat4& view_projection, const Aabb& box
 
 bool caster_may_shadow_sphere(const glm::vec3& center, float radius, const Aabb& box) {
     if (box.empty()) return false;
-    const glm::vec3 closest = glm::clamp(center, box.min, box.max);
-    return glm::length(closest - center) <= radius;
+    // Squared, as the GPU's culling compares (shaders/caster_cull.comp), without a square root.
+    const glm::vec3 offset = glm::clamp(center, box.min, box.max) - center;
+    return glm::dot(offset, offset) <= radius * radius;
 }
 
 }  // namespace penumbra

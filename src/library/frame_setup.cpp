@@ -17,7 +17,7 @@ VkFrontFace facing_light(const glm::mat4& view_projection) {
 
 std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
                                                          const passes::CasterScene& scene, bool cull,
-                                                         const std::vector<bool>& kept) {
+                                                         const std::vector<bool>& kept, bool gpu_culls) {
     std::vector<passes::LocalShadowLayer> layers;
     for (const LocalShadowSlot& slot : plan.slots) {
         const Light& light = lights[slot.light];
@@ -34,6 +34,11 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> 
             }
             // With culling, a cube face of a wide spot that its cone cannot reach stays cleared.
             if (cull && cube && !cube_face_reaches_cone(light, face)) {
+                layers.push_back(std::move(layer));
+                continue;
+            }
+            if (gpu_culls) {
+                layer.gpu_culled = true;
                 layers.push_back(std::move(layer));
                 continue;
             }

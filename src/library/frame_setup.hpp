@@ -25,10 +25,11 @@ struct CullStats {
 // frustum (and, for a cube face, the sphere of the range), none on a wide spot's cube
 // faces its cone cannot reach; every draw when `cull` is off. Each layer knows the winding
 // of faces toward its light. Layers whose index `kept` marks (cached local shadows) are
-// listed with `keep` and no draws: nothing is culled for them.
+// listed with `keep` and no draws: nothing is culled for them. `gpu_culls` (the layered
+// strategy): the layers to cull are marked gpu_culled, without draw lists.
 std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
                                                          const passes::CasterScene& scene, bool cull,
-                                                         const std::vector<bool>& kept = {});
+                                                         const std::vector<bool>& kept = {}, bool gpu_culls = false);
 
 // World bounds of every draw (what local lights fit their near planes to).
 std::vector<Aabb> caster_bounds(const passes::CasterScene& scene);

@@ -26,11 +26,12 @@ FrameSetLayouts create_frame_set_layouts(const gpu::Device& device) {
         {PENUMBRA_BINDING_LOCAL_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
     }};
     const std::array<VkDescriptorSetLayoutBinding, 2> caster{{
-        // Compute: the layered strategy's culling tests casters against the cascades.
+        // Compute: the layered strategy's culling tests casters against the cascades and the
+        // local lights' layers.
         {PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
-         nullptr},
+        {PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
     }};
     return {gpu::create_descriptor_set_layout(device, sampling), gpu::create_descriptor_set_layout(device, caster)};
 }

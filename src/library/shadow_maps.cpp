@@ -73,11 +73,13 @@ void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const p
 }
 
 LocalMaps::LocalMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                     VkDescriptorSetLayout alpha_mask_set_layout, const FilterSettings& filter, RetiredObjects& retired)
+                     VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings,
+                     RetiredObjects& retired, uint32_t frames_in_flight)
     : device_(device),
-      filter_(filter),
+      filter_(settings.filter),
       retired_(retired),
-      pass_(device, frame_set_layout, alpha_mask_set_layout),
+      pass_(device, frame_set_layout, alpha_mask_set_layout, settings.strategy == ShadowStrategy::Layered,
+            frames_in_flight),
       depth_sampler_(create_nearest_sampler(device)) {
     map_ = std::make_unique<gpu::Image>(passes::create_depth_map(device, kPlaceholderResolution, 1));
 }
@@ -110,14 +112,14 @@ uint64_t LocalMaps::memory_bytes() const {
 
 void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                        const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
-                       const ShadowSettings& settings, gpu::GpuTimer* timer) const {
+                       const ShadowSettings& settings, gpu::GpuTimer* timer) {
     if (layers_ == 0) {
         // Nothing samples the placeholder map, but the descriptor set binds it in this layout.
         pass_.record_placeholder(cmd, *map_);
         return;
     }
     gpu::TimedScope scope(timer, cmd, "shadow_local");
-    pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling);
+    pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling, settings.cull_casters);
     if (!moments_) return;
     // Kept layers keep their moments too.
     std::vector<bool> kept(layers_, false);

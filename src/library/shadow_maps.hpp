@@ -51,7 +51,8 @@ private:
 class LocalMaps {
 public:
     LocalMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-              VkDescriptorSetLayout alpha_mask_set_layout, const FilterSettings& filter, RetiredObjects& retired);
+              VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings, RetiredObjects& retired,
+              uint32_t frames_in_flight);
 
     void prepare_pipelines(const passes::VertexFormats& formats) { pass_.prepare_pipelines(formats); }
     // Makes the map hold `plan`'s layers at its atlas resolution (a 16 x 16 placeholder
@@ -64,7 +65,7 @@ public:
 
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                 const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
-                const ShadowSettings& settings, gpu::GpuTimer* timer) const;
+                const ShadowSettings& settings, gpu::GpuTimer* timer);
 
 private:
     const gpu::Device& device_;

@@ -131,7 +131,7 @@ struct ShadowSystem::Impl {
           layouts(library::create_frame_set_layouts(device)),
           alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
           cascades(device, layouts.caster, alpha_mask_layout, settings.shadow, frames_in_flight),
-          local(device, layouts.caster, alpha_mask_layout, settings.shadow.filter, retired),
+          local(device, layouts.caster, alpha_mask_layout, settings.shadow, retired, frames_in_flight),
           resolve(device, layouts.sampling, settings.shadow.filter),
           slots(device, frames_in_flight, layouts, resolve.screen_set_layout()),
           geometry(device, retired, alpha_mask_layout, [this](const passes::VertexFormats& formats) {
@@ -226,7 +226,8 @@ struct ShadowSystem::Impl {
             settings.shadow.cache_static_casters
                 ? local_cache.kept_layers(lights, plan, scene, geometry.static_changes(), local.generation())
                 : std::vector<bool>{};
-        local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters, kept);
+        local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters, kept,
+                                                   settings.shadow.strategy == ShadowStrategy::Layered);
         info.cpu_cull_ms += milliseconds_since(start);
         info.local_shadows.clear();
         for (size_t s = 0; s < plan.slots.size(); ++s) {

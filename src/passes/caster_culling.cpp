@@ -7,6 +7,7 @@
 #include <map>
 
 #include "passes/shader_interface.hpp"
+#include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
 #include "penumbra/gpu/one_time_commands.hpp"
 #include "penumbra_shaders.hpp"
@@ -102,6 +103,15 @@ void write(void* destination, size_t offset, const void* source, size_t bytes) {
 
 }  // namespace
 
+void require_gpu_driven(const gpu::Device& device) {
+    if (!device.features().gpu_driven) {
+        throw DeviceError(
+            "shadow strategy layered: the device was not created with the features GPU-driven culling needs "
+            "(VkPhysicalDeviceFeatures::multiDrawIndirect and drawIndirectFirstInstance, "
+            "VkPhysicalDeviceVulkan12Features::drawIndirectCount and shaderOutputLayer)");
+    }
+}
+
 GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                                    uint32_t frames_in_flight)
     : device_(device),
@@ -167,22 +177,22 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
         draw_bucket_[d] = found->second;
         ++draws_in_bucket[found->second];
     }
-    // Buckets in key order (opaque first), each with its commands after the previous one's.
+    // Buckets in key order (opaque first), each with its commands after the previous one's
+    // within a layer's commands (a layer has room for every draw).
     std::vector<CasterBucket> ordered;
     std::vector<uint32_t> new_index(buckets_.size());
     uint32_t first_command = 0;
     for (const auto& [key, bucket] : bucket_of) {
         new_index[bucket] = static_cast<uint32_t>(ordered.size());
-        const uint32_t capacity = draws_in_bucket[bucket] * layer_count;
-        ordered.push_back({buckets_[bucket].draw, first_command, capacity});
-        first_command += capacity;
+        ordered.push_back({buckets_[bucket].draw, first_command, draws_in_bucket[bucket]});
+        first_command += draws_in_bucket[bucket];
     }
     buckets_ = std::move(ordered);
     for (uint32_t& bucket : draw_bucket_) bucket = new_index[bucket];
 
     const auto draws = static_cast<uint32_t>(scene.draws.size());
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
-    ensure_capacity(draws, first_command, bucket_count);
+    ensure_capacity(draws, draws * layer_count, bucket_count * layer_count);
     const VkDeviceSize instance_bytes = VkDeviceSize{draws} * sizeof(shader::CullInstance);
     const VkDeviceSize bucket_bytes = VkDeviceSize{bucket_count} * sizeof(uint32_t);
     // The staging buffer of this frame in flight: the frame that used it last is complete.
@@ -198,17 +208,20 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     for (uint32_t b = 0; b < bucket_count; ++b) {
         write(staging.mapped, instance_bytes + b * sizeof(uint32_t), &buckets_[b].first_command, sizeof(uint32_t));
     }
-    const VkBufferCopy instances{0, 0, instance_bytes};
-    const VkBufferCopy firsts{instance_bytes, 0, bucket_bytes};
-    device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->instances.get(), 1, &instances);
-    device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->buckets.get(), 1, &firsts);
+    if (draws > 0) {
+        const VkBufferCopy instances{0, 0, instance_bytes};
+        const VkBufferCopy firsts{instance_bytes, 0, bucket_bytes};
+        device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->instances.get(), 1, &instances);
+        device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->buckets.get(), 1, &firsts);
+    }
     draw_count_ = draws;
     layer_count_ = layer_count;
     uploaded_version_ = scene.version;
 }
 
 void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                                   uint32_t layer_count, bool cull) {
+                                   CullLayers layers, const std::vector<bool>& enabled, bool cull) {
+    const auto layer_count = static_cast<uint32_t>(enabled.size());
     ++records_;
     std::erase_if(replaced_, [&](const auto& entry) { return entry.first <= records_; });
     // The previous frame's draws and dispatch read what this one overwrites.
@@ -220,15 +233,25 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
     if (scene.version != uploaded_version_ || layer_count != layer_count_ || scene.draws.size() != draw_count_) {
         upload(cmd, scene, layer_count);
     }
-    if (buckets_.empty()) return;
-    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0, VkDeviceSize{buckets_.size()} * sizeof(uint32_t), 0);
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    if (bucket_count == 0 || layer_count_ == 0) return;
+    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0,
+                             VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t), 0);
     gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     const VkDescriptorSet sets[] = {frame_set, buffers_->set};
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets, 0, nullptr);
-    const shader::CullPushConstants constants{draw_count_, layer_count_, cull ? 1u : 0u, 0u};
+    shader::CullPushConstants constants{};
+    constants.instance_count = draw_count_;
+    constants.layer_count = layer_count_;
+    constants.cull = cull ? 1u : 0u;
+    constants.mode = static_cast<uint32_t>(layers);
+    constants.bucket_count = bucket_count;
+    for (uint32_t layer = 0; layer < layer_count_; ++layer) {
+        if (enabled[layer]) constants.layer_mask[layer / 128][static_cast<int>((layer / 32) % 4)] |= 1u << (layer % 32);
+    }
     device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     device_->vkCmdDispatch(cmd, (draw_count_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
     gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -237,19 +260,21 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
 }
 
 void GpuCasterCulling::record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
-                                    const CasterFaceCulling& culling) const {
-    if (buckets_.empty()) return;
+                                    const CasterFaceCulling& culling, uint32_t layer) const {
+    if (buckets_.empty() || layer >= layer_count_) return;
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
                                      PENUMBRA_SET_CASTER_DRAWS, 1, &buffers_->set, 0, nullptr);
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
     record_indirect_caster_draws(device_, cmd, pipelines, scene, buckets_, buffers_->commands.get(),
-                                 buffers_->counts.get(), culling);
+                                 layer * draw_count_, buffers_->counts.get(), layer * bucket_count, culling);
 }
 
 CulledDraws GpuCasterCulling::read_back(const gpu::OneTimeCommands& commands) const {
     CulledDraws result;
     result.draws_per_layer.resize(layer_count_);
-    if (buckets_.empty()) return result;
-    const VkDeviceSize count_bytes = VkDeviceSize{buckets_.size()} * sizeof(uint32_t);
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    if (bucket_count == 0 || layer_count_ == 0) return result;
+    const VkDeviceSize count_bytes = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
     const VkDeviceSize record_bytes = buffers_->records.size;
     const gpu::Buffer readback = gpu::create_buffer(device_, count_bytes + record_bytes,
                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryKind::HostReadback);
@@ -261,15 +286,18 @@ CulledDraws GpuCasterCulling::read_back(const gpu::OneTimeCommands& commands) co
         gpu::transfer_to_host_barrier(device_, cmd);
     });
     const auto* bytes = static_cast<const std::byte*>(readback.mapped);
-    for (size_t b = 0; b < buckets_.size(); ++b) {
-        uint32_t count = 0;
-        std::memcpy(&count, bytes + b * sizeof(uint32_t), sizeof(count));
-        count = std::min(count, buckets_[b].capacity);
-        for (uint32_t c = 0; c < count; ++c) {
-            shader::CullRecord record{};
-            std::memcpy(&record, bytes + count_bytes + (buckets_[b].first_command + c) * sizeof(record),
-                        sizeof(record));
-            if (record.layer < layer_count_) result.draws_per_layer[record.layer].push_back(record.instance);
+    for (uint32_t layer = 0; layer < layer_count_; ++layer) {
+        for (uint32_t b = 0; b < bucket_count; ++b) {
+            uint32_t count = 0;
+            std::memcpy(&count, bytes + (size_t{layer} * bucket_count + b) * sizeof(uint32_t), sizeof(count));
+            count = std::min(count, buckets_[b].capacity);
+            for (uint32_t c = 0; c < count; ++c) {
+                const size_t command = size_t{layer} * draw_count_ + buckets_[b].first_command + c;
+                shader::CullRecord record{};
+                std::memcpy(&record, bytes + count_bytes + command * sizeof(record), sizeof(record));
+                // A record naming another layer in this layer's region is a bug the tests must see.
+                result.draws_per_layer[layer].push_back(record.layer == layer ? record.instance : ~0u);
+            }
         }
     }
     for (std::vector<uint32_t>& draws : result.draws_per_layer) std::sort(draws.begin(), draws.end());

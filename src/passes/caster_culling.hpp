@@ -2,10 +2,12 @@
 // GPU-driven caster culling for the layered strategy: the caster draws, grouped into
 // buckets of one pipeline state (CasterBucket), live in device buffers uploaded when the
 // scene changes; each frame a compute pass (shaders/caster_cull.comp) tests every draw
-// against every cascade, as the CPU's culling does, and writes indexed indirect commands
-// and per-bucket counts; one layered rendering pass then draws each bucket with one
-// vkCmdDrawIndexedIndirectCount, the vertex shader sending each command to its cascade's
-// layer. The CPU records a few draws per frame however many casters the scene has.
+// against every layer (the sun's cascades, or the spot and point lights' layers), as the
+// CPU's culling does, and writes indexed indirect commands and counts per layer and
+// bucket; the passes then draw each layer's buckets with one vkCmdDrawIndexedIndirectCount
+// each (the cascades in one layered pass, the vertex shader sending each command to its
+// layer). The CPU records a few draws per layer however many casters the scene has.
+// Commands take room for every draw in every layer (28 bytes each).
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "passes/casters.hpp"
+#include "passes/shader_interface.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
@@ -26,9 +29,19 @@ struct CulledDraws {
     std::vector<std::vector<uint32_t>> draws_per_layer;
 };
 
+// Throws DeviceError naming the features GPU-driven culling needs when `device` lacks one.
+void require_gpu_driven(const gpu::Device& device);
+
+// What a culling dispatch tests the draws against.
+enum class CullLayers : uint32_t {
+    Cascades = PENUMBRA_CULL_CASCADES,        // PenumbraShadowUniforms::cascades
+    LocalLayers = PENUMBRA_CULL_LOCAL_LAYERS  // PenumbraLocalShadows' lights and layers
+};
+
 class GpuCasterCulling {
 public:
-    // `frame_set_layout` is set 0 of the culling dispatch (the shadow uniforms' cascades);
+    // `frame_set_layout` is set 0 of the culling dispatch (the shadow uniforms and the local
+    // shadows);
     // `frames_in_flight`: how many frames may run at once (replaced buffers live that long).
     GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout, uint32_t frames_in_flight);
 
@@ -36,16 +49,17 @@ public:
     VkDescriptorSetLayout draws_set_layout() const { return draws_set_layout_; }
 
     // Uploads `scene`'s draws when its version or the layer count changed, then records the
-    // culling of every draw against `layer_count` cascades (every draw into every layer when
-    // `cull` is off), and makes the commands ready for the indirect draws.
-    void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, uint32_t layer_count,
-                     bool cull);
+    // culling of every draw against the layers `enabled` lists (layers [0, enabled.size());
+    // every draw into every enabled layer when `cull` is off), and makes the commands ready
+    // for the indirect draws.
+    void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, CullLayers layers,
+                     const std::vector<bool>& enabled, bool cull);
 
-    // Records the culled draws into the current rendering: one indirect draw per bucket.
-    // `pipelines` were made with PENUMBRA_GPU_DRIVEN vertex shaders and a layout whose set
-    // PENUMBRA_SET_CASTER_DRAWS is draws_set_layout().
+    // Records layer `layer`'s culled draws into the current rendering: one indirect draw per
+    // bucket. `pipelines` were made with PENUMBRA_GPU_DRIVEN vertex shaders and a layout whose
+    // set PENUMBRA_SET_CASTER_DRAWS is draws_set_layout().
     void record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
-                      const CasterFaceCulling& culling) const;
+                      const CasterFaceCulling& culling, uint32_t layer) const;
 
     const std::vector<CasterBucket>& buckets() const { return buckets_; }
 

@@ -124,15 +124,17 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
 // culling wrote (caster_culling.hpp).
 struct CasterBucket {
     uint32_t draw = 0;           // a draw of the bucket (index into CasterScene::draws): its state
-    uint32_t first_command = 0;  // where its commands start in the commands buffer
-    uint32_t capacity = 0;       // room for that many commands (its draws times the layers)
+    uint32_t first_command = 0;  // where its commands start within a layer's commands
+    uint32_t capacity = 0;       // room for that many commands per layer (its draws)
 };
 
 // Records one vkCmdDrawIndexedIndirectCount per bucket: `commands` holds
-// VkDrawIndexedIndirectCommands, `counts` one uint32_t count per bucket.
+// VkDrawIndexedIndirectCommands, a bucket's from `first_command` plus its own first, and
+// `counts` one uint32_t count per bucket from `first_count`.
 void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                                   const CasterScene& scene, std::span<const CasterBucket> buckets, VkBuffer commands,
-                                  VkBuffer counts, const CasterFaceCulling& culling);
+                                  uint32_t first_command, VkBuffer counts, uint32_t first_count,
+                                  const CasterFaceCulling& culling);
 
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 

@@ -9,10 +9,11 @@
 namespace penumbra::passes {
 namespace {
 
-CasterPipelineTemplate local_template(VkPipelineLayout layout) {
+CasterPipelineTemplate local_template(VkPipelineLayout layout, bool gpu_culling) {
     CasterPipelineTemplate pipelines;
-    pipelines.opaque_vertex = shaders::caster_local_vert();
-    pipelines.masked_vertex = shaders::caster_local_masked_vert();
+    pipelines.opaque_vertex = gpu_culling ? shaders::caster_local_gpu_vert() : shaders::caster_local_vert();
+    pipelines.masked_vertex =
+        gpu_culling ? shaders::caster_local_gpu_masked_vert() : shaders::caster_local_masked_vert();
     pipelines.masked_fragment = shaders::caster_masked_frag();
     pipelines.layout = layout;
     pipelines.depth_bias = true;
@@ -23,23 +24,35 @@ CasterPipelineTemplate local_template(VkPipelineLayout layout) {
 }
 
 gpu::UniquePipelineLayout create_caster_layout(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                                               VkDescriptorSetLayout alpha_mask_set_layout) {
-    const VkDescriptorSetLayout set_layouts[] = {frame_set_layout, alpha_mask_set_layout};
+                                               VkDescriptorSetLayout alpha_mask_set_layout,
+                                               const GpuCasterCulling* gpu_culling) {
+    std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, alpha_mask_set_layout};
+    if (gpu_culling) set_layouts.push_back(gpu_culling->draws_set_layout());
     const VkPushConstantRange push_range = caster_push_constant_range();
     return gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+}
+
+std::unique_ptr<GpuCasterCulling> create_gpu_culling(const gpu::Device& device, bool wanted,
+                                                     VkDescriptorSetLayout frame_set_layout,
+                                                     uint32_t frames_in_flight) {
+    if (!wanted) return nullptr;
+    require_gpu_driven(device);
+    return std::make_unique<GpuCasterCulling>(device, frame_set_layout, frames_in_flight);
 }
 
 }  // namespace
 
 LocalShadowPass::LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                                 VkDescriptorSetLayout alpha_mask_set_layout)
+                                 VkDescriptorSetLayout alpha_mask_set_layout, bool gpu_culling,
+                                 uint32_t frames_in_flight)
     : device_(device),
-      pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout)),
-      pipelines_(device, local_template(pipeline_layout_)) {}
+      gpu_culling_(create_gpu_culling(device, gpu_culling, frame_set_layout, frames_in_flight)),
+      pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
+      pipelines_(device, local_template(pipeline_layout_, gpu_culling)) {}
 
 void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                              const std::vector<LocalShadowLayer>& layers, const gpu::Image& map,
-                             const BiasSettings& bias, CasterCulling culling) const {
+                             const BiasSettings& bias, CasterCulling culling, bool cull) {
     const uint32_t resolution = map.desc.width;
     const bool keep = std::any_of(layers.begin(), layers.end(), [](const LocalShadowLayer& l) { return l.keep; });
     std::vector<LocalShadowLayer> all_layers;
@@ -55,6 +68,11 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, con
         }
     }
     if (all_layers.empty()) return;  // every layer kept: the map stays ShaderSampled
+    if (gpu_culling_) {
+        std::vector<bool> culled(map.desc.layers, false);
+        for (const LocalShadowLayer& layer : all_layers) culled[layer.layer] = layer.gpu_culled;
+        gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::LocalLayers, culled, cull);
+    }
     gpu::transition(device_, cmd, map, keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads,
                     gpu::ImageState::DepthAttachment);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_CASTER_FRAME,
@@ -73,7 +91,12 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, con
         device_->vkCmdBeginRendering(cmd, &info);
         set_viewport_and_scissor(device_, cmd, layer.resolution, layer.resolution);
         set_shadow_depth_bias(device_, cmd, bias);
-        record_caster_draws(device_, cmd, pipelines_, scene, layer.draws, layer.layer, {culling, layer.facing_light});
+        const CasterFaceCulling faces{culling, layer.facing_light};
+        if (layer.gpu_culled && gpu_culling_) {
+            gpu_culling_->record_draws(cmd, pipelines_, scene, faces, layer.layer);
+        } else {
+            record_caster_draws(device_, cmd, pipelines_, scene, layer.draws, layer.layer, faces);
+        }
         device_->vkCmdEndRendering(cmd);
     }
     gpu::transition(device_, cmd, map, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);

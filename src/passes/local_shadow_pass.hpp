@@ -9,8 +9,10 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "passes/caster_culling.hpp"
 #include "passes/casters.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
@@ -22,20 +24,25 @@ namespace penumbra::passes {
 // One layer to render: its index, the texels per side it uses, the draws that may cast
 // into it and the winding of faces toward the light in its projection. `keep`: the layer
 // still holds what an earlier frame rendered for it (cached local shadows): not rendered.
+// `gpu_culled`: the GPU culls its casters (layered strategy): `draws` is unused.
 struct LocalShadowLayer {
     uint32_t layer = 0;
     uint32_t resolution = 0;
     DrawList draws;
     VkFrontFace facing_light = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     bool keep = false;
+    bool gpu_culled = false;
 };
 
 class LocalShadowPass {
 public:
     // Set 0 of its pipelines is `frame_set_layout` (PenumbraLocalShadows at binding
-    // PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS), set 1 the alpha mask.
+    // PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS), set 1 the alpha mask. `gpu_culling`: the
+    // layered strategy's GPU-driven culling of the layers (throws DeviceError without its
+    // features); `frames_in_flight` as ShadowPass's.
     LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                    VkDescriptorSetLayout alpha_mask_set_layout);
+                    VkDescriptorSetLayout alpha_mask_set_layout, bool gpu_culling = false,
+                    uint32_t frames_in_flight = 2);
 
     void prepare_pipelines(const VertexFormats& formats) { pipelines_.prepare(formats); }
 
@@ -43,16 +50,20 @@ public:
     // kept layer the map's earlier contents are discarded and the layers not listed are
     // cleared to "no caster"; with one, the map is loaded as the last frame left it
     // (ShaderSampled) and only the layers not kept are rendered (nothing at all when every
-    // layer is kept).
+    // layer is kept). Layers marked gpu_culled are culled on the GPU first (every caster
+    // into them when `cull` is off), then drawn from the culled commands.
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                 const std::vector<LocalShadowLayer>& layers, const gpu::Image& map, const BiasSettings& bias,
-                CasterCulling culling) const;
+                CasterCulling culling, bool cull = true);
+
+    const GpuCasterCulling* gpu_culling() const { return gpu_culling_.get(); }
 
     // Without shadowed lights: only moves `map` into the layout the descriptor set names.
     void record_placeholder(VkCommandBuffer cmd, const gpu::Image& map) const;
 
 private:
     const gpu::Device& device_;
+    std::unique_ptr<GpuCasterCulling> gpu_culling_;  // layered strategy only
     gpu::UniquePipelineLayout pipeline_layout_;
     CasterPipelines pipelines_;
 };

@@ -78,7 +78,9 @@ static_assert(offsetof(CullInstance, bucket) == 96);
 static_assert(offsetof(CullInstance, vertex_offset) == 108);
 static_assert(sizeof(CullInstance) == 112);
 static_assert(sizeof(CullRecord) == 8);
-static_assert(sizeof(CullPushConstants) == 16);
+static_assert(offsetof(CullPushConstants, layer_mask) == 32);
+static_assert(sizeof(CullPushConstants) == 64);
+static_assert(PENUMBRA_MAX_LOCAL_SHADOW_LAYERS <= 8 * sizeof(CullPushConstants::layer_mask));
 
 static_assert(offsetof(PenumbraLocalShadow, range) == 12);
 static_assert(offsetof(PenumbraLocalShadow, first_layer) == 16);

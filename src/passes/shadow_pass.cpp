@@ -24,15 +24,6 @@ void require_multiview(const gpu::Device& device, uint32_t cascade_count) {
     }
 }
 
-void require_gpu_driven(const gpu::Device& device) {
-    if (!device.features().gpu_driven) {
-        throw DeviceError(
-            "shadow strategy layered: the device was not created with the features GPU-driven culling needs "
-            "(VkPhysicalDeviceFeatures::multiDrawIndirect and drawIndirectFirstInstance, "
-            "VkPhysicalDeviceVulkan12Features::drawIndirectCount and shaderOutputLayer)");
-    }
-}
-
 uint32_t view_mask_of(ShadowStrategy strategy, uint32_t cascade_count) {
     return strategy == ShadowStrategy::Multiview ? (1u << cascade_count) - 1u : 0u;
 }
@@ -176,14 +167,16 @@ void ShadowPass::record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, 
                                 GpuCullOptions options) {
     {
         gpu::TimedScope scope(timer, cmd, "shadow_cull");
-        gpu_culling_->record_cull(cmd, frame_set, scene, options.casts ? cascade_count_ : 0u, options.cull);
+        gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::Cascades,
+                                  std::vector<bool>(options.casts ? cascade_count_ : 0u, true), options.cull);
     }
     gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
                     gpu::ImageState::DepthAttachment);
     {
         gpu::TimedScope scope(timer, cmd, "shadow_layered");
         begin_rendering(cmd, shadow_map_.view, 0, bias, VK_ATTACHMENT_LOAD_OP_CLEAR, cascade_count_);
-        gpu_culling_->record_draws(cmd, pipelines_, scene, culling);
+        for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade)
+            gpu_culling_->record_draws(cmd, pipelines_, scene, culling, cascade);
         device_->vkCmdEndRendering(cmd);
     }
     gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);

@@ -1,8 +1,10 @@
 // The layered strategy's GPU culling (shaders/caster_cull.comp) must submit exactly the
-// casters the CPU's culling selects (caster_footprint non-empty), per cascade: random
-// cameras, sun directions and boxes (small, large, crossing the cascades' edges, empty,
-// and beyond the float range), with culling on and off, and again after the scene
-// changes (the draws are uploaded anew). Run on the device with validation.
+// casters the CPU's culling selects, per layer: per cascade (caster_footprint non-empty)
+// on random cameras and sun directions, and per spot or point light layer (the frustum,
+// and a cube face's range: as cull_local_casters tests) on random lights; with random
+// boxes (small, large, crossing the layers' edges, empty, and beyond the float range),
+// culling on and off, layers left out, and again after the scene changes (the draws are
+// uploaded anew). Run on the device with validation.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -11,6 +13,7 @@
 
 #include "core/camera_math.hpp"
 #include "core/cascades.hpp"
+#include "core/local_lights.hpp"
 #include "core/shadow_cache.hpp"
 #include "passes/caster_culling.hpp"
 #include "passes/shader_interface.hpp"
@@ -89,17 +92,24 @@ std::vector<std::vector<uint32_t>> cpu_selection(const Case& test, bool cull) {
 class GpuCulling : public ::testing::Test {
 protected:
     GpuCulling() : options_(validating()), context_(options_) {
-        const VkDescriptorSetLayoutBinding binding{PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS,
-                                                   VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-                                                   nullptr};
-        frame_layout_ = gpu::create_descriptor_set_layout(context_, {&binding, 1});
-        const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-        pool_ = gpu::create_descriptor_pool(context_, 1, {&size, 1});
+        const VkDescriptorSetLayoutBinding bindings[] = {
+            {PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+             nullptr},
+            {PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+             nullptr}};
+        frame_layout_ = gpu::create_descriptor_set_layout(context_, bindings);
+        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+        pool_ = gpu::create_descriptor_pool(context_, 1, sizes);
         frame_set_ = gpu::allocate_descriptor_set(context_, pool_, frame_layout_);
         uniforms_ = gpu::create_buffer(context_, sizeof(shader::PenumbraShadowUniforms),
                                        VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload);
+        local_ = gpu::create_buffer(context_, sizeof(shader::PenumbraLocalShadows), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    gpu::MemoryKind::HostUpload);
         gpu::write_uniform_buffer(context_, frame_set_, PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS, uniforms_.get(),
                                   uniforms_.size);
+        gpu::write_storage_buffer(context_, frame_set_, PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS, local_.get(),
+                                  local_.size);
     }
 
     static VulkanContextOptions validating() {
@@ -115,9 +125,20 @@ protected:
             uniforms.cascades[c].view_projection = test.cascades.cascades[c].view_projection;
         }
         std::memcpy(uniforms_.mapped, &uniforms, sizeof(uniforms));
-        const auto layers = static_cast<uint32_t>(test.cascades.cascades.size());
-        context_.submit_and_wait(
-            [&](VkCommandBuffer cmd) { culling.record_cull(cmd, frame_set_, test.scene, layers, cull); });
+        const std::vector<bool> enabled(test.cascades.cascades.size(), true);
+        context_.submit_and_wait([&](VkCommandBuffer cmd) {
+            culling.record_cull(cmd, frame_set_, test.scene, passes::CullLayers::Cascades, enabled, cull);
+        });
+        return culling.read_back(context_.one_time());
+    }
+
+    passes::CulledDraws cull_local_on_gpu(passes::GpuCasterCulling& culling, const shader::PenumbraLocalShadows& local,
+                                          const passes::CasterScene& scene, const std::vector<bool>& enabled,
+                                          bool cull) {
+        std::memcpy(local_.mapped, &local, sizeof(local));
+        context_.submit_and_wait([&](VkCommandBuffer cmd) {
+            culling.record_cull(cmd, frame_set_, scene, passes::CullLayers::LocalLayers, enabled, cull);
+        });
         return culling.read_back(context_.one_time());
     }
 
@@ -127,6 +148,7 @@ protected:
     gpu::UniqueDescriptorPool pool_;
     VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
     gpu::Buffer uniforms_;
+    gpu::Buffer local_;
 };
 
 TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerCascade) {
@@ -160,6 +182,72 @@ TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerCascade) {
     // Culling must have mattered: some casters in, many out.
     EXPECT_GT(selected, compared / 20);
     EXPECT_LT(selected, compared * 3 / 4);
+    EXPECT_TRUE(options_.validation_log->messages.empty()) << options_.validation_log->messages.front();
+}
+
+// Spot and point lights over the boxes: the layers as the library lays them out (a spot one,
+// a point six), some left out (kept or unreachable layers are not culled).
+TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerLocalLayer) {
+    ASSERT_TRUE(context_.features().gpu_driven) << "the test device lacks the layered strategy's features";
+    passes::GpuCasterCulling culling(context_, frame_layout_, 2);
+    std::mt19937 random(1126);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    size_t compared = 0, selected = 0;
+    for (int trial = 0; trial < 6; ++trial) {
+        const passes::CasterScene scene = random_scene(random, 500, static_cast<uint64_t>(trial));
+        shader::PenumbraLocalShadows local{};
+        std::vector<glm::mat4> layers;
+        std::vector<std::pair<Light, uint32_t>> lights;  // and the first layer
+        for (uint32_t l = 0; l < 6; ++l) {
+            Light light;
+            light.type = l % 2 ? LightType::Point : LightType::Spot;
+            light.position = glm::vec3(unit(random) * 60.0f, 3.0f + (unit(random) + 1.0f) * 4.0f, unit(random) * 60.0f);
+            light.direction = glm::normalize(glm::vec3(unit(random), -1.0f, unit(random)));
+            light.range = 15.0f + (unit(random) + 1.0f) * 15.0f;
+            light.outer_angle_degrees = 35.0f;
+            const float near = 0.1f;
+            shader::PenumbraLocalShadow& out = local.lights[l];
+            out.position = light.position;
+            out.range = light.range;
+            out.first_layer = static_cast<int32_t>(layers.size());
+            out.cube = light.type == LightType::Point ? 1u : 0u;
+            lights.emplace_back(light, static_cast<uint32_t>(layers.size()));
+            if (out.cube) {
+                for (const glm::mat4& face : point_shadow_view_projections(light.position, near, light.range))
+                    layers.push_back(face);
+            } else {
+                layers.push_back(spot_shadow_view_projection(light, near));
+            }
+        }
+        local.light_count = static_cast<uint32_t>(lights.size());
+        for (size_t i = 0; i < layers.size(); ++i) local.layer_view_projection[i] = layers[i];
+        std::vector<bool> enabled(layers.size(), true);
+        enabled[static_cast<size_t>(trial) % layers.size()] = false;  // a kept layer
+        for (const bool cull : {true, false}) {
+            const passes::CulledDraws gpu = cull_local_on_gpu(culling, local, scene, enabled, cull);
+            ASSERT_EQ(gpu.draws_per_layer.size(), layers.size());
+            for (const auto& [light, first_layer] : lights) {
+                const bool cube = light.type == LightType::Point;
+                for (uint32_t face = 0; face < (cube ? 6u : 1u); ++face) {
+                    const uint32_t layer = first_layer + face;
+                    std::vector<uint32_t> expected;
+                    for (uint32_t d = 0; enabled[layer] && d < scene.draws.size(); ++d) {
+                        const Aabb& box = scene.draws[d].world_bounds;
+                        const bool casts = caster_may_shadow_frustum(layers[layer], box) &&
+                                           (!cube || caster_may_shadow_sphere(light.position, light.range, box));
+                        if (!cull || casts) expected.push_back(d);
+                    }
+                    EXPECT_EQ(gpu.draws_per_layer[layer], expected)
+                        << "trial " << trial << " cull " << cull << " layer " << layer;
+                    if (!cull || !enabled[layer]) continue;
+                    compared += scene.draws.size();
+                    selected += expected.size();
+                }
+            }
+        }
+    }
+    EXPECT_GT(selected, compared / 100) << "some casters reach the lights";
+    EXPECT_LT(selected, compared / 2) << "most do not";
     EXPECT_TRUE(options_.validation_log->messages.empty()) << options_.validation_log->messages.front();
 }
 

@@ -153,6 +153,47 @@ TEST_P(LayeredStrategyTest, DepthMapsAndVisibilityEqualThePerCascadePasses) {
     EXPECT_LE(pixels_differing, pixels / 1000) << "pixels whose visibility differs (by 1/255 at most), of " << pixels;
 }
 
+// Spot and point lights with the layered strategy: their layers are culled on the GPU and
+// drawn per layer from the culled commands, through the same viewport and vertex math as
+// the CPU-culled passes, so their visibility is bit-identical, frame after frame, with the
+// box moving through the spot's cone and the point light's cube faces.
+TEST_P(LayeredStrategyTest, SpotAndPointShadowsEqualTheCpuCulledPasses) {
+    Settings settings = test_settings();
+    settings.shadow.cascades.resolution = kResolution;
+    settings.shadow.cull_casters = GetParam();
+    ShadowSystem per_cascade(system_desc(with_strategy(settings, ShadowStrategy::PerCascade)));
+    ShadowSystem layered(system_desc(with_strategy(settings, ShadowStrategy::Layered)));
+    ShadowSystem* systems[] = {&per_cascade, &layered};
+    std::vector<LayeredScene> scenes;
+    const LightDesc spot{LightType::Spot, {0.2f, -1.0f, 0.1f}, {-4.0f, 9.0f, 0.0f}};
+    const LightDesc point{LightType::Point, {0.0f, -1.0f, 0.0f}, {3.5f, 6.0f, -1.0f}};
+    const LightDesc lights[] = {spot, point};
+    for (ShadowSystem* system : systems) {
+        scenes.push_back(add_layered_scene(*system));
+        system->set_lights(lights);
+    }
+    size_t shadowed = 0;
+    for (int f = 0; f < 6; ++f) {
+        std::vector<std::vector<VisibilityImage2D>> visibility(2);
+        for (size_t s = 0; s < 2; ++s) {
+            change_scene(*systems[s], scenes[s], f);
+            systems[s]->prepare(orbit_view(f));
+            submit([&](VkCommandBuffer cmd) {
+                systems[s]->record_shadow_maps(cmd);
+                record_ground_visibility(cmd, *systems[s], nullptr, NormalEncoding::SignedFloat);
+            });
+            for (uint32_t slot = 1; slot <= 2; ++slot) visibility[s].push_back(read_visibility(*systems[s], slot));
+        }
+        for (size_t light = 0; light < 2; ++light) {
+            ASSERT_EQ(visibility[1][light].values, visibility[0][light].values) << "light " << light << ", frame " << f;
+            shadowed +=
+                static_cast<size_t>(std::count_if(visibility[0][light].values.begin(),
+                                                  visibility[0][light].values.end(), [](float v) { return v < 0.5f; }));
+        }
+    }
+    EXPECT_GT(shadowed, size_t{1000}) << "the lights' shadows fall on the ground";
+}
+
 INSTANTIATE_TEST_SUITE_P(CullingOnAndOff, LayeredStrategyTest, ::testing::Bool(),
                          [](const ::testing::TestParamInfo<bool>& param) {
                              return std::string(param.param ? "culled" : "unculled");
