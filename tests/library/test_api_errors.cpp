@@ -83,32 +83,31 @@ TEST_F(DeviceChecks, UnknownQueueFamilyIsAnInputError) {
     expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "queue_family 1000");
 }
 
-// The multiview strategy needs the optional multiview feature: without it in the chain,
-// asking for the strategy names the feature.
-TEST_F(DeviceChecks, MultiviewStrategyWithoutTheFeatureIsNamed) {
+// A device created with only the features Penumbra requires refuses `desc`'s strategy with
+// a DeviceError naming `named`.
+void expect_refused_with_required_features_only(ShadowSystemDesc desc, const char* named) {
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;
     features13.synchronization2 = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
+    desc.device.enabled_features = &features;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, named);
+}
+
+// The multiview strategy needs the optional multiview feature: without it in the chain,
+// asking for the strategy names the feature.
+TEST_F(DeviceChecks, MultiviewStrategyWithoutTheFeatureIsNamed) {
     Settings settings = test_settings();
     settings.shadow.strategy = ShadowStrategy::Multiview;
-    ShadowSystemDesc desc = system_desc(settings);
-    desc.device.enabled_features = &features;
-    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "multiview");
+    expect_refused_with_required_features_only(system_desc(settings), "multiview");
 }
 
 // The layered strategy needs the GPU-driven features (indirect counts, first instance,
 // shaderOutputLayer): a chain without them names them.
 TEST_F(DeviceChecks, LayeredStrategyWithoutTheGpuDrivenFeaturesIsNamed) {
-    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    features13.dynamicRendering = VK_TRUE;
-    features13.synchronization2 = VK_TRUE;
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
     Settings settings = test_settings();
     settings.shadow.strategy = ShadowStrategy::Layered;
-    ShadowSystemDesc desc = system_desc(settings);
-    desc.device.enabled_features = &features;
-    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "drawIndirectCount and shaderOutputLayer");
+    expect_refused_with_required_features_only(system_desc(settings), "drawIndirectCount and shaderOutputLayer");
 }
 
 TEST_F(DeviceChecks, FramesInFlightOutOfRange) {

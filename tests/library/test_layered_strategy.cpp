@@ -20,11 +20,6 @@ namespace {
 
 constexpr uint32_t kResolution = 512;
 
-Settings with_strategy(Settings settings, ShadowStrategy strategy) {
-    settings.shadow.strategy = strategy;
-    return settings;
-}
-
 struct LayeredScene {
     MeshArrays box = box_mesh();
     MeshArrays ground = ground_mesh();
@@ -95,7 +90,28 @@ bool on_an_edge(const std::vector<float>& depths, size_t i) {
            (y + 1 < side && differs(i + side));
 }
 
-class LayeredStrategyTest : public LibraryTest, public ::testing::WithParamInterface<bool> {};
+class LayeredStrategyTest : public LibraryTest, public ::testing::WithParamInterface<bool> {
+protected:
+    // 512-texel cascades, culling as the parameter says.
+    Settings strategy_settings(ShadowStrategy strategy) const {
+        Settings settings = test_settings();
+        settings.shadow.cascades.resolution = kResolution;
+        settings.shadow.cull_casters = GetParam();
+        settings.shadow.strategy = strategy;
+        return settings;
+    }
+
+    // Frame f: the scene's changes, prepare, the shadow maps and the ground's visibility.
+    const FrameInfo& render_frame(ShadowSystem& shadows, LayeredScene& scene, int f) {
+        change_scene(shadows, scene, f);
+        const FrameInfo& info = shadows.prepare(orbit_view(f));
+        submit([&](VkCommandBuffer cmd) {
+            shadows.record_shadow_maps(cmd);
+            record_ground_visibility(cmd, shadows, nullptr, NormalEncoding::SignedFloat);
+        });
+        return info;
+    }
+};
 
 // The per-cascade map is toroidal and the layered one window-aligned, so the rasteriser
 // sees each triangle at other pixel coordinates: interpolated depths may round
@@ -104,11 +120,8 @@ class LayeredStrategyTest : public LibraryTest, public ::testing::WithParamInter
 // discontinuity). A caster the GPU dropped or sent to the wrong cascade changes texels
 // inside its footprint too.
 TEST_P(LayeredStrategyTest, DepthMapsAndVisibilityEqualThePerCascadePasses) {
-    Settings settings = test_settings();
-    settings.shadow.cascades.resolution = kResolution;
-    settings.shadow.cull_casters = GetParam();
-    ShadowSystem per_cascade(system_desc(with_strategy(settings, ShadowStrategy::PerCascade)));
-    ShadowSystem layered(system_desc(with_strategy(settings, ShadowStrategy::Layered)));
+    ShadowSystem per_cascade(system_desc(strategy_settings(ShadowStrategy::PerCascade)));
+    ShadowSystem layered(system_desc(strategy_settings(ShadowStrategy::Layered)));
     ShadowSystem* systems[] = {&per_cascade, &layered};
     std::vector<LayeredScene> scenes;
     for (ShadowSystem* system : systems) scenes.push_back(add_layered_scene(*system));
@@ -118,12 +131,7 @@ TEST_P(LayeredStrategyTest, DepthMapsAndVisibilityEqualThePerCascadePasses) {
         std::vector<std::vector<float>> depths;
         std::vector<VisibilityImage2D> visibility;
         for (size_t s = 0; s < 2; ++s) {
-            change_scene(*systems[s], scenes[s], f);
-            const FrameInfo& info = systems[s]->prepare(orbit_view(f));
-            submit([&](VkCommandBuffer cmd) {
-                systems[s]->record_shadow_maps(cmd);
-                record_ground_visibility(cmd, *systems[s], nullptr, NormalEncoding::SignedFloat);
-            });
+            const FrameInfo& info = render_frame(*systems[s], scenes[s], f);
             depths.push_back(unwrapped(read_cascade_depths(*systems[s]), info));
             visibility.push_back(read_visibility(*systems[s], 0));
         }
@@ -158,11 +166,8 @@ TEST_P(LayeredStrategyTest, DepthMapsAndVisibilityEqualThePerCascadePasses) {
 // the CPU-culled passes, so their visibility is bit-identical, frame after frame, with the
 // box moving through the spot's cone and the point light's cube faces.
 TEST_P(LayeredStrategyTest, SpotAndPointShadowsEqualTheCpuCulledPasses) {
-    Settings settings = test_settings();
-    settings.shadow.cascades.resolution = kResolution;
-    settings.shadow.cull_casters = GetParam();
-    ShadowSystem per_cascade(system_desc(with_strategy(settings, ShadowStrategy::PerCascade)));
-    ShadowSystem layered(system_desc(with_strategy(settings, ShadowStrategy::Layered)));
+    ShadowSystem per_cascade(system_desc(strategy_settings(ShadowStrategy::PerCascade)));
+    ShadowSystem layered(system_desc(strategy_settings(ShadowStrategy::Layered)));
     ShadowSystem* systems[] = {&per_cascade, &layered};
     std::vector<LayeredScene> scenes;
     const LightDesc spot{LightType::Spot, {0.2f, -1.0f, 0.1f}, {-4.0f, 9.0f, 0.0f}};
@@ -176,12 +181,7 @@ TEST_P(LayeredStrategyTest, SpotAndPointShadowsEqualTheCpuCulledPasses) {
     for (int f = 0; f < 6; ++f) {
         std::vector<std::vector<VisibilityImage2D>> visibility(2);
         for (size_t s = 0; s < 2; ++s) {
-            change_scene(*systems[s], scenes[s], f);
-            systems[s]->prepare(orbit_view(f));
-            submit([&](VkCommandBuffer cmd) {
-                systems[s]->record_shadow_maps(cmd);
-                record_ground_visibility(cmd, *systems[s], nullptr, NormalEncoding::SignedFloat);
-            });
+            render_frame(*systems[s], scenes[s], f);
             for (uint32_t slot = 1; slot <= 2; ++slot) visibility[s].push_back(read_visibility(*systems[s], slot));
         }
         for (size_t light = 0; light < 2; ++light) {
