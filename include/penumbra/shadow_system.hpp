@@ -306,7 +306,7 @@ struct MemoryStats {
     uint64_t cascade_maps = 0;  // depth, moments and blur scratch of the cascades
     uint64_t local_maps = 0;    // depth, moments and blur scratch of spot/point lights
     uint64_t visibility = 0;    // record_visibility()'s image
-    uint64_t buffers = 0;       // uniforms, uploaded meshes, staging
+    uint64_t buffers = 0;       // uniforms, uploaded meshes, staging, the layered strategy's culled draws
     uint64_t shadow_maps() const { return cascade_maps + local_maps; }
     uint64_t total() const { return cascade_maps + local_maps + visibility + buffers; }
 };

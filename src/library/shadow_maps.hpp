@@ -38,6 +38,7 @@ public:
     uint64_t memory_bytes() const;
 
     bool cached() const { return depth_pass_.cached(); }
+    const passes::GpuCasterCulling* gpu_culling() const { return depth_pass_.gpu_culling(); }
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                 const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
                 const passes::CasterFaceCulling& culling, bool sun_casts, gpu::GpuTimer* timer);
@@ -62,6 +63,7 @@ public:
     uint64_t generation() const { return generation_; }
     SampledMaps sampled() const;
     uint64_t memory_bytes() const;  // 0 for the placeholder
+    const passes::GpuCasterCulling* gpu_culling() const { return pass_.gpu_culling(); }
 
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                 const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,

@@ -459,6 +459,9 @@ MemoryStats ShadowSystem::memory() const {
     stats.local_maps = impl.local.memory_bytes();
     stats.visibility = impl.visibility ? impl.visibility->memory_size : 0u;
     stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
+    for (const passes::GpuCasterCulling* culling : {impl.cascades.gpu_culling(), impl.local.gpu_culling()}) {
+        if (culling) stats.buffers += culling->buffer_bytes();
+    }
     return stats;
 }
 

@@ -269,6 +269,17 @@ void GpuCasterCulling::record_draws(VkCommandBuffer cmd, const CasterPipelines& 
                                  layer * draw_count_, buffers_->counts.get(), layer * bucket_count, culling);
 }
 
+uint64_t GpuCasterCulling::buffer_bytes() const {
+    uint64_t bytes = 0;
+    for (const gpu::Buffer& staging : staging_) bytes += staging.size;
+    if (!buffers_) return bytes;
+    for (const gpu::Buffer* buffer :
+         {&buffers_->instances, &buffers_->buckets, &buffers_->records, &buffers_->commands, &buffers_->counts}) {
+        bytes += buffer->size;
+    }
+    return bytes;
+}
+
 CulledDraws GpuCasterCulling::read_back(const gpu::OneTimeCommands& commands) const {
     CulledDraws result;
     result.draws_per_layer.resize(layer_count_);

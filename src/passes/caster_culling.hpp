@@ -62,6 +62,8 @@ public:
                       const CasterFaceCulling& culling, uint32_t layer) const;
 
     const std::vector<CasterBucket>& buckets() const { return buckets_; }
+    // The device and staging buffers it holds now (replaced ones still in flight left out).
+    uint64_t buffer_bytes() const;
 
     // Copies what the last recorded culling wrote to the host (a one-time submission after
     // the frame's commands completed; tests).

@@ -157,6 +157,10 @@ TEST_P(LayeredStrategyTest, DepthMapsAndVisibilityEqualThePerCascadePasses) {
         pixels += visibility[0].values.size();
     }
     EXPECT_GT(covered, texels / 2) << "casters and ground cover the cascades";
+    // The culled draws' buffers are counted: room for every caster in every cascade, 20
+    // bytes of command and 8 of record each.
+    const uint64_t commands = uint64_t{8} * 4;
+    EXPECT_GE(layered.memory().buffers, per_cascade.memory().buffers + commands * 28);
     EXPECT_LE(moved_edges, texels / 20000) << "edge texels whose depth differs beyond rounding, of " << texels;
     EXPECT_LE(pixels_differing, pixels / 1000) << "pixels whose visibility differs (by 1/255 at most), of " << pixels;
 }
