@@ -166,6 +166,9 @@ struct ShadowSystem::Impl {
         planned_static_changes = geometry.static_changes().size();
         // The layered strategy culls on the GPU (record_shadow_maps): no lists here.
         const bool cpu_culls = casts && settings.shadow.strategy != ShadowStrategy::Layered;
+        if (!cpu_culls && casts) {
+            passes::check_gpu_culling_room(device, scene.draws.size(), static_cast<uint32_t>(set.cascades.size()));
+        }
         cascade_draws = cpu_culls ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades.cached(),
                                                        geometry.static_changes(), settings.shadow.cascades.resolution)
                                   : std::vector<passes::CascadeDraws>(set.cascades.size());
@@ -221,6 +224,9 @@ struct ShadowSystem::Impl {
         size_local_shadows(plan, lights, camera, view.height, settings.local_shadows.resolution);
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
+        if (settings.shadow.strategy == ShadowStrategy::Layered) {
+            passes::check_gpu_culling_room(device, scene.draws.size(), plan.layer_count);
+        }
         local.fit(plan, frame);
         const std::vector<bool> kept =
             settings.shadow.cache_static_casters

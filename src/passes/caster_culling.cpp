@@ -5,6 +5,7 @@
 #include <compare>
 #include <cstring>
 #include <map>
+#include <string>
 
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
@@ -16,6 +17,19 @@ namespace penumbra::passes {
 namespace {
 
 constexpr uint32_t kWorkgroupSize = 64;  // caster_cull.comp's local_size_x
+// The most commands (every casting instance in every layer) the culled draws take room for:
+// 1.9 GB of commands and records, and within the shader's 32-bit command indices; less
+// where the device's storage buffers are smaller (maxStorageBufferRange: 128 MiB on lavapipe).
+constexpr uint64_t kMaxCommands = uint64_t{1} << 26;
+
+uint64_t max_commands(const gpu::Device& device) {
+    const uint64_t range = device.properties().limits.maxStorageBufferRange;
+    return std::min<uint64_t>(kMaxCommands, range / sizeof(VkDrawIndexedIndirectCommand));
+}
+
+uint64_t max_draws(const gpu::Device& device) {
+    return device.properties().limits.maxStorageBufferRange / sizeof(shader::CullInstance);
+}
 
 // What draws of one bucket share (record_indirect_caster_draws binds it once). Opaque
 // buckets sort first, as the per-draw recording orders them.
@@ -112,6 +126,30 @@ void require_gpu_driven(const gpu::Device& device) {
     }
 }
 
+void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers) {
+    const uint64_t commands = uint64_t{draws} * layers;
+    if (commands > max_commands(device)) {
+        throw InputError("shadow strategy layered: " + std::to_string(draws) + " casting instances in " +
+                         std::to_string(layers) + " layers need " + std::to_string(commands) +
+                         " indirect commands, more than the " + std::to_string(max_commands(device)) +
+                         " the GPU culling makes room for on this device; use the per-cascade strategy");
+    }
+    if (draws > max_draws(device)) {
+        throw DeviceError("shadow strategy layered: " + std::to_string(draws) +
+                          " casting instances do not fit one storage buffer of this device (maxStorageBufferRange " +
+                          std::to_string(device.properties().limits.maxStorageBufferRange) +
+                          "); use the per-cascade strategy");
+    }
+    // A bucket holds at most every draw: one indirect draw must be able to draw them all.
+    const uint32_t limit = device.properties().limits.maxDrawIndirectCount;
+    if (draws > limit) {
+        throw DeviceError("shadow strategy layered: " + std::to_string(draws) +
+                          " casting instances, more than the device draws in one indirect draw "
+                          "(maxDrawIndirectCount " +
+                          std::to_string(limit) + "); use the per-cascade strategy");
+    }
+}
+
 GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                                    uint32_t frames_in_flight)
     : device_(device),
@@ -130,9 +168,13 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
     // Frames in flight may still read the old buffers: kept until they are complete.
     if (buffers_) replaced_.emplace_back(records_ + frames_in_flight_, std::move(buffers_));
     auto buffers = std::make_unique<Buffers>();
-    // Grown with headroom so that a scene that keeps growing does not replace them each frame.
-    buffers->draw_capacity = std::max(draws + draws / 2, 64u);
-    buffers->command_capacity = std::max(commands + commands / 2, 64u);
+    // Grown with headroom (within what one storage buffer holds) so that a scene that keeps
+    // growing does not replace them each frame.
+    const auto grown = [](uint32_t needed, uint64_t most) {
+        return static_cast<uint32_t>(std::min<uint64_t>(std::max<uint64_t>(uint64_t{needed} * 3 / 2, 64u), most));
+    };
+    buffers->draw_capacity = grown(draws, max_draws(device_));
+    buffers->command_capacity = grown(commands, max_commands(device_));
     buffers->bucket_capacity = std::max(buckets + buckets / 2, 16u);
     constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     constexpr VkBufferUsageFlags kCopied = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -192,6 +234,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
 
     const auto draws = static_cast<uint32_t>(scene.draws.size());
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    check_gpu_culling_room(device_, draws, layer_count);
     ensure_capacity(draws, draws * layer_count, bucket_count * layer_count);
     const VkDeviceSize instance_bytes = VkDeviceSize{draws} * sizeof(shader::CullInstance);
     const VkDeviceSize bucket_bytes = VkDeviceSize{bucket_count} * sizeof(uint32_t);

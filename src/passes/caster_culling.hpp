@@ -32,6 +32,12 @@ struct CulledDraws {
 // Throws DeviceError naming the features GPU-driven culling needs when `device` lacks one.
 void require_gpu_driven(const gpu::Device& device);
 
+// Throws InputError when `draws` casters in `layers` layers need more indirect commands than
+// the GPU culling makes room for (2^26), DeviceError when more draws than the device draws in
+// one indirect draw (maxDrawIndirectCount). ShadowSystem::prepare() checks before anything
+// is recorded.
+void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers);
+
 // What a culling dispatch tests the draws against.
 enum class CullLayers : uint32_t {
     Cascades = PENUMBRA_CULL_CASCADES,        // PenumbraShadowUniforms::cascades
@@ -48,7 +54,8 @@ public:
     // Set PENUMBRA_SET_CASTER_DRAWS of the layered caster pipelines (and of the dispatch).
     VkDescriptorSetLayout draws_set_layout() const { return draws_set_layout_; }
 
-    // Uploads `scene`'s draws when its version or the layer count changed, then records the
+    // Uploads `scene`'s draws when its version or the layer count changed (throws as
+    // check_gpu_culling_room()), then records the
     // culling of every draw against the layers `enabled` lists (layers [0, enabled.size());
     // every draw into every enabled layer when `cull` is off), and makes the commands ready
     // for the indirect draws.

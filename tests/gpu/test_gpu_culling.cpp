@@ -9,6 +9,7 @@
 
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "core/camera_math.hpp"
@@ -17,6 +18,7 @@
 #include "core/shadow_cache.hpp"
 #include "passes/caster_culling.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/errors.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
 #include "renderer/app_context.hpp"
@@ -249,6 +251,23 @@ TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerLocalLayer) {
     EXPECT_GT(selected, compared / 100) << "some casters reach the lights";
     EXPECT_LT(selected, compared / 2) << "most do not";
     EXPECT_TRUE(options_.validation_log->messages.empty()) << options_.validation_log->messages.front();
+}
+
+// Room for every caster in every layer: 2^26 commands at most, and no more than one storage
+// buffer of the device holds (20 bytes each); refused with the numbers.
+TEST_F(GpuCulling, TooManyCastersInTooManyLayersAreRefusedWithTheNumbers) {
+    constexpr uint32_t kLayers = 192;
+    const uint64_t range = context_.properties().limits.maxStorageBufferRange;
+    const uint64_t most = std::min<uint64_t>(uint64_t{1} << 26, range / 20);
+    const size_t fits = most / kLayers;
+    EXPECT_NO_THROW(passes::check_gpu_culling_room(context_, fits, kLayers));
+    try {
+        passes::check_gpu_culling_room(context_, fits + 1, kLayers);
+        ADD_FAILURE() << "expected an InputError";
+    } catch (const InputError& error) {
+        const std::string expected = std::to_string(fits + 1) + " casting instances in 192 layers";
+        EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+    }
 }
 
 }  // namespace

@@ -198,6 +198,39 @@ TEST_P(LayeredStrategyTest, SpotAndPointShadowsEqualTheCpuCulledPasses) {
     EXPECT_GT(shadowed, size_t{1000}) << "the lights' shadows fall on the ground";
 }
 
+// 32 point lights (192 layers) over 349,526 instances need more than the 2^26 indirect
+// commands the GPU culling makes room for on any device: prepare() refuses with the numbers
+// before anything is recorded; with one point light (2.1 M commands) the frame goes through.
+TEST_F(LibraryTest, LayeredStrategyRefusesMoreCommandsThanItMakesRoomFor) {
+    Settings settings = test_settings();
+    settings.shadow.strategy = ShadowStrategy::Layered;
+    settings.local_shadows.budget = kMaxLocalShadowBudget;
+    settings.local_shadows.resolution = 64;
+    ShadowSystem shadows(system_desc(settings));
+    const MeshArrays box = box_mesh();
+    const MeshId mesh = shadows.add_mesh(box.data());
+    for (int i = 0; i < 349526; ++i) {
+        const float x = static_cast<float>(i % 600) * 3.0f - 900.0f, z = static_cast<float>(i / 600) * 3.0f - 900.0f;
+        shadows.add_instance({mesh, translation({x, 1.0f, z})});
+    }
+    std::vector<LightDesc> lights;
+    for (uint32_t l = 0; l < kMaxLocalShadowBudget; ++l) {
+        lights.push_back({LightType::Point, {0.0f, -1.0f, 0.0f}, {static_cast<float>(l) * 4.0f, 5.0f, 0.0f}});
+    }
+    shadows.set_lights(lights);
+    try {
+        shadows.prepare(orbit_view(0));
+        ADD_FAILURE() << "expected an InputError";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("349526 casting instances in 192 layers"), std::string::npos)
+            << error.what();
+    }
+    lights.resize(1);
+    shadows.set_lights(lights);
+    shadows.prepare(orbit_view(0));
+    submit([&](VkCommandBuffer cmd) { shadows.record_shadow_maps(cmd); });
+}
+
 INSTANTIATE_TEST_SUITE_P(CullingOnAndOff, LayeredStrategyTest, ::testing::Bool(),
                          [](const ::testing::TestParamInfo<bool>& param) {
                              return std::string(param.param ? "culled" : "unculled");
