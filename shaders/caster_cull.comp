@@ -100,6 +100,10 @@ void emit(uint index, uint bucket, uint layer, CullInstance instance) {
     commands[5 * command + 2] = instance.first_index;
     commands[5 * command + 3] = uint(instance.vertex_offset);
     commands[5 * command + 4] = command;
+    // The layer's statistics after the counts (FrameInfo's draws and triangles).
+    const uint statistics = cull.layer_count * cull.bucket_count + 2u * layer;
+    atomicAdd(counts[statistics], 1u);
+    atomicAdd(counts[statistics + 1u], instance.index_count / 3u);
 }
 
 void main() {

@@ -21,7 +21,9 @@
 #define PENUMBRA_BINDING_CULL_BUCKETS 1    // per bucket: its first command within a layer's commands
 #define PENUMBRA_BINDING_CULL_RECORDS 2    // per command: CullRecord (gl_InstanceIndex reads it)
 #define PENUMBRA_BINDING_CULL_COMMANDS 3   // VkDrawIndexedIndirectCommand per command
-#define PENUMBRA_BINDING_CULL_COUNTS 4     // per layer and bucket: how many commands the dispatch wrote
+// PENUMBRA_BINDING_CULL_COUNTS: per layer and bucket, how many commands the dispatch wrote;
+// then per layer, its draws and triangles (statistics for the host).
+#define PENUMBRA_BINDING_CULL_COUNTS 4
 // The moments blur pass and the local moments pass: set 0 holds the image they read.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 

@@ -56,8 +56,9 @@ uint64_t CascadeMaps::memory_bytes() const {
 
 void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                          const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
-                         const passes::CasterFaceCulling& culling, bool sun_casts, gpu::GpuTimer* timer) {
-    const passes::GpuCullOptions gpu_culling{sun_casts, settings.cull_casters};
+                         const passes::CasterFaceCulling& culling, bool sun_casts, uint64_t frame,
+                         gpu::GpuTimer* timer) {
+    const passes::GpuCullOptions gpu_culling{sun_casts, settings.cull_casters, frame};
     depth_pass_.record(cmd, frame_set, scene, draws, depth_bias_of(settings), culling, timer, gpu_culling);
     if (!moments_) return;
     gpu::TimedScope scope(timer, cmd, "shadow_moments");
@@ -112,14 +113,15 @@ uint64_t LocalMaps::memory_bytes() const {
 
 void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                        const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
-                       const ShadowSettings& settings, gpu::GpuTimer* timer) {
+                       const ShadowSettings& settings, uint64_t frame, gpu::GpuTimer* timer) {
     if (layers_ == 0) {
         // Nothing samples the placeholder map, but the descriptor set binds it in this layout.
         pass_.record_placeholder(cmd, *map_);
         return;
     }
     gpu::TimedScope scope(timer, cmd, "shadow_local");
-    pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling, settings.cull_casters);
+    pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling, settings.cull_casters,
+                 frame);
     if (!moments_) return;
     // Kept layers keep their moments too.
     std::vector<bool> kept(layers_, false);

@@ -41,7 +41,7 @@ public:
     const passes::GpuCasterCulling* gpu_culling() const { return depth_pass_.gpu_culling(); }
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                 const std::vector<passes::CascadeDraws>& draws, const ShadowSettings& settings,
-                const passes::CasterFaceCulling& culling, bool sun_casts, gpu::GpuTimer* timer);
+                const passes::CasterFaceCulling& culling, bool sun_casts, uint64_t frame, gpu::GpuTimer* timer);
 
 private:
     passes::ShadowPass depth_pass_;
@@ -67,7 +67,7 @@ public:
 
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const passes::CasterScene& scene,
                 const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
-                const ShadowSettings& settings, gpu::GpuTimer* timer);
+                const ShadowSettings& settings, uint64_t frame, gpu::GpuTimer* timer);
 
 private:
     const gpu::Device& device_;

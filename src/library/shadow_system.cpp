@@ -120,6 +120,18 @@ struct ShadowSystem::Impl {
     library::LocalShadowCache local_cache;
     passes::CasterFaceCulling cascade_culling;
     bool sun_casts = false;  // prepare(): the sun casts shadows this frame
+    // The layered strategy: which layers each shadowed light had in the recent frames (one
+    // entry per frame in flight and one more), to attribute the GPU's counts of a frame.
+    struct LocalLayerRange {
+        uint32_t light = 0;
+        uint32_t first_layer = 0;
+        uint32_t layers = 0;
+    };
+    struct LocalLayerHistory {
+        uint64_t frame = 0;
+        std::vector<LocalLayerRange> ranges;
+    };
+    std::vector<LocalLayerHistory> local_history;
     std::unique_ptr<gpu::Image> visibility;
     uint32_t visibility_slots = 0;
 
@@ -215,6 +227,40 @@ struct ShadowSystem::Impl {
         const shader::PenumbraShadowUniforms uniforms =
             library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow, sampling_frame);
         std::memcpy(slot.shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
+    }
+
+    // The layered strategy culls on the GPU while a frame runs: FrameInfo reports the counts
+    // of the last frame known complete (this one less frames_in_flight), which the culling
+    // copied for the host.
+    void report_gpu_counts() {
+        if (settings.shadow.strategy != ShadowStrategy::Layered) return;
+        if (local_history.size() != frames_in_flight + 1) local_history.assign(frames_in_flight + 1, {});
+        LocalLayerHistory& now = local_history[frame % local_history.size()];
+        now = {frame, {}};
+        for (const LocalShadowSlot& slot : plan.slots) {
+            now.ranges.push_back({slot.light, slot.first_layer, static_cast<uint32_t>(slot.view_projection.size())});
+        }
+        if (frame <= frames_in_flight) return;
+        const uint64_t complete = frame - frames_in_flight;
+        if (const auto counted = cascades.gpu_culling()->culled(complete)) {
+            for (size_t c = 0; c < info.cascades.size() && c < counted->size(); ++c) {
+                info.cascades[c].draws = (*counted)[c].draws;
+                info.cascades[c].triangles = (*counted)[c].triangles;
+            }
+        }
+        const LocalLayerHistory& then = local_history[complete % local_history.size()];
+        const auto counted = local.gpu_culling()->culled(complete);
+        if (then.frame != complete || !counted) return;
+        for (LocalShadowInfo& out : info.local_shadows) {
+            for (const LocalLayerRange& range : then.ranges) {
+                if (range.light != out.light) continue;
+                for (uint32_t layer = range.first_layer;
+                     layer < range.first_layer + range.layers && layer < counted->size(); ++layer) {
+                    out.draws += (*counted)[layer].draws;
+                    out.triangles += (*counted)[layer].triangles;
+                }
+            }
+        }
     }
 
     void prepare_local(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
@@ -349,6 +395,7 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     impl.info.cpu_cull_ms = 0.0;
     impl.prepare_sun(camera, scene);
     impl.prepare_local(camera, view, scene);
+    impl.report_gpu_counts();
     impl.slots.write_sampling_set(slot, impl.cascades.sampled(), impl.local.sampled());
     impl.info.descriptor_set = slot.sampling_set;
     return impl.info;
@@ -366,13 +413,14 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
     // The scene prepare() culled: instances changed since then show in the next frame.
     const passes::CasterScene& scene = impl.geometry.scene();
     impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
-                         impl.sun_casts, &slot.timer);
+                         impl.sun_casts, impl.frame, &slot.timer);
     // The cache holds this frame's static casters once the commands run; the changes the
     // plan covered are drawn.
     if (impl.cascades.cached())
         impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
-    impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, &slot.timer);
+    impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, impl.frame,
+                      &slot.timer);
     if (impl.settings.shadow.cache_static_casters)
         impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
     slot.shadow_maps_recorded = true;

@@ -22,6 +22,9 @@ constexpr uint32_t kWorkgroupSize = 64;  // caster_cull.comp's local_size_x
 // where the device's storage buffers are smaller (maxStorageBufferRange: 128 MiB on lavapipe).
 constexpr uint64_t kMaxCommands = uint64_t{1} << 26;
 
+// Layers one dispatch culls at most: CullPushConstants::layer_mask's bits.
+constexpr uint32_t kMaxCulledLayers = 8 * sizeof(shader::CullPushConstants::layer_mask);
+
 uint64_t max_commands(const gpu::Device& device) {
     const uint64_t range = device.properties().limits.maxStorageBufferRange;
     return std::min<uint64_t>(kMaxCommands, range / sizeof(VkDrawIndexedIndirectCommand));
@@ -158,7 +161,8 @@ GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLay
       layout_(create_cull_layout(device, frame_set_layout, draws_set_layout_)),
       pipeline_(gpu::create_compute_pipeline(device, {VK_SHADER_STAGE_COMPUTE_BIT, shaders::caster_cull_comp(), {}},
                                              layout_)),
-      staging_(frames_in_flight_) {}
+      staging_(frames_in_flight_),
+      statistics_(frames_in_flight_ + 1) {}
 
 void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32_t buckets) {
     if (buffers_ && buffers_->draw_capacity >= draws && buffers_->command_capacity >= commands &&
@@ -187,7 +191,9 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
     buffers->commands = create(VkDeviceSize{buffers->command_capacity} * sizeof(VkDrawIndexedIndirectCommand),
                                VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     buffers->counts =
-        create(VkDeviceSize{buffers->bucket_capacity} * sizeof(uint32_t), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+        // The counts, then two statistics per layer.
+        create(VkDeviceSize{buffers->bucket_capacity + 2 * kMaxCulledLayers} * sizeof(uint32_t),
+               VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5};
     buffers->pool = gpu::create_descriptor_pool(device_, 1, {&size, 1});
     buffers->set = gpu::allocate_descriptor_set(device_, buffers->pool, draws_set_layout_);
@@ -263,8 +269,12 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
 }
 
 void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                                   CullLayers layers, const std::vector<bool>& enabled, bool cull) {
+                                   CullLayers layers, const std::vector<bool>& enabled, bool cull, uint64_t frame) {
     const auto layer_count = static_cast<uint32_t>(enabled.size());
+    if (layer_count > kMaxCulledLayers) {
+        throw UsageError("GpuCasterCulling::record_cull: " + std::to_string(layer_count) + " layers, more than " +
+                         std::to_string(kMaxCulledLayers));
+    }
     ++records_;
     std::erase_if(replaced_, [&](const auto& entry) { return entry.first <= records_; });
     // The previous frame's draws and dispatch read what this one overwrites.
@@ -278,8 +288,9 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
     }
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
     if (bucket_count == 0 || layer_count_ == 0) return;
-    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0,
-                             VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t), 0);
+    const VkDeviceSize statistics_offset = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
+    const VkDeviceSize statistics_bytes = VkDeviceSize{2} * layer_count_ * sizeof(uint32_t);
+    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0, statistics_offset + statistics_bytes, 0);
     gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -297,9 +308,32 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
     }
     device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     device_->vkCmdDispatch(cmd, (draw_count_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
-    gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
-                        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    gpu::memory_barrier(
+        device_, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    // The statistics for the host: this frame's slot was last used frames in flight + 1
+    // frames ago, complete since.
+    Statistics& slot = statistics_[frame % statistics_.size()];
+    if (!slot.buffer.mapped) {
+        slot.buffer = gpu::create_buffer(device_, VkDeviceSize{2} * kMaxCulledLayers * sizeof(uint32_t),
+                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryKind::HostReadback);
+    }
+    const VkBufferCopy region{statistics_offset, 0, statistics_bytes};
+    device_->vkCmdCopyBuffer(cmd, buffers_->counts.get(), slot.buffer.get(), 1, &region);
+    gpu::transfer_to_host_barrier(device_, cmd);
+    slot.frame = frame;
+    slot.layers = layer_count_;
+}
+
+std::optional<std::vector<CulledLayer>> GpuCasterCulling::culled(uint64_t frame) const {
+    const Statistics& slot = statistics_[frame % statistics_.size()];
+    if (slot.frame != frame || !slot.buffer.mapped) return std::nullopt;
+    std::vector<uint32_t> values(size_t{2} * slot.layers);
+    std::memcpy(values.data(), slot.buffer.mapped, values.size() * sizeof(uint32_t));
+    std::vector<CulledLayer> layers(slot.layers);
+    for (uint32_t layer = 0; layer < slot.layers; ++layer) layers[layer] = {values[2 * layer], values[2 * layer + 1]};
+    return layers;
 }
 
 void GpuCasterCulling::record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,

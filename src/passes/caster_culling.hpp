@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -22,6 +23,12 @@
 #include "penumbra/gpu/resources.hpp"
 
 namespace penumbra::passes {
+
+// What one layer's culling selected, counted on the GPU.
+struct CulledLayer {
+    uint32_t draws = 0;
+    uint64_t triangles = 0;
+};
 
 // What the GPU's culling wrote, read back (tests compare it with the CPU's culling).
 struct CulledDraws {
@@ -59,8 +66,14 @@ public:
     // culling of every draw against the layers `enabled` lists (layers [0, enabled.size());
     // every draw into every enabled layer when `cull` is off), and makes the commands ready
     // for the indirect draws.
+    // `frame` tags the layers' statistics, which are copied to the host (culled()).
     void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, CullLayers layers,
-                     const std::vector<bool>& enabled, bool cull);
+                     const std::vector<bool>& enabled, bool cull, uint64_t frame = 0);
+
+    // Per layer, the draws and triangles the culling recorded for `frame` selected; nullopt
+    // once a later frame's culling reused its slot (after frames in flight + 1 frames), or
+    // when none was recorded for it. Read only after that frame's commands completed.
+    std::optional<std::vector<CulledLayer>> culled(uint64_t frame) const;
 
     // Records layer `layer`'s culled draws into the current rendering: one indirect draw per
     // bucket. `pipelines` were made with PENUMBRA_GPU_DRIVEN vertex shaders and a layout whose
@@ -104,7 +117,15 @@ private:
     // Replaced buffers, with the number of record_cull() calls after which they are unused.
     std::vector<std::pair<uint64_t, std::unique_ptr<Buffers>>> replaced_;
     std::vector<gpu::Buffer> staging_;  // one per frame in flight
-    uint64_t records_ = 0;              // record_cull() calls so far
+    // The layers' statistics copied for the host, one slot per frame in flight and one more
+    // (a frame's slot stays until the frames in flight after it have been prepared).
+    struct Statistics {
+        gpu::Buffer buffer;
+        uint64_t frame = ~uint64_t{0};
+        uint32_t layers = 0;
+    };
+    std::vector<Statistics> statistics_;
+    uint64_t records_ = 0;  // record_cull() calls so far
     std::vector<CasterBucket> buckets_;
     std::vector<uint32_t> draw_bucket_;  // per draw
     uint32_t draw_count_ = 0;

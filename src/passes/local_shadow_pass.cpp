@@ -52,7 +52,7 @@ LocalShadowPass::LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayou
 
 void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                              const std::vector<LocalShadowLayer>& layers, const gpu::Image& map,
-                             const BiasSettings& bias, CasterCulling culling, bool cull) {
+                             const BiasSettings& bias, CasterCulling culling, bool cull, uint64_t frame) {
     const uint32_t resolution = map.desc.width;
     const bool keep = std::any_of(layers.begin(), layers.end(), [](const LocalShadowLayer& l) { return l.keep; });
     std::vector<LocalShadowLayer> all_layers;
@@ -71,7 +71,7 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, con
     if (gpu_culling_) {
         std::vector<bool> culled(map.desc.layers, false);
         for (const LocalShadowLayer& layer : all_layers) culled[layer.layer] = layer.gpu_culled;
-        gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::LocalLayers, culled, cull);
+        gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::LocalLayers, culled, cull, frame);
     }
     gpu::transition(device_, cmd, map, keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads,
                     gpu::ImageState::DepthAttachment);

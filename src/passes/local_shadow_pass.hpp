@@ -54,7 +54,7 @@ public:
     // into them when `cull` is off), then drawn from the culled commands.
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                 const std::vector<LocalShadowLayer>& layers, const gpu::Image& map, const BiasSettings& bias,
-                CasterCulling culling, bool cull = true);
+                CasterCulling culling, bool cull = true, uint64_t frame = 0);
 
     const GpuCasterCulling* gpu_culling() const { return gpu_culling_.get(); }
 

@@ -168,7 +168,8 @@ void ShadowPass::record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, 
     {
         gpu::TimedScope scope(timer, cmd, "shadow_cull");
         gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::Cascades,
-                                  std::vector<bool>(options.casts ? cascade_count_ : 0u, true), options.cull);
+                                  std::vector<bool>(options.casts ? cascade_count_ : 0u, true), options.cull,
+                                  options.frame);
     }
     gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
                     gpu::ImageState::DepthAttachment);

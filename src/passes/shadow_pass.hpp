@@ -67,8 +67,9 @@ struct CascadeDraws {
 // What the layered strategy's GPU culling draws this frame (the other strategies draw the
 // CPU's lists).
 struct GpuCullOptions {
-    bool casts = true;  // false: nothing (the sun casts no shadow)
-    bool cull = true;   // false: every caster into every cascade
+    bool casts = true;   // false: nothing (the sun casts no shadow)
+    bool cull = true;    // false: every caster into every cascade
+    uint64_t frame = 0;  // tags the culling's statistics (GpuCasterCulling::culled)
 };
 
 class ShadowPass {

@@ -186,14 +186,14 @@ TEST_F(BenchCli, MultiviewIsOneTimedShadowPass) {
 }
 
 // The layered strategy: the GPU's culling and the one layered pass are timed; the CPU
-// culls no cascade (the forest's casters are culled on the GPU) and reports no draws.
+// culls no cascade, and the draws per cascade are the GPU's counts (read back a frame later).
 TEST_F(BenchCli, LayeredIsAGpuCullAndOneLayeredPass) {
     const json report = run_json(std::string(kForest) + kSmall + " --shadow-strategy layered");
     ASSERT_FALSE(report.empty());
     expect_positive_timings(report["gpu_ms"], {"shadow_cull", "shadow_layered", "lighting", "frame"});
     EXPECT_FALSE(report["gpu_ms"].contains("shadow_cascade_0"));
     EXPECT_FALSE(report["gpu_ms"].contains("shadow_multiview"));
-    for (const json& cascade : report["cascades"]) EXPECT_EQ(cascade["draws"]["max"].get<double>(), 0.0);
+    for (const json& cascade : report["cascades"]) EXPECT_GT(cascade["draws"]["max"].get<double>(), 0.0);
 }
 
 TEST_F(BenchCli, TriangleCeilingCountsEveryTriangleInEveryCascade) {

@@ -198,6 +198,53 @@ TEST_P(LayeredStrategyTest, SpotAndPointShadowsEqualTheCpuCulledPasses) {
     EXPECT_GT(shadowed, size_t{1000}) << "the lights' shadows fall on the ground";
 }
 
+// The layered strategy's FrameInfo reports what the GPU culled in the last frame known
+// complete (frames in flight earlier): per cascade the draws and triangles that multiview's
+// CPU culling lists for that frame (window-aligned cascades, one list each), per spot or
+// point light the sum over its layers; 0 for the first frames.
+TEST_P(LayeredStrategyTest, FrameInfoCountsWhatTheGpuCulledFramesInFlightEarlier) {
+    constexpr uint32_t kInFlight = 2;
+    ShadowSystem multiview(system_desc(strategy_settings(ShadowStrategy::Multiview), kInFlight));
+    ShadowSystem layered(system_desc(strategy_settings(ShadowStrategy::Layered), kInFlight));
+    ShadowSystem* systems[] = {&multiview, &layered};
+    std::vector<LayeredScene> scenes;
+    const LightDesc lights[] = {{LightType::Directional, {kSunDirection.x, kSunDirection.y, kSunDirection.z}},
+                                {LightType::Spot, {0.2f, -1.0f, 0.1f}, {-4.0f, 9.0f, 0.0f}},
+                                {LightType::Point, {0.0f, -1.0f, 0.0f}, {3.5f, 6.0f, -1.0f}}};
+    for (ShadowSystem* system : systems) {
+        scenes.push_back(add_layered_scene(*system));
+        system->set_lights(lights);
+    }
+    std::vector<FrameInfo> expected;  // multiview's, per frame
+    uint64_t counted = 0;
+    for (int f = 0; f < 7; ++f) {
+        std::vector<FrameInfo> infos;
+        for (size_t s = 0; s < 2; ++s) {
+            change_scene(*systems[s], scenes[s], f);
+            infos.push_back(systems[s]->prepare(orbit_view(f)));
+            submit([&](VkCommandBuffer cmd) { systems[s]->record_shadow_maps(cmd); });
+        }
+        expected.push_back(infos[0]);
+        const FrameInfo& actual = infos[1];
+        ASSERT_EQ(actual.cascades.size(), infos[0].cascades.size());
+        ASSERT_EQ(actual.local_shadows.size(), 2u);
+        for (size_t c = 0; c < actual.cascades.size(); ++c) {
+            const CascadeInfo* then = f >= static_cast<int>(kInFlight) ? &expected[f - kInFlight].cascades[c] : nullptr;
+            EXPECT_EQ(actual.cascades[c].draws, then ? then->draws : 0u) << "frame " << f << " cascade " << c;
+            EXPECT_EQ(actual.cascades[c].triangles, then ? then->triangles : 0u) << "frame " << f << " cascade " << c;
+            counted += actual.cascades[c].draws;
+        }
+        for (size_t l = 0; l < actual.local_shadows.size(); ++l) {
+            const LocalShadowInfo* then =
+                f >= static_cast<int>(kInFlight) ? &expected[f - kInFlight].local_shadows[l] : nullptr;
+            EXPECT_EQ(actual.local_shadows[l].draws, then ? then->draws : 0u) << "frame " << f << " light " << l;
+            EXPECT_EQ(actual.local_shadows[l].triangles, then ? then->triangles : 0u) << "frame " << f;
+            counted += actual.local_shadows[l].draws;
+        }
+    }
+    EXPECT_GT(counted, 20u) << "the casters are counted";
+}
+
 // 32 point lights (192 layers) over 349,526 instances need more than the 2^26 indirect
 // commands the GPU culling makes room for on any device: prepare() refuses with the numbers
 // before anything is recorded; with one point light (2.1 M commands) the frame goes through.
