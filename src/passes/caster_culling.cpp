@@ -17,6 +17,10 @@ namespace penumbra::passes {
 namespace {
 
 constexpr uint32_t kWorkgroupSize = 64;  // caster_cull.comp's local_size_x
+// The draws set's storage buffers: instances, bucket firsts, records, commands, counts.
+constexpr uint32_t kCullBindings[] = {PENUMBRA_BINDING_CULL_INSTANCES, PENUMBRA_BINDING_CULL_BUCKETS,
+                                      PENUMBRA_BINDING_CULL_RECORDS, PENUMBRA_BINDING_CULL_COMMANDS,
+                                      PENUMBRA_BINDING_CULL_COUNTS};
 // The most commands (every casting instance in every layer) the culled draws take room for:
 // 1.9 GB of commands and records, and within the shader's 32-bit command indices; less
 // where the device's storage buffers are smaller (maxStorageBufferRange: 128 MiB on lavapipe).
@@ -96,12 +100,9 @@ shader::CullInstance cull_instance(const CasterScene& scene, const CasterDraw& d
 
 gpu::UniqueDescriptorSetLayout create_draws_set_layout(const gpu::Device& device) {
     constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT;
-    std::array<VkDescriptorSetLayoutBinding, 5> bindings{};
-    const uint32_t numbers[] = {PENUMBRA_BINDING_CULL_INSTANCES, PENUMBRA_BINDING_CULL_BUCKETS,
-                                PENUMBRA_BINDING_CULL_RECORDS, PENUMBRA_BINDING_CULL_COMMANDS,
-                                PENUMBRA_BINDING_CULL_COUNTS};
+    std::array<VkDescriptorSetLayoutBinding, std::size(kCullBindings)> bindings{};
     for (size_t i = 0; i < bindings.size(); ++i) {
-        bindings[i] = {numbers[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr};
+        bindings[i] = {kCullBindings[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr};
     }
     return gpu::create_descriptor_set_layout(device, bindings);
 }
@@ -197,13 +198,11 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5};
     buffers->pool = gpu::create_descriptor_pool(device_, 1, {&size, 1});
     buffers->set = gpu::allocate_descriptor_set(device_, buffers->pool, draws_set_layout_);
+    // In the order of kCullBindings.
     const gpu::Buffer* bound[] = {&buffers->instances, &buffers->buckets, &buffers->records, &buffers->commands,
                                   &buffers->counts};
-    const uint32_t numbers[] = {PENUMBRA_BINDING_CULL_INSTANCES, PENUMBRA_BINDING_CULL_BUCKETS,
-                                PENUMBRA_BINDING_CULL_RECORDS, PENUMBRA_BINDING_CULL_COMMANDS,
-                                PENUMBRA_BINDING_CULL_COUNTS};
     for (size_t i = 0; i < std::size(bound); ++i) {
-        gpu::write_storage_buffer(device_, buffers->set, numbers[i], bound[i]->get(), bound[i]->size);
+        gpu::write_storage_buffer(device_, buffers->set, kCullBindings[i], bound[i]->get(), bound[i]->size);
     }
     buffers_ = std::move(buffers);
 }
