@@ -121,13 +121,28 @@ void write(void* destination, size_t offset, const void* source, size_t bytes) {
 
 }  // namespace
 
-void require_gpu_driven(const gpu::Device& device) {
+std::unique_ptr<GpuCasterCulling> create_gpu_culling(const gpu::Device& device, bool wanted,
+                                                     VkDescriptorSetLayout frame_set_layout,
+                                                     uint32_t frames_in_flight) {
+    if (!wanted) return nullptr;
     if (!device.features().gpu_driven) {
         throw DeviceError(
             "shadow strategy layered: the device was not created with the features GPU-driven culling needs "
             "(VkPhysicalDeviceFeatures::multiDrawIndirect and drawIndirectFirstInstance, "
             "VkPhysicalDeviceVulkan12Features::drawIndirectCount and shaderOutputLayer)");
     }
+    return std::make_unique<GpuCasterCulling>(device, frame_set_layout, frames_in_flight);
+}
+
+gpu::UniquePipelineLayout create_caster_pipeline_layout(const gpu::Device& device,
+                                                        VkDescriptorSetLayout frame_set_layout,
+                                                        VkDescriptorSetLayout alpha_mask_set_layout,
+                                                        const GpuCasterCulling* gpu_culling) {
+    static_assert(PENUMBRA_SET_CASTER_FRAME == 0 && PENUMBRA_SET_ALPHA_MASK == 1 && PENUMBRA_SET_CASTER_DRAWS == 2);
+    std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, alpha_mask_set_layout};
+    if (gpu_culling) set_layouts.push_back(gpu_culling->draws_set_layout());
+    const VkPushConstantRange push_range = caster_push_constant_range();
+    return gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
 }
 
 void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers) {

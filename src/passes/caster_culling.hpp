@@ -36,8 +36,20 @@ struct CulledDraws {
     std::vector<std::vector<uint32_t>> draws_per_layer;
 };
 
-// Throws DeviceError naming the features GPU-driven culling needs when `device` lacks one.
-void require_gpu_driven(const gpu::Device& device);
+class GpuCasterCulling;
+
+// The layered strategy's culling when `wanted` (DeviceError naming the features GPU-driven
+// culling needs when `device` lacks one), else nullptr. `frame_set_layout` and
+// `frames_in_flight` as GpuCasterCulling's.
+std::unique_ptr<GpuCasterCulling> create_gpu_culling(const gpu::Device& device, bool wanted,
+                                                     VkDescriptorSetLayout frame_set_layout, uint32_t frames_in_flight);
+
+// The pipeline layout of the caster passes: set 0 the frame's uniforms, set 1 the alpha
+// mask and, with `gpu_culling`, set 2 its culled draws; the caster push constants.
+gpu::UniquePipelineLayout create_caster_pipeline_layout(const gpu::Device& device,
+                                                        VkDescriptorSetLayout frame_set_layout,
+                                                        VkDescriptorSetLayout alpha_mask_set_layout,
+                                                        const GpuCasterCulling* gpu_culling);
 
 // Throws InputError when `draws` casters in `layers` layers need more indirect commands than
 // the GPU culling makes room for (2^26), DeviceError when more draws than the device draws in

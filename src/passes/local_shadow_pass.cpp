@@ -23,23 +23,6 @@ CasterPipelineTemplate local_template(VkPipelineLayout layout, bool gpu_culling)
     return pipelines;
 }
 
-gpu::UniquePipelineLayout create_caster_layout(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                                               VkDescriptorSetLayout alpha_mask_set_layout,
-                                               const GpuCasterCulling* gpu_culling) {
-    std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, alpha_mask_set_layout};
-    if (gpu_culling) set_layouts.push_back(gpu_culling->draws_set_layout());
-    const VkPushConstantRange push_range = caster_push_constant_range();
-    return gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
-}
-
-std::unique_ptr<GpuCasterCulling> create_gpu_culling(const gpu::Device& device, bool wanted,
-                                                     VkDescriptorSetLayout frame_set_layout,
-                                                     uint32_t frames_in_flight) {
-    if (!wanted) return nullptr;
-    require_gpu_driven(device);
-    return std::make_unique<GpuCasterCulling>(device, frame_set_layout, frames_in_flight);
-}
-
 }  // namespace
 
 LocalShadowPass::LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
@@ -47,7 +30,8 @@ LocalShadowPass::LocalShadowPass(const gpu::Device& device, VkDescriptorSetLayou
                                  uint32_t frames_in_flight)
     : device_(device),
       gpu_culling_(create_gpu_culling(device, gpu_culling, frame_set_layout, frames_in_flight)),
-      pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
+      pipeline_layout_(
+          create_caster_pipeline_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
       pipelines_(device, local_template(pipeline_layout_, gpu_culling)) {}
 
 void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,

@@ -54,25 +54,6 @@ CasterPipelineTemplate depth_template(const gpu::Device& device, VkPipelineLayou
     return pipelines;
 }
 
-// Sets: the frame's uniforms, the alpha mask, and for the layered strategy the culled draws.
-gpu::UniquePipelineLayout create_caster_layout(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                                               VkDescriptorSetLayout alpha_mask_set_layout,
-                                               const GpuCasterCulling* gpu_culling) {
-    static_assert(PENUMBRA_SET_CASTER_FRAME == 0 && PENUMBRA_SET_ALPHA_MASK == 1 && PENUMBRA_SET_CASTER_DRAWS == 2);
-    std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, alpha_mask_set_layout};
-    if (gpu_culling) set_layouts.push_back(gpu_culling->draws_set_layout());
-    const VkPushConstantRange push_range = caster_push_constant_range();
-    return gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
-}
-
-std::unique_ptr<GpuCasterCulling> create_gpu_culling(const gpu::Device& device, ShadowStrategy strategy,
-                                                     VkDescriptorSetLayout frame_set_layout,
-                                                     uint32_t frames_in_flight) {
-    if (strategy != ShadowStrategy::Layered) return nullptr;
-    require_gpu_driven(device);
-    return std::make_unique<GpuCasterCulling>(device, frame_set_layout, frames_in_flight);
-}
-
 }  // namespace
 
 ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
@@ -86,8 +67,9 @@ ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_se
                                    cached && strategy == ShadowStrategy::PerCascade
                                        ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
                                        : VkImageUsageFlags{0})),
-      gpu_culling_(create_gpu_culling(device, strategy, frame_set_layout, frames_in_flight)),
-      pipeline_layout_(create_caster_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
+      gpu_culling_(create_gpu_culling(device, strategy == ShadowStrategy::Layered, frame_set_layout, frames_in_flight)),
+      pipeline_layout_(
+          create_caster_pipeline_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
       pipelines_(device, depth_template(device, pipeline_layout_, strategy, cascade_count)) {
     if (strategy == ShadowStrategy::Multiview) require_multiview(device, cascade_count);
     if (cached && strategy == ShadowStrategy::PerCascade) {
