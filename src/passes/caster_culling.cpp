@@ -42,14 +42,8 @@ uint64_t max_draws(const gpu::Device& device) {
 // buckets sort first, as the per-draw recording orders them.
 struct BucketKey {
     bool masked = false;
-    VkBuffer positions = VK_NULL_HANDLE;
-    VkDeviceSize positions_offset = 0;
-    uint32_t positions_stride = 0;
-    VkFormat positions_format = VK_FORMAT_UNDEFINED;
-    VkBuffer uvs = VK_NULL_HANDLE;
-    VkDeviceSize uvs_offset = 0;
-    uint32_t uvs_stride = 0;
-    VkFormat uvs_format = VK_FORMAT_UNDEFINED;
+    VertexStream positions;
+    VertexStream uvs;  // masked only
     VkBuffer index_buffer = VK_NULL_HANDLE;
     VkIndexType index_type = VK_INDEX_TYPE_UINT32;
     VkDescriptorSet alpha_mask = VK_NULL_HANDLE;
@@ -64,15 +58,9 @@ BucketKey bucket_key(const CasterScene& scene, const CasterDraw& draw) {
     const CasterMesh& mesh = scene.meshes[draw.mesh];
     BucketKey key;
     key.masked = draw.masked;
-    key.positions = mesh.positions.buffer;
-    key.positions_offset = mesh.positions.offset;
-    key.positions_stride = mesh.positions.stride;
-    key.positions_format = mesh.positions.format;
+    key.positions = mesh.positions;
     if (draw.masked) {
-        key.uvs = mesh.uvs.buffer;
-        key.uvs_offset = mesh.uvs.offset;
-        key.uvs_stride = mesh.uvs.stride;
-        key.uvs_format = mesh.uvs.format;
+        key.uvs = mesh.uvs;
         key.alpha_mask = mesh.alpha_mask_set;
         key.alpha_cutoff = mesh.alpha_cutoff;
         key.alpha_scale = mesh.alpha_scale;
@@ -180,9 +168,9 @@ GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLay
       staging_(frames_in_flight_),
       statistics_(frames_in_flight_ + 1) {}
 
-void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32_t buckets) {
+void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32_t counts) {
     if (buffers_ && buffers_->draw_capacity >= draws && buffers_->command_capacity >= commands &&
-        buffers_->bucket_capacity >= buckets) {
+        buffers_->count_capacity >= counts) {
         return;
     }
     // Frames in flight may still read the old buffers: kept until they are complete.
@@ -195,20 +183,21 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
     };
     buffers->draw_capacity = grown(draws, max_draws(device_));
     buffers->command_capacity = grown(commands, max_commands(device_));
-    buffers->bucket_capacity = std::max(buckets + buckets / 2, 16u);
+    buffers->count_capacity = std::max(counts + counts / 2, 16u);
     constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     constexpr VkBufferUsageFlags kCopied = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     const auto create = [&](VkDeviceSize size, VkBufferUsageFlags usage) {
         return gpu::create_buffer(device_, size, kStorage | kCopied | usage, gpu::MemoryKind::DeviceLocal);
     };
     buffers->instances = create(VkDeviceSize{buffers->draw_capacity} * sizeof(shader::CullInstance), 0);
-    buffers->buckets = create(VkDeviceSize{buffers->bucket_capacity} * sizeof(uint32_t), 0);
+    // Buckets are at most their counts (one per bucket and layer).
+    buffers->buckets = create(VkDeviceSize{buffers->count_capacity} * sizeof(uint32_t), 0);
     buffers->records = create(VkDeviceSize{buffers->command_capacity} * sizeof(shader::CullRecord), 0);
     buffers->commands = create(VkDeviceSize{buffers->command_capacity} * sizeof(VkDrawIndexedIndirectCommand),
                                VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     buffers->counts =
         // The counts, then two statistics per layer.
-        create(VkDeviceSize{buffers->bucket_capacity + 2 * kMaxCulledLayers} * sizeof(uint32_t),
+        create(VkDeviceSize{buffers->count_capacity + 2 * kMaxCulledLayers} * sizeof(uint32_t),
                VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5};
     buffers->pool = gpu::create_descriptor_pool(device_, 1, {&size, 1});
@@ -228,7 +217,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     std::map<BucketKey, uint32_t> bucket_of;
     std::vector<uint32_t> draws_in_bucket;
     buckets_.clear();
-    draw_bucket_.assign(scene.draws.size(), 0);
+    std::vector<uint32_t> draw_bucket(scene.draws.size());
     for (uint32_t d = 0; d < scene.draws.size(); ++d) {
         const auto [found, inserted] =
             bucket_of.try_emplace(bucket_key(scene, scene.draws[d]), static_cast<uint32_t>(bucket_of.size()));
@@ -236,7 +225,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
             buckets_.push_back({d, 0, 0});
             draws_in_bucket.push_back(0);
         }
-        draw_bucket_[d] = found->second;
+        draw_bucket[d] = found->second;
         ++draws_in_bucket[found->second];
     }
     // Buckets in key order (opaque first), each with its commands after the previous one's
@@ -250,7 +239,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
         first_command += draws_in_bucket[bucket];
     }
     buckets_ = std::move(ordered);
-    for (uint32_t& bucket : draw_bucket_) bucket = new_index[bucket];
+    for (uint32_t& bucket : draw_bucket) bucket = new_index[bucket];
 
     const auto draws = static_cast<uint32_t>(scene.draws.size());
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
@@ -265,7 +254,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryKind::HostUpload);
     }
     for (uint32_t d = 0; d < draws; ++d) {
-        const shader::CullInstance instance = cull_instance(scene, scene.draws[d], draw_bucket_[d]);
+        const shader::CullInstance instance = cull_instance(scene, scene.draws[d], draw_bucket[d]);
         write(staging.mapped, d * sizeof(instance), &instance, sizeof(instance));
     }
     for (uint32_t b = 0; b < bucket_count; ++b) {

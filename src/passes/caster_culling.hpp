@@ -66,19 +66,18 @@ enum class CullLayers : uint32_t {
 class GpuCasterCulling {
 public:
     // `frame_set_layout` is set 0 of the culling dispatch (the shadow uniforms and the local
-    // shadows);
-    // `frames_in_flight`: how many frames may run at once (replaced buffers live that long).
+    // shadows); `frames_in_flight`: how many frames may run at once (replaced buffers live
+    // that long).
     GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout, uint32_t frames_in_flight);
 
     // Set PENUMBRA_SET_CASTER_DRAWS of the layered caster pipelines (and of the dispatch).
     VkDescriptorSetLayout draws_set_layout() const { return draws_set_layout_; }
 
     // Uploads `scene`'s draws when its version or the layer count changed (throws as
-    // check_gpu_culling_room()), then records the
-    // culling of every draw against the layers `enabled` lists (layers [0, enabled.size());
-    // every draw into every enabled layer when `cull` is off), and makes the commands ready
-    // for the indirect draws.
-    // `frame` tags the layers' statistics, which are copied to the host (culled()).
+    // check_gpu_culling_room()), then records the culling of every draw against the layers
+    // `enabled` lists (layers [0, enabled.size()); every draw into every enabled layer when
+    // `cull` is off), and makes the commands ready for the indirect draws. `frame` tags the
+    // layers' statistics, which are copied to the host (culled()).
     void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, CullLayers layers,
                      const std::vector<bool>& enabled, bool cull, uint64_t frame = 0);
 
@@ -109,16 +108,16 @@ private:
         gpu::Buffer buckets;    // first command per bucket
         gpu::Buffer records;    // CullRecord per command
         gpu::Buffer commands;   // VkDrawIndexedIndirectCommand per command
-        gpu::Buffer counts;     // per bucket
+        gpu::Buffer counts;     // per layer and bucket, then two statistics per layer
         gpu::UniqueDescriptorPool pool;
         VkDescriptorSet set = VK_NULL_HANDLE;
         uint32_t draw_capacity = 0;
         uint32_t command_capacity = 0;
-        uint32_t bucket_capacity = 0;
+        uint32_t count_capacity = 0;  // layers x buckets
     };
 
     void upload(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count);
-    void ensure_capacity(uint32_t draws, uint32_t commands, uint32_t buckets);
+    void ensure_capacity(uint32_t draws, uint32_t commands, uint32_t counts);
 
     const gpu::Device& device_;
     uint32_t frames_in_flight_;
@@ -139,7 +138,6 @@ private:
     std::vector<Statistics> statistics_;
     uint64_t records_ = 0;  // record_cull() calls so far
     std::vector<CasterBucket> buckets_;
-    std::vector<uint32_t> draw_bucket_;  // per draw
     uint32_t draw_count_ = 0;
     uint32_t layer_count_ = 0;
     uint64_t uploaded_version_ = ~uint64_t{0};

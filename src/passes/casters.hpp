@@ -27,6 +27,7 @@ struct VertexStream {
     VkDeviceSize offset = 0;
     uint32_t stride = 0;
     VkFormat format = VK_FORMAT_UNDEFINED;
+    auto operator<=>(const VertexStream&) const = default;
 };
 
 struct CasterMesh {
