@@ -36,9 +36,9 @@ struct Draw {
     uint32_t mesh = 0;       // Scene::meshes index
 };
 
-// Consecutive draws of DrawData::order with the same mesh, material and shadow receiving,
-// drawn as one instanced draw: instance slots [first_instance, first_instance + count) of
-// the frame's instance list name their draws.
+// Consecutive draws of the frame's order (GpuScene::order_draws_front_to_back) with the same mesh, material and shadow
+// receiving, drawn as one instanced draw: instance slots [first_instance, first_instance + count) of the frame's
+// instance list name their draws.
 struct DrawBatch {
     uint32_t draw = 0;  // the first draw (mesh, material, flags)
     uint32_t first_instance = 0;
@@ -50,11 +50,10 @@ struct DrawData {
     VkBuffer index_buffer = VK_NULL_HANDLE;   // uint32
     std::vector<MaterialBinding> materials;
     std::vector<Draw> draws;
-    // The order the camera passes draw in (indices into draws), nearest first, so that the
-    // depth test rejects what lies behind before it is shaded; every camera pass of a frame
-    // uses the same order.
-    std::vector<uint32_t> order;
-    // The order as batches: single-sided materials first ([0]), then double-sided ones ([1]).
+    // What the camera passes draw, in order: single-sided materials ([0]), then double-sided
+    // ones ([1]), each nearest first (GpuScene::order_draws_front_to_back), so that the depth
+    // test rejects what lies behind before it is shaded; every camera pass of a frame draws
+    // the same batches.
     std::vector<DrawBatch> batches[2];
     VkBuffer draw_models = VK_NULL_HANDLE;     // mat4 per draw (RENDERER_BINDING_DRAW_MODELS)
     VkBuffer instance_draws = VK_NULL_HANDLE;  // uint per instance slot (RENDERER_BINDING_INSTANCE_DRAWS)

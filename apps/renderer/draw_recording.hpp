@@ -50,9 +50,9 @@ void begin_camera_rendering(const gpu::Device& device, VkCommandBuffer cmd,
                             uint32_t width, uint32_t height);
 
 // Binds the scene's vertex and index buffers and draws every draw of `data` as the camera
-// passes do, in DrawData::order (nearest first) as DrawData::batches: single-sided materials
-// with `single_sided` (back faces culled), then double-sided ones with `double_sided`. The
-// frame set (RENDERER_SET_FRAME) must be bound: it holds the batches' model matrices. Passes
+// passes do, nearest first, as DrawData::batches: single-sided materials with
+// `single_sided` (back faces culled), then double-sided ones with `double_sided`. The frame
+// set (RENDERER_SET_FRAME) must be bound: it holds the batches' model matrices. Passes
 // that must cover the same fragments (the lighting and geometry-AOV passes) share this
 // order, so depth ties resolve identically.
 void record_camera_draws(const gpu::Device& device, VkCommandBuffer cmd, VkPipelineLayout layout, const DrawData& data,

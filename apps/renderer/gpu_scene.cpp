@@ -73,22 +73,23 @@ void GpuScene::order_draws_front_to_back(const glm::vec3& eye) {
         keys.push_back({band, draw.material, distance_squared, i});
     }
     std::sort(keys.begin(), keys.end());
-    draw_data_.order.clear();
-    for (const Key& key : keys) draw_data_.order.push_back(key.index);
-    build_batches();
+    std::vector<uint32_t> order;
+    order.reserve(keys.size());
+    for (const Key& key : keys) order.push_back(key.index);
+    build_batches(order);
 }
 
 // Runs of the order that share mesh, material and shadow receiving become one instanced
 // draw: the forest's 30,001 draws are a few hundred batches, so recording a camera pass
 // costs the CPU little (issue 14's CPU goal) while the order stays front to back.
-void GpuScene::build_batches() {
+void GpuScene::build_batches(const std::vector<uint32_t>& order) {
     auto* slots = static_cast<uint32_t*>(instance_slots_.mapped);
     uint32_t slot = 0;
     for (const bool double_sided : {false, true}) {
         std::vector<DrawBatch>& batches = draw_data_.batches[double_sided ? 1 : 0];
         batches.clear();
         const Draw* previous = nullptr;
-        for (const uint32_t index : draw_data_.order) {
+        for (const uint32_t index : order) {
             const Draw& draw = draw_data_.draws[index];
             if (draw_data_.materials[draw.material].double_sided != double_sided) continue;
             const bool same_batch = previous && previous->mesh == draw.mesh && previous->material == draw.material &&
@@ -135,11 +136,12 @@ void GpuScene::add_draws(const AppContext& context, const Scene& scene, const st
                                          gpu::MemoryKind::HostUpload);
     draw_data_.draw_models = draw_models_.get();
     draw_data_.instance_draws = instance_slots_.get();
+    std::vector<uint32_t> order;  // the scene's, until the first order_draws_front_to_back()
     for (uint32_t d = 0; d < draw_data_.draws.size(); ++d) {
         write_draw_model(d);
-        draw_data_.order.push_back(d);  // until the first order_draws_front_to_back()
+        order.push_back(d);
     }
-    build_batches();
+    build_batches(order);
 }
 
 void GpuScene::move_instance(size_t instance, const glm::mat4& world, ShadowSystem& shadows) {

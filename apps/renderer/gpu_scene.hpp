@@ -24,7 +24,7 @@ public:
     // Moves scene instance `instance` (an index into Scene::instances) to `world`: its draw
     // and its shadow caster. Throws InputError for an index out of range.
     void move_instance(size_t instance, const glm::mat4& world, ShadowSystem& shadows);
-    // Sorts DrawData::order by the distance of each draw's centre from `eye`, nearest first.
+    // Orders DrawData::batches by the distance of each draw's centre from `eye`, nearest first.
     void order_draws_front_to_back(const glm::vec3& eye);
 
 private:
@@ -45,8 +45,9 @@ private:
                                                                                    : white_texture_slot();
     }
     void add_draws(const AppContext& context, const Scene& scene, const std::vector<MeshRange>& ranges);
-    // DrawData::batches from DrawData::order, and the instance slots they name.
-    void build_batches();
+    // DrawData::batches from `order` (indices into DrawData::draws), and the instance slots
+    // they name.
+    void build_batches(const std::vector<uint32_t>& order);
     void write_draw_model(uint32_t draw);
     void add_shadow_casters(const Scene& scene, const std::vector<MeshRange>& ranges, ShadowSystem& shadows);
 
