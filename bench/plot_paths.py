@@ -21,6 +21,26 @@ def path_of(label):
     return found.group(1) if found else "other"
 
 
+def svg_frame(title, y_label, top, x_label=None, width=WIDTH, height=HEIGHT, margin=MARGIN, y_axis=True):
+    """The opening of an SVG chart: white background, title, x axis (and y axis), the y
+    label, and five gridlines labelled from 0 to `top`. Close the list with "</svg>"."""
+    plot_h = height - 2 * margin
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="11">',
+             f'<rect width="{width}" height="{height}" fill="white"/>',
+             f'<text x="{width / 2}" y="18" text-anchor="middle" font-size="13">{title}</text>',
+             f'<line x1="{margin}" y1="{height - margin}" x2="{width - margin}" y2="{height - margin}" stroke="black"/>']
+    if y_axis:
+        parts.append(f'<line x1="{margin}" y1="{margin}" x2="{margin}" y2="{height - margin}" stroke="black"/>')
+    if x_label:
+        parts.append(f'<text x="{width / 2}" y="{height - 12}" text-anchor="middle">{x_label}</text>')
+    parts.append(f'<text x="14" y="{height / 2}" transform="rotate(-90 14 {height / 2})" text-anchor="middle">{y_label}</text>')
+    for k in range(5):
+        y = height - margin - plot_h * k / 4
+        parts.append(f'<text x="{margin - 6}" y="{y + 4:.1f}" text-anchor="end">{top * k / 4:.2f}</text>')
+        parts.append(f'<line x1="{margin}" y1="{y:.1f}" x2="{width - margin}" y2="{y:.1f}" stroke="#ddd"/>')
+    return parts
+
+
 def svg_plot(title, series, scope):
     """An SVG line plot of {label: [ms per frame]}."""
     longest = max(len(values) for values in series.values())
@@ -33,18 +53,7 @@ def svg_plot(title, series, scope):
         y = HEIGHT - MARGIN - plot_h * value / top
         return f"{x:.1f},{y:.1f}"
 
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" font-family="sans-serif" font-size="11">',
-             f'<rect width="{WIDTH}" height="{HEIGHT}" fill="white"/>',
-             f'<text x="{WIDTH / 2}" y="18" text-anchor="middle" font-size="13">{title}</text>',
-             f'<line x1="{MARGIN}" y1="{HEIGHT - MARGIN}" x2="{WIDTH - MARGIN}" y2="{HEIGHT - MARGIN}" stroke="black"/>',
-             f'<line x1="{MARGIN}" y1="{MARGIN}" x2="{MARGIN}" y2="{HEIGHT - MARGIN}" stroke="black"/>',
-             f'<text x="{WIDTH / 2}" y="{HEIGHT - 12}" text-anchor="middle">frame</text>',
-             f'<text x="14" y="{HEIGHT / 2}" transform="rotate(-90 14 {HEIGHT / 2})" text-anchor="middle">{scope} ms (GPU)</text>']
-    for k in range(5):
-        value = top * k / 4
-        y = HEIGHT - MARGIN - plot_h * k / 4
-        parts.append(f'<text x="{MARGIN - 6}" y="{y + 4:.1f}" text-anchor="end">{value:.2f}</text>')
-        parts.append(f'<line x1="{MARGIN}" y1="{y:.1f}" x2="{WIDTH - MARGIN}" y2="{y:.1f}" stroke="#ddd"/>')
+    parts = svg_frame(title, f"{scope} ms (GPU)", top, x_label="frame")
     for index, (label, values) in enumerate(series.items()):
         colour = COLOURS[index % len(COLOURS)]
         points = " ".join(point(i, v) for i, v in enumerate(values))

@@ -10,6 +10,8 @@ import argparse
 import json
 import os
 
+from plot_paths import svg_frame
+
 WIDTH, HEIGHT, MARGIN = 760, 320, 56
 COLOURS = {"per-cascade": "#1f77b4", "multiview": "#ff7f0e", "layered": "#2ca02c", "per-cascade+cache": "#9467bd"}
 
@@ -45,15 +47,7 @@ def svg_bars(title, axis, groups):
     plot_w, plot_h = WIDTH - 2 * MARGIN, HEIGHT - 2 * MARGIN
     group_w = plot_w / max(len(groups), 1)
     bar_w = group_w * 0.8 / max(len(strategies), 1)
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" font-family="sans-serif" font-size="11">',
-             f'<rect width="{WIDTH}" height="{HEIGHT}" fill="white"/>',
-             f'<text x="{WIDTH / 2}" y="18" text-anchor="middle" font-size="13">{title}</text>',
-             f'<line x1="{MARGIN}" y1="{HEIGHT - MARGIN}" x2="{WIDTH - MARGIN}" y2="{HEIGHT - MARGIN}" stroke="black"/>',
-             f'<text x="14" y="{HEIGHT / 2}" transform="rotate(-90 14 {HEIGHT / 2})" text-anchor="middle">{axis}</text>']
-    for k in range(5):
-        y = HEIGHT - MARGIN - plot_h * k / 4
-        parts.append(f'<text x="{MARGIN - 6}" y="{y + 4:.1f}" text-anchor="end">{top * k / 4:.2f}</text>')
-        parts.append(f'<line x1="{MARGIN}" y1="{y:.1f}" x2="{WIDTH - MARGIN}" y2="{y:.1f}" stroke="#ddd"/>')
+    parts = svg_frame(title, axis, top, width=WIDTH, height=HEIGHT, margin=MARGIN, y_axis=False)
     for g, (name, values) in enumerate(groups.items()):
         x0 = MARGIN + g * group_w + group_w * 0.1
         parts.append(f'<text x="{MARGIN + (g + 0.5) * group_w:.1f}" y="{HEIGHT - MARGIN + 16}" text-anchor="middle">{name}</text>')
