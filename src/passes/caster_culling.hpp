@@ -52,9 +52,10 @@ gpu::UniquePipelineLayout create_caster_pipeline_layout(const gpu::Device& devic
                                                         const GpuCasterCulling* gpu_culling);
 
 // Throws InputError when `draws` casters in `layers` layers need more indirect commands than
-// the GPU culling makes room for (2^26), DeviceError when more draws than the device draws in
-// one indirect draw (maxDrawIndirectCount). ShadowSystem::prepare() checks before anything
-// is recorded.
+// the GPU culling makes room for (2^26, or what one storage buffer of the device holds),
+// DeviceError when the draws do not fit one storage buffer or one indirect draw
+// (maxStorageBufferRange, maxDrawIndirectCount). ShadowSystem::prepare() checks before
+// anything is recorded.
 void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers);
 
 // What a culling dispatch tests the draws against.
