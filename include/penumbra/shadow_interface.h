@@ -105,8 +105,11 @@ struct PenumbraShadowUniforms {
     float evsm_negative_exponent;
     float msm_moment_bias;
     PENUMBRA_UINT frame_index;  // rotates the sampling patterns from frame to frame
-    float padding0;
-    float padding1;
+    // The depth bias the cascade passes gave every caster (vkCmdSetDepthBias): the slope
+    // factor and the largest bias in reverse-Z depth (unclamped: FLT_MAX). The
+    // receiver-plane bias adds only what it does not cover (penumbra/glsl/filters.glsl).
+    float caster_slope_bias;
+    float caster_bias_clamp;
 };
 
 // Shadow of one light of the set_lights() list (spot and point lights; others unshadowed).
@@ -131,9 +134,9 @@ struct PenumbraLocalShadows {
     float texel_uv;                // one texel of the local map in UV
     float max_receiver_slope;      // receiver-plane gradient clamp (metres of depth per metre across)
     PENUMBRA_UINT shadowed_count;  // lights with a shadow map this frame
+    float caster_slope_bias;       // the depth bias of the light layers' casters, as the sun's
+    float caster_bias_clamp;
     PENUMBRA_UINT padding0;
-    PENUMBRA_UINT padding1;
-    PENUMBRA_UINT padding2;
     // The set_lights() index of the i-th shadowed light (visibility slot 1 + i) is element
     // [i / 4][i % 4].
     uvec4 shadowed_lights[PENUMBRA_MAX_SHADOWED_LIGHTS / 4];

@@ -63,7 +63,8 @@ std::vector<Aabb> caster_bounds(const passes::CasterScene& scene) {
 
 shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
                                                      const Light* sun, bool sun_casts_shadows,
-                                                     const ShadowSettings& settings, uint32_t frame_index) {
+                                                     const ShadowSettings& settings,
+                                                     const passes::CasterDepthBias& caster_bias, uint32_t frame_index) {
     shader::PenumbraShadowUniforms uniforms{};
     uniforms.camera_view = camera.view;
     uniforms.camera_near = camera.near_plane;
@@ -100,11 +101,14 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
     uniforms.evsm_negative_exponent = exponents.y;
     uniforms.msm_moment_bias = filter.msm_moment_bias;
     uniforms.frame_index = frame_index;
+    uniforms.caster_slope_bias = caster_bias.slope;
+    uniforms.caster_bias_clamp = caster_bias.clamp;
     return uniforms;
 }
 
 shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                 const ShadowSettings& settings) {
+                                                 const ShadowSettings& settings,
+                                                 const passes::CasterDepthBias& caster_bias) {
     shader::PenumbraLocalShadows uniforms{};
     uniforms.light_count = static_cast<uint32_t>(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
@@ -133,6 +137,8 @@ shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, 
     uniforms.normal_offset_texels = settings.bias.normal_offset;
     uniforms.texel_uv = plan.atlas_resolution > 0 ? 1.0f / static_cast<float>(plan.atlas_resolution) : 0.0f;
     uniforms.max_receiver_slope = kMaxReceiverSlope;
+    uniforms.caster_slope_bias = caster_bias.slope;
+    uniforms.caster_bias_clamp = caster_bias.clamp;
     return uniforms;
 }
 

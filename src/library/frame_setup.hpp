@@ -36,9 +36,11 @@ std::vector<Aabb> caster_bounds(const passes::CasterScene& scene);
 
 shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
                                                      const Light* sun, bool sun_casts_shadows,
-                                                     const ShadowSettings& settings, uint32_t frame_index);
+                                                     const ShadowSettings& settings,
+                                                     const passes::CasterDepthBias& caster_bias, uint32_t frame_index);
 
 shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                 const ShadowSettings& settings);
+                                                 const ShadowSettings& settings,
+                                                 const passes::CasterDepthBias& caster_bias);
 
 }  // namespace penumbra::library

@@ -225,7 +225,8 @@ struct ShadowSystem::Impl {
         }
         library::FrameSlot& slot = slots.at(frame);
         const shader::PenumbraShadowUniforms uniforms =
-            library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow, sampling_frame);
+            library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
+                                           passes::caster_depth_bias(device, settings.shadow.bias), sampling_frame);
         std::memcpy(slot.shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
     }
 
@@ -304,7 +305,8 @@ struct ShadowSystem::Impl {
             info.local_shadows.push_back(out);
         }
         info.unshadowed_lights = plan.unshadowed;
-        const shader::PenumbraLocalShadows uniforms = library::build_local_shadows(lights, plan, settings.shadow);
+        const shader::PenumbraLocalShadows uniforms = library::build_local_shadows(
+            lights, plan, settings.shadow, passes::caster_depth_bias(device, settings.shadow.bias));
         std::memcpy(slots.at(frame).local_shadows.mapped, &uniforms, sizeof(uniforms));
     }
 

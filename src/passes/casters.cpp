@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -222,6 +223,11 @@ gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint
     desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     desc.array_view = true;
     return gpu::create_image(device, desc);
+}
+
+CasterDepthBias caster_depth_bias(const gpu::Device& device, const BiasSettings& bias) {
+    const bool clamped = device.depth_bias_clamp_supported() && bias.clamp > 0.0f;
+    return {bias.slope, clamped ? bias.clamp : std::numeric_limits<float>::max()};
 }
 
 void set_shadow_depth_bias(const gpu::Device& device, VkCommandBuffer cmd, const BiasSettings& bias) {

@@ -144,6 +144,16 @@ void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, ui
 gpu::Image create_depth_map(const gpu::Device& device, uint32_t resolution, uint32_t layers,
                             VkImageUsageFlags extra_usage = 0);
 
+// The depth bias a shadow pass gives its casters, as the filters read it (the
+// receiver-plane bias adds only what this one does not cover): the slope factor and the
+// largest bias in reverse-Z depth, FLT_MAX where the bias is unclamped (the device lacks
+// depthBiasClamp, or the clamp is 0, which Vulkan reads as no clamp).
+struct CasterDepthBias {
+    float slope = 0.0f;
+    float clamp = 0.0f;
+};
+CasterDepthBias caster_depth_bias(const gpu::Device& device, const penumbra::BiasSettings& bias);
+
 // Sets the depth bias of a reverse-Z shadow pass.
 void set_shadow_depth_bias(const gpu::Device& device, VkCommandBuffer cmd, const penumbra::BiasSettings& bias);
 

@@ -68,6 +68,8 @@ static_assert(offsetof(PenumbraShadowUniforms, light_bleeding_reduction) ==
               offsetof(PenumbraShadowUniforms, camera_near) + 20);
 static_assert(offsetof(PenumbraShadowUniforms, frame_index) ==
               offsetof(PenumbraShadowUniforms, light_bleeding_reduction) + 16);
+static_assert(offsetof(PenumbraShadowUniforms, caster_slope_bias) == offsetof(PenumbraShadowUniforms, frame_index) + 4);
+static_assert(offsetof(PenumbraShadowUniforms, caster_bias_clamp) == offsetof(PenumbraShadowUniforms, frame_index) + 8);
 static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms, frame_index) + 12);
 static_assert(sizeof(PenumbraShadowUniforms) % 16 == 0);
 static_assert(sizeof(PenumbraShadowUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
@@ -88,6 +90,8 @@ static_assert(offsetof(PenumbraLocalShadow, uv_scale) == 32);
 static_assert(sizeof(PenumbraLocalShadow) == 48);
 
 static_assert(offsetof(PenumbraLocalShadows, shadowed_count) == 16);
+static_assert(offsetof(PenumbraLocalShadows, caster_slope_bias) == 20);
+static_assert(offsetof(PenumbraLocalShadows, caster_bias_clamp) == 24);
 static_assert(offsetof(PenumbraLocalShadows, shadowed_lights) == 32);
 static_assert(offsetof(PenumbraLocalShadows, layer_view_projection) == 32 + 16 * (PENUMBRA_MAX_SHADOWED_LIGHTS / 4));
 static_assert(offsetof(PenumbraLocalShadows, lights) ==

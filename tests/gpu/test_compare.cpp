@@ -7,6 +7,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "analytic_shadow.hpp"
 #include "cli_runner.hpp"
@@ -209,6 +212,33 @@ TEST(CompareReference, StripedBlendCasterCastsAsMaskAtHalfAndTheReferenceAgrees)
     EXPECT_LT(blend.hard.false_lit_outside_edges.percent(), 0.5);
     EXPECT_LT(blend.hard.false_shadow_outside_edges.percent(), 0.5);
     EXPECT_GT(shadowed_fraction(blend.images.frame), 0.01) << "the opaque stripes cast";
+}
+
+// Issue 16: ClearCoatTest's ground, 3 cm under the tiles, lit up through the striped
+// coating with pcf, poisson and pcss (480 x 270: 5.2, 7.2 and 6.4 % false lit outside
+// edges; hard 0.09 %): the receiver-plane bias added its whole static term on top of the
+// depth pass's slope bias, which already covers it (docs/filters.md). The real asset, as
+// the quality report renders it (bench/scenes/quality-clearcoat.toml).
+TEST(CompareRealAssets, ClearCoatGroundUnderTheTilesStaysShadowedWithEveryComparisonFilter) {
+    const std::filesystem::path scene = PENUMBRA_BENCH_SCENES_DIR "/quality-clearcoat.toml";
+    const std::filesystem::path model = "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf";
+    if (!std::filesystem::exists(model)) {
+        GTEST_SKIP() << model << " is absent: Debian's assimp-testmodels package is not installed (scripts/setup.sh)";
+    }
+    std::ifstream file(scene);
+    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(text.empty()) << "cannot read " << scene;
+    for (const ShadowFilter filter :
+         {ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Poisson, ShadowFilter::Pcss}) {
+        SCOPED_TRACE(::testing::PrintToString(filter));
+        RenderSettings settings = small_settings(480, 270);
+        settings.shadow.cascades.resolution = RenderSettings{}.shadow.cascades.resolution;  // the defaults throughout
+        settings.shadow.filter.mode = filter;
+        const compare::CompareResult result = compare_scene(text, settings, 4);
+        EXPECT_GT(result.hard.false_lit_outside_edges.truth_pixels, 500u) << "the spheres and tiles should cast";
+        EXPECT_LT(result.hard.false_lit_outside_edges.percent(), 0.5);
+        EXPECT_LT(result.hard.false_shadow_outside_edges.percent(), 0.1);
+    }
 }
 
 const glm::vec3 kSlantedLight{-0.6f, -1.0f, 0.35f};

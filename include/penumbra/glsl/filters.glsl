@@ -29,6 +29,9 @@ struct PenumbraShadowView {
     float pcss_receiver_distance;  // the receiver's distance
     vec4 pcss_depth_to_distance;   // distance = (x + y d) / (z + w d) of a stored reverse-Z depth d
     float moments_distance;        // the receiver's distance as the moments store it (0..1)
+    // The depth bias the shadow pass gave the map's casters: slope factor, largest bias.
+    float caster_slope_bias;
+    float caster_bias_clamp;
 };
 
 // Rotation of the Poisson patterns: interleaved gradient noise per pixel (Jimenez 2014,
@@ -57,10 +60,20 @@ vec2 penumbra_layer_uv(PenumbraShadowView view, vec2 tap_uv) { return tap_uv + v
 
 // Bias for the texels a tap actually compares: a bilinear comparison reads texel centres
 // up to one texel away from the tap on each axis, where the receiver's plane has moved
-// by |dz/du| and |dz/dv| texels' worth (the "fractional sampling error" of receiver-plane
-// bias). Zero without receiver-plane bias.
+// by |dz/du| + |dz/dv| texels' worth (the "fractional sampling error" of receiver-plane
+// bias, Isidoro 2006). The shadow pass already pushed every caster back by its
+// slope-scaled depth bias: the slope factor times the caster's larger depth slope per
+// texel, up to the clamp (vkCmdSetDepthBias). Where the caster is the receiver's own
+// surface, the acne this term is for, that is slope_bias * max(|dz/du|, |dz/dv|) per
+// texel, all of the error from a slope factor of 2 up unless clamped, so only the rest is
+// added. Adding the whole error on top let receivers light up under casters closer than
+// both biases together: the ground 3 cm under ClearCoatTest's tiles (issue 16).
+// Zero without receiver-plane bias.
 float penumbra_receiver_plane_static_bias(PenumbraShadowView view) {
-    return dot(vec2(view.texel_uv), abs(view.depth_gradient));
+    const vec2 slope_per_texel = abs(view.depth_gradient) * view.texel_uv;
+    const float sampling_error = slope_per_texel.x + slope_per_texel.y;
+    const float caster_bias = min(view.caster_slope_bias * max(slope_per_texel.x, slope_per_texel.y), view.caster_bias_clamp);
+    return max(sampling_error - caster_bias, 0.0);
 }
 
 // The receiver's depth at a tap's UV: with receiver-plane bias (Isidoro 2006) it follows

@@ -106,6 +106,8 @@ PenumbraShadowView penumbra_local_view(PenumbraLocalShadow light, PenumbraLocalC
     // b = f n / (f - n) (perspective_reverse_z in src/core/camera_math.cpp), so d = b / (depth + a).
     view.pcss_depth_to_distance = vec4(f * n / (f - n), 0.0, n / (f - n), 1.0);
     view.moments_distance = clamp(coord.distance / light.range, 0.0, 1.0);
+    view.caster_slope_bias = penumbra_local.caster_slope_bias;
+    view.caster_bias_clamp = penumbra_local.caster_bias_clamp;
     return view;
 }
 

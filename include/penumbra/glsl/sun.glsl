@@ -151,6 +151,8 @@ PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord)
     view.pcss_receiver_distance = 1.0 - depth;
     view.pcss_depth_to_distance = vec4(1.0, -1.0, 1.0, 0.0);  // 1 - depth
     view.moments_distance = 1.0 - depth;
+    view.caster_slope_bias = penumbra_shadow.caster_slope_bias;
+    view.caster_bias_clamp = penumbra_shadow.caster_bias_clamp;
     return view;
 }
 
