@@ -188,12 +188,13 @@ struct PolePenumbra {
     float tip = 0.0f;   // ... and 2.35 .. 2.65 m, near the shadow of its tip
 };
 
-PolePenumbra measure_pole_penumbra(float angular_diameter) {
+PolePenumbra measure_pole_penumbra(float angular_diameter, ShadowFilter filter = ShadowFilter::Pcss,
+                                   uint32_t resolution = 2048) {
     const Scene scene = scene_from_toml(pole_scene(angular_diameter));
     RenderSettings settings = small_settings(400, 300);
     settings.shadow.cascades.count = 1;
-    settings.shadow.cascades.resolution = 2048;
-    settings.shadow.filter.mode = ShadowFilter::Pcss;
+    settings.shadow.cascades.resolution = resolution;
+    settings.shadow.filter.mode = filter;
     settings.shadow.filter.pcss_quality = PcssQuality::High;
     settings.shadow.filter.pcss_blocker_taps = 32;
     settings.shadow.filter.pcss_max_penumbra = 64.0f;
@@ -227,6 +228,27 @@ TEST(ShadowFilters, PcssHardensAtContactAndSoftensWithTheSunsSize) {
     const float expected = 0.74f * tip_distance * 2.0f * std::tan(glm::radians(1.5f));
     EXPECT_GT(large.tip, 0.5f * expected);
     EXPECT_LT(large.tip, 1.5f * expected);
+}
+
+// Near the pole's base the sun's penumbra is 5-10 mm wide (0.54-1.08 m along the light
+// times 0.53 degrees), under one texel at 512 and 1024 texels (about 22 and 11 mm on the
+// ground). Every comparison tap is a bilinear ramp one texel wide, which is the hard
+// filter's edge; PCSS narrows that ramp to the light's footprint (issue 16: sub-texel
+// penumbrae rendered a texel wide). Near the tip's shadow (4-4.5 m along the light) the
+// footprint is wider than a texel at 512 and PCSS is wider than hard.
+TEST(ShadowFilters, PcssSubTexelPenumbraIsNarrowerThanTheBilinearComparison) {
+    for (const uint32_t resolution : {512u, 1024u}) {
+        const PolePenumbra hard = measure_pole_penumbra(0.53f, ShadowFilter::Hard, resolution);
+        const PolePenumbra pcss = measure_pole_penumbra(0.53f, ShadowFilter::Pcss, resolution);
+        std::printf("%u texels: hard %.4f / %.4f m, pcss %.4f / %.4f m (base / tip)\n", resolution, hard.base, hard.tip,
+                    pcss.base, pcss.tip);
+        EXPECT_LT(pcss.base, 0.75f * hard.base) << resolution << " texels";
+        // The 5-95 % part of a 10 mm disk's edge, plus one 5 mm bin of the profile.
+        EXPECT_LE(pcss.base, 0.0125f) << resolution << " texels";
+    }
+    const PolePenumbra hard = measure_pole_penumbra(0.53f, ShadowFilter::Hard, 512);
+    const PolePenumbra pcss = measure_pole_penumbra(0.53f, ShadowFilter::Pcss, 512);
+    EXPECT_GT(pcss.tip, hard.tip) << "wider than a texel, the light's footprint is PCSS's width";
 }
 
 // --- vsm bleeds light in the classic setup; evsm and msm much less. ---

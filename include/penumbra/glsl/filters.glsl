@@ -194,6 +194,28 @@ float penumbra_pcss_centre_tap(sampler2DArrayShadow map, PenumbraShadowView view
     return penumbra_compare_tap(map, view, vec2(0.0), penumbra_receiver_plane_static_bias(view));
 }
 
+// PCSS's comparison at the receiver for a light footprint of radius `penumbra_radius`
+// (UV per axis) narrower than the bilinear comparison's own one-texel ramp: the same four
+// texel comparisons (one gather, at the corner they share, so that the texels are exactly
+// those the weights are computed for), weighted by a ramp as wide as the footprint. A
+// ramp of width w has a per-axis variance of w^2 / 12, the light's disk r^2 / 4, so
+// w = sqrt(3) r: one texel at r = texel / sqrt(3), where the Poisson disk takes over
+// (penumbra_pcss_disk_radius); towards a contact, the nearest texel's comparison. The
+// bilinear ramp made sub-texel penumbrae a texel wide (issue 16: ClearCoatTest's 0.04 px
+// penumbra rendered 0.47 px wide, as the hard filter's).
+float penumbra_pcss_narrow_tap(sampler2DArrayShadow map, PenumbraShadowView view, vec2 penumbra_radius) {
+    const float texel = view.texel_uv;
+    const vec2 uv = penumbra_view_tap(view, vec2(0.0));
+    const vec2 position = penumbra_layer_uv(view, uv) / texel - 0.5;  // in texel centres
+    const vec2 first = floor(position);
+    const vec2 ramp = clamp(1.7320508 * penumbra_radius / texel, vec2(1e-4), vec2(1.0));
+    const vec2 weight = clamp((position - first - 0.5) / ramp + 0.5, 0.0, 1.0);
+    const float reference = penumbra_reference_depth(view, uv, penumbra_receiver_plane_static_bias(view));
+    // Gather order: x = (first.x, first.y + 1), y = (+1, +1), z = (+1, first.y), w = first.
+    const vec4 lit = textureGather(map, vec3((first + 1.0) * texel, view.layer), reference);
+    return mix(mix(lit.w, lit.z, weight.x), mix(lit.x, lit.y, weight.x), weight.y);
+}
+
 // pcss: percentage-closer soft shadows (Fernando 2005). The view gives the light's
 // geometry in UV per axis (a cascade whose X and Y extents differ gets an elliptical
 // kernel). Where the penumbra is narrower than the bilinear comparison (the sun's usual
@@ -217,7 +239,7 @@ float penumbra_filter_pcss(sampler2DArrayShadow map, sampler2DArray depth_map, P
     //    Every blocker found counts: a fade toward lit below 3 blockers (removed) erased
     //    the shadows of thin casters, which only a few search taps hit.
     const vec2 disk_radius = penumbra_pcss_disk_radius(penumbra_radius, texel);
-    if (penumbra_pcss_is_single_tap(disk_radius, texel)) return penumbra_pcss_centre_tap(map, view);
+    if (penumbra_pcss_is_single_tap(disk_radius, texel)) return penumbra_pcss_narrow_tap(map, view, penumbra_radius);
     return penumbra_poisson_comparisons(map, view, kPenumbraFilterTaps, disk_radius, rotation);
 }
 
