@@ -18,6 +18,14 @@
 #include <penumbra/penumbra.hpp>
 #include <vector>
 
+namespace penumbra {
+
+// gtest prints a test's parameter with PrintTo, found by argument-dependent lookup: a filter
+// by its name rather than as raw bytes in the test log.
+inline void PrintTo(ShadowFilter filter, std::ostream* os) { *os << choice_name(kShadowFilterChoices, filter); }
+
+}  // namespace penumbra
+
 namespace penumbra::library_tests {
 
 glm::mat4 to_glm(const Mat4& m);

@@ -54,6 +54,10 @@ enum class CameraPath { Walk, Orbit, Flythrough };
 struct CacheCase {
     ShadowFilter filter;
     CameraPath path;
+    friend void PrintTo(const CacheCase& c, std::ostream* os) {
+        static constexpr const char* kPathNames[] = {"walk", "orbit", "flythrough"};
+        *os << choice_name(kShadowFilterChoices, c.filter) << ", " << kPathNames[static_cast<int>(c.path)];
+    }
 };
 
 ViewDesc view_from(const glm::vec3& eye, const glm::vec3& target) {
