@@ -58,6 +58,13 @@ vec2 penumbra_view_tap(PenumbraShadowView view, vec2 offset) {
 // Where a tap's UV lies in the map layer (the samplers repeat: a toroidal cascade wraps).
 vec2 penumbra_layer_uv(PenumbraShadowView view, vec2 tap_uv) { return tap_uv + view.uv_offset; }
 
+// The share of the receiver-plane bias's sampling error kept although the depth pass's
+// slope bias covers it, measured (docs/filters.md, "Receiver-plane depth bias"): 0
+// speckles creases (box-on-plane, one cascade, pcf: mean |error| 0.0008 -> 0.0018), 0.75
+// and 1 let ClearCoatTest's ground light up under its tiles (pcf: 3.1 and 5.2 % false lit
+// outside edges), 0.5 does neither (0.0010; 0.28 %).
+const float kPenumbraReceiverPlaneSlack = 0.5;
+
 // Bias for the texels a tap actually compares: a bilinear comparison reads texel centres
 // up to one texel away from the tap on each axis, where the receiver's plane has moved
 // by |dz/du| + |dz/dv| texels' worth (the "fractional sampling error" of receiver-plane
@@ -65,16 +72,29 @@ vec2 penumbra_layer_uv(PenumbraShadowView view, vec2 tap_uv) { return tap_uv + v
 // slope-scaled depth bias: the slope factor times the caster's larger depth slope per
 // texel, up to the clamp (vkCmdSetDepthBias). Where the caster is the receiver's own
 // surface, the acne this term is for, that is slope_bias * max(|dz/du|, |dz/dv|) per
-// texel, all of the error from a slope factor of 2 up unless clamped, so only the rest is
-// added. Adding the whole error on top let receivers light up under casters closer than
-// both biases together: the ground 3 cm under ClearCoatTest's tiles (issue 16).
-// Zero without receiver-plane bias.
-float penumbra_receiver_plane_static_bias(PenumbraShadowView view) {
+// texel, all of the error from a slope factor of 2 up unless clamped. So the term is the
+// part of the error the slope bias leaves, plus kPenumbraReceiverPlaneSlack of the part
+// it covers: slack for where the receiver is no plane (a wall meeting the floor, whose
+// plane the outer taps extend across the crease) and for the screen-space gradient's
+// error. The whole error on top of the slope bias let receivers light up under casters
+// closer than both biases together (the ground 3 cm under ClearCoatTest's tiles, issue
+// 16); none of it left speckles along creases. A comparison at the receiver itself extends
+// the plane nowhere and takes no slack (`slack` 0). Zero without receiver-plane bias.
+float penumbra_receiver_plane_bias_term(PenumbraShadowView view, float slack) {
     const vec2 slope_per_texel = abs(view.depth_gradient) * view.texel_uv;
     const float sampling_error = slope_per_texel.x + slope_per_texel.y;
     const float caster_bias = min(view.caster_slope_bias * max(slope_per_texel.x, slope_per_texel.y), view.caster_bias_clamp);
-    return max(sampling_error - caster_bias, 0.0);
+    const float covered = min(sampling_error, caster_bias);
+    return sampling_error - covered + slack * covered;
 }
+
+// The static bias of a kernel's taps (pcf, poisson, PCSS's search and disk).
+float penumbra_receiver_plane_static_bias(PenumbraShadowView view) {
+    return penumbra_receiver_plane_bias_term(view, kPenumbraReceiverPlaneSlack);
+}
+
+// The static bias of one comparison at the receiver (PCSS's centre and narrow taps).
+float penumbra_receiver_plane_centre_bias(PenumbraShadowView view) { return penumbra_receiver_plane_bias_term(view, 0.0); }
 
 // The receiver's depth at a tap's UV: with receiver-plane bias (Isidoro 2006) it follows
 // the receiver's plane to the tap (the clamped one, where the texels are read).
@@ -189,9 +209,9 @@ bool penumbra_pcss_is_single_tap(vec2 disk_radius, float texel) {
 }
 
 // PCSS's comparison at the receiver itself: the hard filter's, plus the receiver-plane
-// static bias when that bias is on (it is then PCSS's only protection against acne).
+// bias's static term when that bias is on (then PCSS's only protection against acne).
 float penumbra_pcss_centre_tap(sampler2DArrayShadow map, PenumbraShadowView view) {
-    return penumbra_compare_tap(map, view, vec2(0.0), penumbra_receiver_plane_static_bias(view));
+    return penumbra_compare_tap(map, view, vec2(0.0), penumbra_receiver_plane_centre_bias(view));
 }
 
 // PCSS's comparison at the receiver for a light footprint of radius `penumbra_radius`
@@ -210,7 +230,7 @@ float penumbra_pcss_narrow_tap(sampler2DArrayShadow map, PenumbraShadowView view
     const vec2 first = floor(position);
     const vec2 ramp = clamp(1.7320508 * penumbra_radius / texel, vec2(1e-4), vec2(1.0));
     const vec2 weight = clamp((position - first - 0.5) / ramp + 0.5, 0.0, 1.0);
-    const float reference = penumbra_reference_depth(view, uv, penumbra_receiver_plane_static_bias(view));
+    const float reference = penumbra_reference_depth(view, uv, penumbra_receiver_plane_centre_bias(view));
     // Gather order: x = (first.x, first.y + 1), y = (+1, +1), z = (+1, first.y), w = first.
     const vec4 lit = textureGather(map, vec3((first + 1.0) * texel, view.layer), reference);
     return mix(mix(lit.w, lit.z, weight.x), mix(lit.x, lit.y, weight.x), weight.y);
