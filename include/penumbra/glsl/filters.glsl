@@ -83,7 +83,8 @@ const float kPenumbraReceiverPlaneSlack = 0.5;
 float penumbra_receiver_plane_bias_term(PenumbraShadowView view, float slack) {
     const vec2 slope_per_texel = abs(view.depth_gradient) * view.texel_uv;
     const float sampling_error = slope_per_texel.x + slope_per_texel.y;
-    const float caster_bias = min(view.caster_slope_bias * max(slope_per_texel.x, slope_per_texel.y), view.caster_bias_clamp);
+    const float slope_bias = view.caster_slope_bias * max(slope_per_texel.x, slope_per_texel.y);
+    const float caster_bias = min(slope_bias, view.caster_bias_clamp);
     const float covered = min(sampling_error, caster_bias);
     return sampling_error - covered + slack * covered;
 }
@@ -94,7 +95,9 @@ float penumbra_receiver_plane_static_bias(PenumbraShadowView view) {
 }
 
 // The static bias of one comparison at the receiver (PCSS's centre and narrow taps).
-float penumbra_receiver_plane_centre_bias(PenumbraShadowView view) { return penumbra_receiver_plane_bias_term(view, 0.0); }
+float penumbra_receiver_plane_centre_bias(PenumbraShadowView view) {
+    return penumbra_receiver_plane_bias_term(view, 0.0);
+}
 
 // The receiver's depth at a tap's UV: with receiver-plane bias (Isidoro 2006) it follows
 // the receiver's plane to the tap (the clamped one, where the texels are read).
