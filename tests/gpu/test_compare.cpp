@@ -7,13 +7,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "analytic_shadow.hpp"
 #include "cli_runner.hpp"
 #include "compare/compare_job.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "render_fixture.hpp"
 
 namespace penumbra::testing {
@@ -41,13 +40,18 @@ translation = [2.0, 0.75, -0.5]
 rotation = [0.0, 20.0, 0.0]
 )";
 
-compare::CompareResult compare_scene(const std::string& text, const RenderSettings& settings, uint32_t rays = 16,
+compare::CompareResult compare_scene(const Scene& scene, const RenderSettings& settings, uint32_t rays = 16,
                                      uint32_t stability_frames = 1) {
     compare::CompareJob job;
     job.rays = rays;
     job.stability_frames = stability_frames;
     job.render.device.validation = true;  // any message throws ValidationFailure
-    return compare::compare_prepared(job, {scene_from_toml(text), settings}, "test.toml");
+    return compare::compare_prepared(job, {scene, settings}, "test.toml");
+}
+
+compare::CompareResult compare_scene(const std::string& text, const RenderSettings& settings, uint32_t rays = 16,
+                                     uint32_t stability_frames = 1) {
+    return compare_scene(scene_from_toml(text), settings, rays, stability_frames);
 }
 
 // Ground pixels (y = 0 in the geometry AOV) whose analytic answer is unambiguous: the
@@ -220,21 +224,18 @@ TEST(CompareReference, StripedBlendCasterCastsAsMaskAtHalfAndTheReferenceAgrees)
 // depth pass's slope bias, which already covers it (docs/filters.md). The real asset, as
 // the quality report renders it (bench/scenes/quality-clearcoat.toml).
 TEST(CompareRealAssets, ClearCoatGroundUnderTheTilesStaysShadowedWithEveryComparisonFilter) {
-    const std::filesystem::path scene = PENUMBRA_BENCH_SCENES_DIR "/quality-clearcoat.toml";
     const std::filesystem::path model = "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf";
     if (!std::filesystem::exists(model)) {
         GTEST_SKIP() << model << " is absent: Debian's assimp-testmodels package is not installed (scripts/setup.sh)";
     }
-    std::ifstream file(scene);
-    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    ASSERT_FALSE(text.empty()) << "cannot read " << scene;
+    const Scene scene = load_scene(PENUMBRA_BENCH_SCENES_DIR "/quality-clearcoat.toml");
     for (const ShadowFilter filter :
          {ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Poisson, ShadowFilter::Pcss}) {
         SCOPED_TRACE(::testing::PrintToString(filter));
         RenderSettings settings = small_settings(480, 270);
         settings.shadow.cascades.resolution = RenderSettings{}.shadow.cascades.resolution;  // the defaults throughout
         settings.shadow.filter.mode = filter;
-        const compare::CompareResult result = compare_scene(text, settings, 4);
+        const compare::CompareResult result = compare_scene(scene, settings, 4);
         EXPECT_GT(result.hard.false_lit_outside_edges.truth_pixels, 500u) << "the spheres and tiles should cast";
         EXPECT_LT(result.hard.false_lit_outside_edges.percent(), 0.5);
         EXPECT_LT(result.hard.false_shadow_outside_edges.percent(), 0.1);
@@ -250,34 +251,20 @@ TEST(CompareRealAssets, ClearCoatGroundUnderTheTilesStaysShadowedWithEveryCompar
 // (which leaked light under ClearCoatTest's tiles), 203 with half of it, 590 without;
 // poisson 635, 1,033 and 1,440.
 TEST(CompareReference, KernelFiltersLeaveTheCreaseWhereABoxMeetsTheFloorLit) {
-    const std::string text = R"(
-[camera]
-eye = [6.0, 4.0, 6.0]
-target = [0.0, 1.0, 0.0]
-fov = 40.0
-near = 0.1
-far = 60.0
-
-[[lights]]
-type = "directional"
-direction = [-0.4, -1.0, -0.3]
-
-[[objects]]
-type = "plane"
-size = [20.0, 20.0]
-
-[[objects]]
-type = "box"
-size = [2.0, 2.0, 2.0]
-translation = [0.0, 1.0, 0.0]
-)";
+    // builtin:box-on-plane, seen from near the box.
+    Scene scene = load_scene("builtin:box-on-plane");
+    scene.camera.eye = {6.0f, 4.0f, 6.0f};
+    scene.camera.target = {0.0f, 1.0f, 0.0f};
+    scene.camera.fov_y_degrees = 40.0f;
+    scene.camera.near_plane = 0.1f;
+    scene.camera.far_plane = 60.0f;
     for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Poisson}) {
         SCOPED_TRACE(::testing::PrintToString(filter));
         RenderSettings settings = small_settings(480, 270);
         settings.shadow.cascades.count = 1;
         settings.shadow.cascades.resolution = 2048;
         settings.shadow.filter.mode = filter;
-        const compare::CompareResult result = compare_scene(text, settings, 8);
+        const compare::CompareResult result = compare_scene(scene, settings, 8);
         const auto& frame = result.images.frame;
         size_t lit = 0, darkened = 0;
         for (size_t i = 0; i < frame.rendered.size(); ++i) {
