@@ -177,6 +177,14 @@ InstanceId add_scene(ShadowSystem& shadows, const MeshArrays& box, const MeshArr
     return shadows.add_instance({box_mesh_id, translation(kBoxCentre)});
 }
 
+BoxesAndMover add_ground_and_box_mesh(ShadowSystem& shadows) {
+    BoxesAndMover scene;
+    const MeshId ground_id = shadows.add_mesh(scene.ground.data());
+    scene.box_id = shadows.add_mesh(scene.box.data());
+    shadows.add_instance({ground_id, Mat4{}});
+    return scene;
+}
+
 void LibraryTest::SetUp() {
     VulkanContextOptions options;
     options.validation = true;

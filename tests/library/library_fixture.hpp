@@ -140,4 +140,17 @@ protected:
 // The scene of the examples into `shadows`: the ground and the box; returns the box.
 InstanceId add_scene(ShadowSystem& shadows, const MeshArrays& box, const MeshArrays& ground);
 
+// Static boxes over the ground and one box that moves every frame: the cache and layered
+// strategy tests' scenes (each test places its own).
+struct BoxesAndMover {
+    MeshArrays box = box_mesh();
+    MeshArrays ground = ground_mesh();
+    MeshId box_id;
+    std::vector<InstanceId> statics;
+    InstanceId mover;
+};
+
+// Adds the ground (mesh and instance) and the box mesh; the caller places the boxes.
+BoxesAndMover add_ground_and_box_mesh(ShadowSystem& shadows);
+
 }  // namespace penumbra::library_tests

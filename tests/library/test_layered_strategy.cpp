@@ -20,19 +20,10 @@ namespace {
 
 constexpr uint32_t kResolution = 512;
 
-struct LayeredScene {
-    MeshArrays box = box_mesh();
-    MeshArrays ground = ground_mesh();
-    MeshId box_id;
-    std::vector<InstanceId> statics;
-    InstanceId mover;
-};
+using LayeredScene = BoxesAndMover;
 
 LayeredScene add_layered_scene(ShadowSystem& shadows) {
-    LayeredScene scene;
-    const MeshId ground_id = shadows.add_mesh(scene.ground.data());
-    scene.box_id = shadows.add_mesh(scene.box.data());
-    shadows.add_instance({ground_id, Mat4{}});
+    LayeredScene scene = add_ground_and_box_mesh(shadows);
     for (int i = 0; i < 6; ++i) {
         const glm::vec3 at(-12.0f + 5.0f * static_cast<float>(i), 1.0f + 0.5f * static_cast<float>(i % 3),
                            -4.0f + 3.0f * static_cast<float>(i % 2));

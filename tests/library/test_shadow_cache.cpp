@@ -18,19 +18,10 @@ namespace penumbra::library_tests {
 namespace {
 
 // Boxes on a grid (static), the ground, and one box that moves every frame (dynamic).
-struct CacheScene {
-    MeshArrays box = box_mesh();
-    MeshArrays ground = ground_mesh();
-    MeshId box_id;
-    std::vector<InstanceId> statics;
-    InstanceId mover;
-};
+using CacheScene = BoxesAndMover;
 
 CacheScene add_cache_scene(ShadowSystem& shadows) {
-    CacheScene scene;
-    const MeshId ground_id = shadows.add_mesh(scene.ground.data());
-    scene.box_id = shadows.add_mesh(scene.box.data());
-    shadows.add_instance({ground_id, Mat4{}});
+    CacheScene scene = add_ground_and_box_mesh(shadows);
     for (int i = 0; i < 5; ++i) {
         const glm::vec3 at(-12.0f + 6.0f * static_cast<float>(i), 1.0f + 0.5f * static_cast<float>(i % 3),
                            -4.0f + 2.0f * static_cast<float>(i % 2));
