@@ -10,6 +10,10 @@
 //                         CullRecord[gl_InstanceIndex]. For cascades one pass renders them
 //                         all and the vertex goes to its layer (gl_Layer: Vulkan 1.2's
 //                         shaderOutputLayer); a local layer is still one pass per layer
+//   PENUMBRA_VIRTUAL:     the sun's virtual shadow map: draws the commands
+//                         shaders/virtual_cull.comp wrote, one instance per page
+//                         (VirtualPageDraw[gl_InstanceIndex]), into that page of the pool,
+//                         clipped to the page
 //   PENUMBRA_MASKED:      also passes the UVs on to the alpha test
 #extension GL_GOOGLE_include_directive : require
 #ifdef PENUMBRA_MULTIVIEW
@@ -26,7 +30,48 @@
 
 layout(push_constant) uniform PushBlock { CasterPushConstants caster; };
 
-#ifdef PENUMBRA_GPU_DRIVEN
+#if defined(PENUMBRA_VIRTUAL)
+layout(std430, set = PENUMBRA_SET_CASTER_DRAWS, binding = PENUMBRA_BINDING_CULL_INSTANCES) readonly buffer Instances {
+    CullInstance instances[];
+};
+layout(std140, set = PENUMBRA_SET_VIRTUAL_PAGES, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP) uniform ClipmapBlock {
+    PenumbraVirtualClipmap clipmap;
+};
+layout(std430, set = PENUMBRA_SET_VIRTUAL_PAGES, binding = PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE) readonly buffer
+    PageTable {
+    uint page_table[];
+};
+layout(std430, set = PENUMBRA_SET_VIRTUAL_PAGES, binding = PENUMBRA_BINDING_VIRTUAL_DRAWS) readonly buffer PageDraws {
+    VirtualPageDraw page_draws[];
+};
+#define PENUMBRA_VIRTUAL_CLIPMAP clipmap
+#include "penumbra/glsl/virtual_clipmap.glsl"
+mat4 draw_model() { return instances[page_draws[gl_InstanceIndex].instance].model; }
+out float gl_ClipDistance[4];
+// The page's texels of the level's texel grid fixed in the world (as a cascade's: the world
+// page's first texel is a whole number, so a caster lands on the same texels of its page
+// with the same values in every frame that draws it, and a cached page equals a fresh
+// one), placed at the physical page in the pool and clipped to the page's 128 x 128 texels.
+vec4 layer_position(vec4 world) {
+    const VirtualPageDraw draw = page_draws[gl_InstanceIndex];
+    const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
+    const uint level = draw.entry / per_level;
+    const ivec2 world_page = penumbra_virtual_world_page_of_slot(clipmap.levels[level].first_page, draw.entry % per_level);
+    const uint page = page_table[draw.entry] & PENUMBRA_PAGE_PHYSICAL_MASK;
+    const vec3 light = (clipmap.light_view * world).xyz;
+    precise vec2 texel = light.xy * clipmap.levels[level].texels_per_metre - vec2(world_page * int(kPenumbraVirtualPageTexels));
+    texel = round(texel * 256.0) * (1.0 / 256.0);
+    const float side = float(kPenumbraVirtualPageTexels);
+    gl_ClipDistance[0] = texel.x;
+    gl_ClipDistance[1] = side - texel.x;
+    gl_ClipDistance[2] = texel.y;
+    gl_ClipDistance[3] = side - texel.y;
+    const vec2 pool_page = vec2(page % clipmap.pool_pages_per_row, page / clipmap.pool_pages_per_row);
+    const vec2 pool_texels = vec2(clipmap.pool_pages_per_row, clipmap.pool_rows) * side;
+    precise vec2 clip = (pool_page * side + texel) * (2.0 / pool_texels) - 1.0;
+    return vec4(clip, light.z * clipmap.levels[level].depth_scale + clipmap.levels[level].depth_offset, 1.0);
+}
+#elif defined(PENUMBRA_GPU_DRIVEN)
 layout(std430, set = PENUMBRA_SET_CASTER_DRAWS, binding = PENUMBRA_BINDING_CULL_INSTANCES) readonly buffer Instances {
     CullInstance instances[];
 };
@@ -44,7 +89,9 @@ uint draw_layer() { return caster.layer + PENUMBRA_VIEW_INDEX; }
 uint draw_tile() { return caster.tile; }
 #endif
 
-#ifdef PENUMBRA_LOCAL_LAYER
+#if defined(PENUMBRA_VIRTUAL)
+// layer_position() above
+#elif defined(PENUMBRA_LOCAL_LAYER)
 layout(std430, set = PENUMBRA_SET_CASTER_FRAME, binding = PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS) readonly buffer
     LocalBlock {
     PenumbraLocalShadows local_shadows;

@@ -136,7 +136,7 @@ bool quad_spans_cascades(ivec2 pixel, float depth, vec3 position, vec3 face_norm
             if (!has_geometry(other_depth)) continue;
             other_position = world_position(other, other_depth);
         }
-        if (penumbra_select_cascade(penumbra_view_depth(other_position)) != cascade) return true;
+        if (penumbra_sun_map_of(other_position) != cascade) return true;
     }
     return false;
 }

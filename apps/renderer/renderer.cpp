@@ -125,8 +125,11 @@ struct Renderer::Resources {
     gpu::Buffer lights;
     gpu::UniqueDescriptorPool descriptor_pool;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
-    ShadowResolve resolve;                   // Forward or Deferred: settings.resolve made effective
-    std::unique_ptr<ScreenPrepass> prepass;  // only with ShadowResolve::Deferred
+    ShadowResolve resolve;  // Forward or Deferred: settings.resolve made effective
+    // With ShadowResolve::Deferred, and with the virtual shadow map (its pages are marked
+    // from the frame's depth before the shadow maps are drawn).
+    std::unique_ptr<ScreenPrepass> prepass;
+    bool marks_pages = false;  // Settings::shadow.technique = virtual
     LightingPass lighting_pass;
     glm::mat4 view_projection{1.0f};  // the frame's camera, for the resolve
     Readback readback;
@@ -145,16 +148,18 @@ struct Renderer::Resources {
                                     gpu::MemoryKind::HostUpload)),
           resolve(effective_resolve(settings.resolve, settings.shadow.filter.mode, casts_local_shadows(scene),
                                     uint64_t{settings.width} * settings.height)),
-          prepass(resolve == ShadowResolve::Deferred
+          prepass(resolve == ShadowResolve::Deferred || settings.shadow.technique == ShadowTechnique::Virtual
                       ? std::make_unique<ScreenPrepass>(context, frame_set_layout,
                                                         gpu_scene.draw_data().material_set_layout, settings.width,
                                                         settings.height)
                       : nullptr),
           lighting_pass(context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
-                        settings.height, resolve, prepass ? &prepass->targets().depth : nullptr),
+                        settings.height, resolve,
+                        resolve == ShadowResolve::Deferred ? &prepass->targets().depth : nullptr),
           readback(create_readback(context, settings)),
           commands(context),
           timer(context, kMaxTimedScopes) {
+        marks_pages = settings.shadow.technique == ShadowTechnique::Virtual;
         const std::array<VkDescriptorPoolSize, 2> sizes{
             {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}}};
         descriptor_pool = gpu::create_descriptor_pool(context, 1, sizes);
@@ -279,6 +284,7 @@ void Renderer::prepare_frame(const Camera& camera) {
     shadow_frame_ = frame.frame;
     shadow_set_ = frame.descriptor_set;
     last_frame_.cascades = frame.cascades;
+    last_frame_.virtual_map = frame.virtual_map;
     last_frame_.shadow_distance = frame.shadow_distance;
     last_frame_.local_shadows = frame.local_shadows;
     last_frame_.unshadowed_lights = frame.unshadowed_lights;
@@ -299,12 +305,13 @@ void Renderer::record_frame(VkCommandBuffer cmd, ReadbackMode readback) {
     r.timer.begin_frame(cmd);
     {
         gpu::TimedScope frame_scope(&r.timer, cmd, "frame");
-        r.shadows.record_shadow_maps(cmd);
         if (r.prepass) {
-            {
-                gpu::TimedScope prepass_scope(&r.timer, cmd, "prepass");
-                r.prepass->record(cmd, r.frame_set, draw_data);
-            }
+            gpu::TimedScope prepass_scope(&r.timer, cmd, "prepass");
+            r.prepass->record(cmd, r.frame_set, draw_data);
+        }
+        if (r.marks_pages) r.shadows.record_page_marking(cmd, r.prepass->screen_inputs(r.view_projection));
+        r.shadows.record_shadow_maps(cmd);
+        if (r.resolve == ShadowResolve::Deferred) {
             r.shadows.record_visibility(cmd, r.prepass->screen_inputs(r.view_projection));
             r.lighting_pass.use_visibility_image(r.shadows.visibility_image());
         }

@@ -61,10 +61,11 @@ struct CpuTimes {
 };
 
 struct FrameInfo {
-    std::vector<CascadeInfo> cascades;           // the sun's (0 draws when it casts no shadow)
-    float shadow_distance = 0.0f;                // where the last cascade ends
-    std::vector<LocalShadowInfo> local_shadows;  // shadowed local lights, in light order
-    std::vector<uint32_t> unshadowed_lights;     // shadow-casting local lights beyond the budget
+    std::vector<CascadeInfo> cascades;             // the sun's (0 draws when it casts no shadow)
+    std::optional<VirtualShadowInfo> virtual_map;  // the sun's virtual shadow map (technique virtual)
+    float shadow_distance = 0.0f;                  // where the last cascade ends
+    std::vector<LocalShadowInfo> local_shadows;    // shadowed local lights, in light order
+    std::vector<uint32_t> unshadowed_lights;       // shadow-casting local lights beyond the budget
     // GPU time of each timed scope, in recording order: "frame", then "shadow_cascade_<i>"
     // (or "shadow_multiview", or "shadow_moments" for the moment filters), "shadow_local"
     // (only with shadowed spot/point lights), "visibility" (the compute resolve, deferred

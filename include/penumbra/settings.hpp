@@ -28,6 +28,9 @@ inline constexpr uint32_t kMinCoverageShadowResolution = 64;  // the smallest ma
 enum class SplitScheme { Uniform, Logarithmic, Practical, Manual };
 enum class FitMode { Stable, Tight };
 enum class ShadowStrategy { PerCascade, Multiview, Layered };
+// How the sun's shadow is made (docs/techniques.md): cascaded shadow maps, or a virtual
+// shadow map (a clipmap of paged levels whose texels follow the pixels' footprints).
+enum class ShadowTechnique { Cascades, Virtual };
 // Shadow filters (docs/filters.md): comparison filters over the depth map, and moment
 // filters over a prefilterable moments map converted from the depth pass.
 enum class ShadowFilter { Hard, Pcf, Poisson, Pcss, Vsm, Evsm, Msm };
@@ -91,7 +94,23 @@ struct FilterSettings {
     bool operator==(const FilterSettings&) const = default;
 };
 
+// The sun's virtual shadow map (ShadowTechnique::Virtual; docs/techniques.md, "Virtual
+// shadow maps"). Level l spans first_level_extent * 2^l metres in `resolution` texels, cut
+// into pages of 128^2 texels; a pool of pool_mib MiB holds the pages the frame's pixels
+// need (64 KiB each), the rest of every level is never allocated.
+struct VirtualShadowSettings {
+    uint32_t resolution = 16384;      // virtual texels per side of every level, 1024..16384
+    int levels = 16;                  // clipmap levels, 1..24
+    float first_level_extent = 4.0f;  // metres across the finest level, 0.01..100000
+    // A pixel samples the finest level whose texel is no larger than its footprint times
+    // 2^lod_bias: negative is sharper and takes more pages.
+    float lod_bias = 0.0f;
+    uint32_t pool_mib = 256;  // the physical pages' memory, 16..1024 MiB (pool_mib * 16 pages)
+};
+
 struct ShadowSettings {
+    ShadowTechnique technique = ShadowTechnique::Cascades;
+    VirtualShadowSettings virtual_maps;
     CascadeSettings cascades;
     BiasSettings bias;
     FilterSettings filter;
@@ -142,6 +161,8 @@ inline constexpr ChoiceName<FitMode> kFitModeChoices[] = {{"stable", FitMode::St
 inline constexpr ChoiceName<ShadowStrategy> kShadowStrategyChoices[] = {{"per-cascade", ShadowStrategy::PerCascade},
                                                                         {"multiview", ShadowStrategy::Multiview},
                                                                         {"layered", ShadowStrategy::Layered}};
+inline constexpr ChoiceName<ShadowTechnique> kShadowTechniqueChoices[] = {{"cascades", ShadowTechnique::Cascades},
+                                                                          {"virtual", ShadowTechnique::Virtual}};
 inline constexpr ChoiceName<ShadowFilter> kShadowFilterChoices[] = {
     {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"poisson", ShadowFilter::Poisson},
     {"pcss", ShadowFilter::Pcss}, {"vsm", ShadowFilter::Vsm}, {"evsm", ShadowFilter::Evsm},
@@ -185,6 +206,7 @@ namespace setting_conditions {
 inline bool practical_splits(const Settings& s) { return s.shadow.cascades.scheme == SplitScheme::Practical; }
 inline bool manual_splits(const Settings& s) { return s.shadow.cascades.scheme == SplitScheme::Manual; }
 inline bool tight_fit(const Settings& s) { return s.shadow.cascades.fit == FitMode::Tight; }
+inline bool virtual_maps(const Settings& s) { return s.shadow.technique == ShadowTechnique::Virtual; }
 // The Poisson radius serves the poisson filter and the moment filters' Poisson taps.
 inline bool poisson_disk(const Settings& s) {
     return s.shadow.filter.mode == ShadowFilter::Poisson || s.shadow.filter.moments_poisson;
@@ -199,6 +221,58 @@ inline constexpr uint32_t kMomentFilters = filter_bits({ShadowFilter::Vsm, Shado
 // default is its initializer above; a setting whose `recreates` is true sizes or
 // specialises GPU resources (pipelines, maps), so changing it needs a new ShadowSystem.
 inline constexpr SettingDeclaration kSettingDeclarations[] = {
+    // The sun's technique and its virtual shadow map (docs/techniques.md).
+    declare_choice<kShadowTechniqueChoices, &Settings::shadow, &ShadowSettings::technique>(
+        {.name = "shadow_technique",
+         .config_key = "technique",
+         .group = "virtual",
+         .label = "technique",
+         .help = "The sun's shadow: cascaded or virtual shadow maps",
+         .recreates = true}),
+    declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::resolution>(
+        {.name = "virtual_resolution",
+         .group = "virtual",
+         .label = "level resolution",
+         .help = "Virtual shadow map: texels per side of every clipmap level",
+         .minimum = 1024,
+         .maximum = 16384,
+         .powers_of_two = true,
+         .recreates = true,
+         .applies_when = setting_conditions::virtual_maps}),
+    declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::levels>(
+        {.name = "virtual_levels",
+         .group = "virtual",
+         .label = "levels",
+         .help = "Virtual shadow map: clipmap levels, each twice as wide as the one before",
+         .minimum = 1,
+         .maximum = 24,
+         .recreates = true,
+         .applies_when = setting_conditions::virtual_maps}),
+    declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::first_level_extent>(
+        {.name = "virtual_first_extent",
+         .group = "virtual",
+         .label = "finest level (m)",
+         .help = "Virtual shadow map: metres across the finest level",
+         .minimum = 0.01,
+         .maximum = 1.0e5,
+         .applies_when = setting_conditions::virtual_maps}),
+    declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::lod_bias>(
+        {.name = "virtual_lod_bias",
+         .group = "virtual",
+         .label = "LOD bias",
+         .help = "Virtual shadow map: texels up to 2^bias times a pixel's footprint (negative: sharper, more pages)",
+         .minimum = -4,
+         .maximum = 4,
+         .applies_when = setting_conditions::virtual_maps}),
+    declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::pool_mib>(
+        {.name = "virtual_pool_mib",
+         .group = "virtual",
+         .label = "page pool (MiB)",
+         .help = "Virtual shadow map: memory of the physical pages (64 KiB each)",
+         .minimum = 16,
+         .maximum = 1024,
+         .recreates = true,
+         .applies_when = setting_conditions::virtual_maps}),
     // The sun's cascades (docs/techniques.md).
     declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::count>({.name = "cascades",
                                                                                     .group = "cascades",
@@ -466,6 +540,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
 const std::map<std::string, SplitScheme>& split_scheme_names();
 const std::map<std::string, FitMode>& fit_mode_names();
 const std::map<std::string, ShadowStrategy>& shadow_strategy_names();
+const std::map<std::string, ShadowTechnique>& shadow_technique_names();
 const std::map<std::string, ShadowFilter>& shadow_filter_names();
 const std::map<std::string, PcssQuality>& pcss_quality_names();
 const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names();

@@ -22,6 +22,11 @@
 //   float penumbra_light_shadow(index, world_position, normal, plane_normal, pixel)
 //   float penumbra_light_visibility(index, world_position, normal, plane_normal, pixel)
 //   int penumbra_select_cascade(penumbra_view_depth(world_position))   // debug views
+//   int penumbra_sun_map_of(world_position)  // the cascade, or with virtual shadow maps the level
+//
+// With Settings::shadow.technique = virtual (penumbra_sun_is_virtual()), the sun's functions
+// read the virtual shadow map instead of the cascades: PenumbraSunReceiver::cascade is then
+// the clipmap level, and the same calls work unchanged (penumbra/glsl/virtual.glsl).
 #ifndef PENUMBRA_SHADOW_GLSL
 #define PENUMBRA_SHADOW_GLSL
 
@@ -49,10 +54,21 @@ layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_LOCAL_DEPTH) unifor
 layout(set = PENUMBRA_SHADOW_SET,
        binding = PENUMBRA_BINDING_LOCAL_MOMENTS) uniform sampler2DArray penumbra_local_moments;
 
+layout(std140, set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP_BLOCK) uniform PenumbraVirtualBlock {
+    PenumbraVirtualClipmap penumbra_virtual;
+};
+layout(std430, set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE_BUFFER) readonly buffer
+    PenumbraPageTableBlock {
+    uint penumbra_page_table[];
+};
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL) uniform sampler2DShadow penumbra_virtual_pool;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH) uniform sampler2D penumbra_virtual_pool_depth;
+
 #include "penumbra/glsl/filter_constants.glsl"
 #include "penumbra/glsl/poisson_disks.glsl"
 #include "penumbra/glsl/moments.glsl"
 #include "penumbra/glsl/pcf.glsl"
+#include "penumbra/glsl/virtual.glsl"
 #include "penumbra/glsl/filters.glsl"
 #include "penumbra/glsl/sun.glsl"
 #include "penumbra/glsl/local.glsl"

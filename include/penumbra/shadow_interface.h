@@ -30,6 +30,11 @@
 #define PENUMBRA_BINDING_LOCAL_MAP 5        // sampler2DArrayShadow: every shadowed spot/point light's layers
 #define PENUMBRA_BINDING_LOCAL_DEPTH 6      // sampler2DArray: the same map's raw depth
 #define PENUMBRA_BINDING_LOCAL_MOMENTS 7    // sampler2DArray: local lights' filtered moments, else their depth map
+// The sun's virtual shadow map (the technique "virtual"; with cascades, placeholders):
+#define PENUMBRA_BINDING_VIRTUAL_CLIPMAP_BLOCK 8      // PenumbraVirtualClipmap (uniform buffer)
+#define PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE_BUFFER 9  // uint per level and slot (storage buffer)
+#define PENUMBRA_BINDING_VIRTUAL_POOL 10              // sampler2DShadow: the physical pages, hardware comparison
+#define PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH 11        // sampler2D: the same pages' raw depth
 
 // Filters (Settings::shadow.filter.mode): the ShadowFilter's value is the first
 // specialization constant (checked in src/passes/shader_interface.hpp).
@@ -142,6 +147,57 @@ struct PenumbraLocalShadows {
     uvec4 shadowed_lights[PENUMBRA_MAX_SHADOWED_LIGHTS / 4];
     mat4 layer_view_projection[PENUMBRA_MAX_LOCAL_SHADOW_LAYERS];  // world -> reverse-Z clip per layer
     PenumbraLocalShadow lights[PENUMBRA_MAX_LIGHTS];
+};
+
+// ------------------------------------------------------------ virtual shadow maps
+// The sun's virtual shadow map (Settings::shadow.technique = virtual): a clipmap of levels,
+// each twice as wide as the one before and centred on the camera, whose 128^2-texel pages
+// live in a pool image where a page table says (penumbra/glsl/virtual.glsl samples them).
+#define PENUMBRA_MAX_VIRTUAL_LEVELS 24
+// A page table entry, one uint per level and slot (level * pages_per_side^2 + slot):
+#define PENUMBRA_PAGE_ALLOCATED 0x80000000u  // holds the physical page in the low bits
+#define PENUMBRA_PAGE_VALID 0x40000000u      // its texels hold the page's casters (else it is drawn)
+#define PENUMBRA_PAGE_RENDER 0x20000000u     // drawn this frame (the casters' culling looks for it)
+#define PENUMBRA_PAGE_PHYSICAL_MASK 0x00FFFFFFu
+// A physical page's owner when no entry holds it.
+#define PENUMBRA_PAGE_NO_OWNER 0xFFFFFFFFu
+// One level of the sun's virtual shadow map (docs/techniques.md, "Virtual shadow maps"): a
+// window of pages_per_side^2 pages of 128^2 texels, in a page grid fixed in the world, and
+// where the window lay the frame before (Penumbra's page allocation frees the pages that
+// left it).
+struct PenumbraVirtualLevel {
+    ivec2 first_page;           // world page of the window's page (0, 0)
+    ivec2 previous_first_page;  // the same last frame
+    float texels_per_metre;
+    float texel_world_size;
+    float depth_scale;
+    float depth_offset;
+};
+
+struct PenumbraVirtualClipmap {
+    mat4 light_view;   // world -> light view, every level's
+    mat4 camera_view;  // world -> view of the prepared camera (the shadow distance is a view depth)
+    // xyz: the prepared camera's position; w: metres of pixel footprint per metre of distance
+    vec4 camera_position;
+    PENUMBRA_UINT level_count;
+    PENUMBRA_UINT pages_per_side;  // of every level's window
+    PENUMBRA_UINT pool_pages;      // physical pages
+    PENUMBRA_UINT frame;           // increases by one per frame (the pages' ages)
+    float lod_scale;               // 2^lod_bias
+    float mark_radius_texels;      // what a receiver's filter reads around it, normal offset included
+    float shadow_distance;         // pixels at a larger view depth mark nothing
+    PENUMBRA_UINT invalidate_all;  // 1: every page's texels are stale (the light or the depth bias changed)
+    PENUMBRA_UINT invalidation_count;
+    // The pool image: pages of 128^2 texels in rows of pool_pages_per_row, physical page p
+    // at (p % pool_pages_per_row, p / pool_pages_per_row).
+    PENUMBRA_UINT pool_pages_per_row;
+    PENUMBRA_UINT pool_rows;
+    float light_tan_half_angle;  // tan of the sun's angular radius (PCSS)
+    float max_receiver_slope;    // receiver-plane gradient clamp, metres of depth per metre across
+    float fade_start;            // view depth where the shadow starts fading to lit at shadow_distance
+    float padding0;
+    float padding1;
+    PenumbraVirtualLevel levels[PENUMBRA_MAX_VIRTUAL_LEVELS];
 };
 
 #endif

@@ -193,15 +193,38 @@ struct LocalShadowInfo {
     uint32_t layers_kept = 0;
 };
 
+// The sun's virtual shadow map this frame (Settings::shadow.technique = virtual;
+// docs/techniques.md, "Virtual shadow maps").
+struct VirtualShadowInfo {
+    uint32_t levels = 0;                  // clipmap levels (0: the sun casts no shadow)
+    std::vector<float> texel_world_size;  // metres per texel of each level, finest first
+    uint32_t pool_pages = 0;              // physical pages of 128 x 128 texels (64 KiB each)
+    uint64_t pool_bytes = 0;
+    uint32_t invalidations = 0;    // page rectangles made stale this frame (changed static casters, dynamic ones)
+    bool invalidated_all = false;  // every page stale: light, depth range or settings changed, or no cache
+    // The GPU's counts of frame `counted_frame`, the last one known complete (this one less
+    // frames_in_flight): 0 until there is one. No readback waits for them.
+    uint64_t counted_frame = 0;
+    uint32_t pages_requested = 0;     // pages the pixels' filters read (their level's and the next coarser's)
+    uint32_t pages_rendered = 0;      // drawn that frame: new pages and stale ones
+    uint32_t pages_cached = 0;        // requested and still valid: not drawn
+    uint32_t pages_unserved = 0;      // requested, but the pool was full: a coarser level served their pixels
+    uint32_t pages_resident = 0;      // physical pages holding a page after that frame's allocation
+    uint32_t pages_evicted = 0;       // unrequested pages given to others, least recently requested first
+    uint32_t page_draws = 0;          // caster instances drawn into pages
+    uint32_t dropped_page_draws = 0;  // beyond Penumbra's draw buffer: their pages were drawn again the next frame
+};
+
 struct FrameInfo {
     uint64_t frame = 0;  // counts prepare() calls, from 1
     // The sun (the first directional light), when there is one. Its cascades are fitted
     // even when it casts no shadow (then nothing is drawn into them: draws 0).
     std::optional<uint32_t> sun;
-    Vec3 sun_direction{0.0f, -1.0f, 0.0f};  // the direction its light travels, normalised
-    std::vector<CascadeInfo> cascades;
-    float shadow_distance = 0.0f;                // where the last cascade ends (fading to lit before it)
-    std::vector<LocalShadowInfo> local_shadows;  // shadowed spot/point lights, in light order
+    Vec3 sun_direction{0.0f, -1.0f, 0.0f};         // the direction its light travels, normalised
+    std::vector<CascadeInfo> cascades;             // empty with the virtual shadow map
+    std::optional<VirtualShadowInfo> virtual_map;  // with Settings::shadow.technique = virtual
+    float shadow_distance = 0.0f;                  // where the last cascade ends (fading to lit before it)
+    std::vector<LocalShadowInfo> local_shadows;    // shadowed spot/point lights, in light order
     // Spot/point lights that cast shadows but got none: beyond the budget or the layers.
     std::vector<uint32_t> unshadowed_lights;
     // The set the caller binds for penumbra/shadow.glsl (at the set index of its choosing),
@@ -288,6 +311,9 @@ struct ShadowMaps {
     MapImage cascade_moments;  // vsm/evsm/msm only (else image == VK_NULL_HANDLE)
     MapImage local;            // D32 reverse-Z depth of every shadowed spot/point light's layers
     MapImage local_moments;    // vsm/evsm/msm with shadowed local lights only
+    // The virtual shadow map's physical pages (technique virtual; a placeholder otherwise):
+    // D32 reverse-Z, pages of 128 x 128 texels in rows (penumbra/shadow_interface.h).
+    MapImage virtual_pool;
 };
 
 // -------------------------------------------------------------- timings and memory
@@ -305,10 +331,11 @@ struct GpuTimes {
 struct MemoryStats {
     uint64_t cascade_maps = 0;  // depth, moments and blur scratch of the cascades
     uint64_t local_maps = 0;    // depth, moments and blur scratch of spot/point lights
+    uint64_t virtual_pool = 0;  // the virtual shadow map's physical pages (Settings::shadow.virtual_maps.pool_mib)
     uint64_t visibility = 0;    // record_visibility()'s image
-    uint64_t buffers = 0;       // uniforms, uploaded meshes, staging, the layered strategy's culled draws
-    uint64_t shadow_maps() const { return cascade_maps + local_maps; }
-    uint64_t total() const { return cascade_maps + local_maps + visibility + buffers; }
+    uint64_t buffers = 0;       // uniforms, uploaded meshes, staging, culled draws, the page table
+    uint64_t shadow_maps() const { return cascade_maps + local_maps + virtual_pool; }
+    uint64_t total() const { return shadow_maps() + visibility + buffers; }
 };
 
 // ---------------------------------------------------------------- the system
@@ -367,10 +394,22 @@ public:
     // ShadowSystemDesc::frames_in_flight). The result is valid until the next prepare().
     const FrameInfo& prepare(const ViewDesc& view);
 
+    // The virtual shadow map (Settings::shadow.technique = virtual) draws only the pages the
+    // frame's pixels sample: this records the compute passes that find them in `screen`'s
+    // depth (its normals are not read) and allocate them, before record_shadow_maps() in
+    // the same frame. The depth is the frame's own (a depth pre-pass, or the G-buffer's
+    // depth before the resolve) or, for a forward renderer without a pre-pass, the last
+    // frame's (newly visible surfaces then get their pages a frame late, and sample the
+    // next coarser level until then). The caller makes the depth's writes available to
+    // compute shader reads first, as for record_visibility(). With the cascades it records
+    // nothing.
+    void record_page_marking(VkCommandBuffer cmd, const ScreenInputs& screen);
+
     // Records the frame's shadow passes into `cmd` (a primary command buffer in the
     // recording state, outside any render pass, on a queue of the DeviceDesc's family),
     // after the uploads of meshes added since the last recording. On exit the maps are
-    // ready for sampling (see ShadowMaps). Requires prepare() first (UsageError).
+    // ready for sampling (see ShadowMaps). Requires prepare() first, and with the virtual
+    // shadow map record_page_marking() (UsageError).
     void record_shadow_maps(VkCommandBuffer cmd);
 
     // Records the compute resolve: the visibility of the sun and of every shadowed local

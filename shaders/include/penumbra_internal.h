@@ -112,4 +112,112 @@ struct ResolvePushConstants {
     PENUMBRA_UINT padding;
 };
 
+// ---------------------------------------------------------------- virtual shadow maps
+// The sun's virtual shadow map (core/virtual_clipmap.hpp): page marking from the screen
+// and page allocation (shaders/virtual_mark.comp, virtual_pages.comp).
+// Least-recently-used eviction sorts unrequested pages by age in frames, the last bucket
+// holding every older page.
+#define PENUMBRA_VIRTUAL_AGE_BUCKETS 64
+
+// Set 0 of the virtual page passes.
+#define PENUMBRA_BINDING_VIRTUAL_CLIPMAP 0        // PenumbraVirtualClipmap (uniform buffer)
+#define PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE 1     // uint per level and slot
+#define PENUMBRA_BINDING_VIRTUAL_REQUESTS 2       // uint per level and slot: 1 where a pixel reads the page
+#define PENUMBRA_BINDING_VIRTUAL_PHYSICAL 3       // VirtualPhysicalPage per page of the pool
+#define PENUMBRA_BINDING_VIRTUAL_COUNTERS 4       // VirtualCounters
+#define PENUMBRA_BINDING_VIRTUAL_NEEDS 5          // per level, its entries requested without a page
+#define PENUMBRA_BINDING_VIRTUAL_FREE 6           // physical pages free for them, in any order
+#define PENUMBRA_BINDING_VIRTUAL_RENDER 7         // entries whose page is drawn this frame
+#define PENUMBRA_BINDING_VIRTUAL_INVALIDATIONS 8  // VirtualInvalidation per rectangle of stale pages
+#define PENUMBRA_BINDING_VIRTUAL_DRAWS 9          // VirtualPageDraw per caster instance drawn into a page
+// The virtual casters' pipelines: set 3 is the pages set (vertex shaders read the table,
+// the clipmap and their VirtualPageDraw); the culling dispatch takes it as set 0 and the
+// GPU culling's draws set as set 1.
+#define PENUMBRA_SET_VIRTUAL_PAGES 3
+// Set 1 of the marking pass: the caller's depth.
+#define PENUMBRA_BINDING_VIRTUAL_DEPTH 0
+
+// Pages of one level whose texels are stale (a static caster changed within them, or a
+// dynamic caster reaches them): world pages [pages.xy, pages.zw).
+struct VirtualInvalidation {
+    ivec4 pages;
+    PENUMBRA_UINT level;
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT padding2;
+};
+
+struct VirtualPhysicalPage {
+    PENUMBRA_UINT owner;      // the page table entry holding it, or PENUMBRA_PAGE_NO_OWNER
+    PENUMBRA_UINT last_used;  // the last frame a pixel requested it
+};
+
+// What the allocation found this frame (the host reads a copy, FrameInfo's statistics).
+struct VirtualCounters {
+    PENUMBRA_UINT needed;     // requested entries without a page
+    PENUMBRA_UINT free;       // physical pages free for them (after eviction)
+    PENUMBRA_UINT rendered;   // entries whose page is drawn this frame (new or stale)
+    PENUMBRA_UINT unserved;   // requested entries left without a page: the pool is full
+    PENUMBRA_UINT requested;  // entries a pixel requested
+    PENUMBRA_UINT cached;     // requested entries whose page was valid already
+    PENUMBRA_UINT resident;   // physical pages held by an entry, after allocation
+    PENUMBRA_UINT evicted;    // unrequested pages taken from their entries for new ones
+    // Eviction: every evictable page older than this bucket goes, and take_at_threshold of
+    // this bucket's (taken counts them).
+    PENUMBRA_UINT threshold_bucket;
+    PENUMBRA_UINT take_at_threshold;
+    PENUMBRA_UINT taken;
+    PENUMBRA_UINT evictable;  // unrequested pages held by an entry
+    // VkDrawIndirectCommand of the pass that clears the pages to draw: 6 vertices per page.
+    PENUMBRA_UINT clear_vertex_count;
+    PENUMBRA_UINT clear_instance_count;
+    PENUMBRA_UINT clear_first_vertex;
+    PENUMBRA_UINT clear_first_instance;
+    // The casters' culling: VirtualPageDraws written, and the ones beyond the buffer's
+    // room (their pages lose VALID and are drawn again next frame).
+    PENUMBRA_UINT page_draws;
+    PENUMBRA_UINT dropped_page_draws;
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    // Requested entries without a page, per level: coarser levels are served first, since a
+    // receiver whose page is unserved falls back to the next coarser level.
+    PENUMBRA_UINT level_needs[PENUMBRA_MAX_VIRTUAL_LEVELS];
+    PENUMBRA_UINT age_histogram[PENUMBRA_VIRTUAL_AGE_BUCKETS];
+};
+
+// One caster instance drawn into one page (gl_InstanceIndex of the virtual caster draws).
+struct VirtualPageDraw {
+    PENUMBRA_UINT instance;  // CullInstance
+    PENUMBRA_UINT entry;     // the page table entry: level and slot
+};
+
+// The casters' culling against the pages drawn this frame (shaders/virtual_cull.comp).
+struct VirtualCullPushConstants {
+    PENUMBRA_UINT instance_count;
+    PENUMBRA_UINT bucket_count;
+    PENUMBRA_UINT draw_capacity;       // VirtualPageDraws the buffer holds
+    PENUMBRA_UINT pool_pages_per_row;  // of the pool image: page p lies at (p % row, p / row)
+};
+
+// The marking pass: the caller's depth buffer as ScreenInputs describes it.
+struct VirtualMarkPushConstants {
+    mat4 inverse_view_projection;  // the caller's clip -> world
+    PENUMBRA_UINT width;
+    PENUMBRA_UINT height;
+    float background_depth;
+    PENUMBRA_UINT padding;
+};
+
+// The allocation passes (shaders/virtual_pages.comp): which step a dispatch runs.
+#define PENUMBRA_VIRTUAL_STEP_UPDATE 0     // per entry: scrolled out, stale, requested
+#define PENUMBRA_VIRTUAL_STEP_SCAN 1       // per physical page: free or evictable (ages)
+#define PENUMBRA_VIRTUAL_STEP_THRESHOLD 2  // one thread: the age threshold of eviction
+#define PENUMBRA_VIRTUAL_STEP_EVICT 3      // per physical page: evict the oldest unrequested
+#define PENUMBRA_VIRTUAL_STEP_ASSIGN 4     // per needed entry: a free page, or unserved
+#define PENUMBRA_VIRTUAL_STEP_COUNT 5      // per physical page: resident pages
+
+struct VirtualStepPushConstants {
+    PENUMBRA_UINT step;  // PENUMBRA_VIRTUAL_STEP_*
+};
+
 #endif

@@ -47,6 +47,14 @@ void validate_settings(const Settings& settings, const std::string& origin) {
     }
     if (settings.shadow.cascades.scheme == SplitScheme::Manual)
         validate_manual_splits(settings.shadow.cascades, origin);
+    // The moments filters prefilter a whole map (convert, blur); a virtual shadow map's
+    // pages are scattered over its pool, and filtering across page edges would need each
+    // page's neighbours (docs/filters.md).
+    if (settings.shadow.technique == ShadowTechnique::Virtual && is_moment_filter(settings.shadow.filter.mode)) {
+        reject(origin, "filter",
+               std::string(choice_name(kShadowFilterChoices, settings.shadow.filter.mode)) +
+                   " is not available with shadow_technique virtual (use hard, pcf, poisson or pcss)");
+    }
 }
 
 void validate_shadow_settings(const ShadowSettings& settings, const std::string& origin) {
@@ -60,6 +68,7 @@ void validate_local_shadow_settings(const LocalShadowSettings& settings, const s
 const std::map<std::string, SplitScheme>& split_scheme_names() { return choice_map(kSplitSchemeChoices); }
 const std::map<std::string, FitMode>& fit_mode_names() { return choice_map(kFitModeChoices); }
 const std::map<std::string, ShadowStrategy>& shadow_strategy_names() { return choice_map(kShadowStrategyChoices); }
+const std::map<std::string, ShadowTechnique>& shadow_technique_names() { return choice_map(kShadowTechniqueChoices); }
 const std::map<std::string, ShadowFilter>& shadow_filter_names() { return choice_map(kShadowFilterChoices); }
 const std::map<std::string, PcssQuality>& pcss_quality_names() { return choice_map(kPcssQualityChoices); }
 const std::map<std::string, LocalShadowSizing>& local_shadow_sizing_names() {

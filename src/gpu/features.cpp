@@ -8,6 +8,7 @@ FeatureChain read_feature_chain(const VkPhysicalDeviceFeatures2& features) {
     chain.depth_bias_clamp = features.features.depthBiasClamp == VK_TRUE;
     chain.multi_draw_indirect = features.features.multiDrawIndirect == VK_TRUE;
     chain.draw_indirect_first_instance = features.features.drawIndirectFirstInstance == VK_TRUE;
+    chain.shader_clip_distance = features.features.shaderClipDistance == VK_TRUE;
     for (auto* next = static_cast<const VkBaseInStructure*>(features.pNext); next != nullptr; next = next->pNext) {
         switch (next->sType) {
             case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES:

@@ -69,7 +69,7 @@ gpu::EnabledFeatures check_device(const DeviceDesc& desc, PFN_vkGetInstanceProcA
     const gpu::FeatureChain chain = gpu::read_feature_chain(*desc.enabled_features);
     require_feature(chain.dynamic_rendering, "VkPhysicalDeviceVulkan13Features::dynamicRendering");
     require_feature(chain.synchronization2, "VkPhysicalDeviceVulkan13Features::synchronization2");
-    return {chain.multiview, chain.depth_clamp, chain.depth_bias_clamp, chain.gpu_driven()};
+    return {chain.multiview, chain.depth_clamp, chain.depth_bias_clamp, chain.gpu_driven(), chain.virtual_pages()};
 }
 
 }  // namespace penumbra::library

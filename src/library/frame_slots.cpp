@@ -1,6 +1,9 @@
 #include "library/frame_slots.hpp"
 
 #include <array>
+#include <cstring>
+
+#include "penumbra/gpu/barriers.hpp"
 
 #include "passes/shader_interface.hpp"
 
@@ -15,7 +18,7 @@ constexpr uint32_t kMaxTimedScopes = 16;
 FrameSetLayouts create_frame_set_layouts(const gpu::Device& device) {
     // The caller may read the maps from any stage of its own pipelines.
     constexpr VkShaderStageFlags kAll = VK_SHADER_STAGE_ALL;
-    const std::array<VkDescriptorSetLayoutBinding, 8> sampling{{
+    const std::array<VkDescriptorSetLayoutBinding, 12> sampling{{
         {PENUMBRA_BINDING_SHADOW_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kAll, nullptr},
         {PENUMBRA_BINDING_CASCADE_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
         {PENUMBRA_BINDING_CASCADE_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
@@ -24,6 +27,10 @@ FrameSetLayouts create_frame_set_layouts(const gpu::Device& device) {
         {PENUMBRA_BINDING_LOCAL_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
         {PENUMBRA_BINDING_LOCAL_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
         {PENUMBRA_BINDING_LOCAL_MOMENTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_VIRTUAL_CLIPMAP_BLOCK, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_VIRTUAL_POOL, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
+        {PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kAll, nullptr},
     }};
     const std::array<VkDescriptorSetLayoutBinding, 2> caster{{
         // Compute: the layered strategy's culling tests casters against the cascades and the
@@ -39,9 +46,9 @@ FrameSetLayouts create_frame_set_layouts(const gpu::Device& device) {
 FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSetLayouts& layouts,
                        VkDescriptorSetLayout screen_set_layout)
     : device_(device) {
-    const std::array<VkDescriptorPoolSize, 4> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * count},
-                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * count},
-                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 9 * count},
+    const std::array<VkDescriptorPoolSize, 4> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 3 * count},
+                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * count},
+                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 11 * count},
                                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, count}}};
     pool_ = gpu::create_descriptor_pool(device, 3 * count, sizes);
     // Hardware depth comparison with bilinear filtering. Repeat: a toroidal cascade wraps
@@ -60,6 +67,23 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
     raw.filter = VK_FILTER_NEAREST;
     raw.address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     raw_depth_sampler_ = gpu::create_sampler(device, raw);
+    // The virtual pool's pages are read texel by texel (penumbra/glsl/virtual.glsl); its
+    // comparison binding is there for shaders that compare within one page.
+    gpu::SamplerDesc pool_comparison = comparison;
+    pool_comparison.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    pool_comparison_sampler_ = gpu::create_sampler(device, pool_comparison);
+    placeholder_.clipmap = gpu::create_buffer(device, sizeof(shader::PenumbraVirtualClipmap),
+                                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload);
+    std::memset(placeholder_.clipmap.mapped, 0, sizeof(shader::PenumbraVirtualClipmap));
+    placeholder_.page_table =
+        gpu::create_buffer(device, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::HostUpload);
+    std::memset(placeholder_.page_table.mapped, 0, 16);
+    gpu::ImageDesc pool;
+    pool.format = VK_FORMAT_D32_SFLOAT;
+    pool.width = pool.height = 16;
+    pool.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    pool.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    placeholder_.pool = gpu::create_image(device, pool);
 
     slots_.reserve(count);
     for (uint32_t i = 0; i < count; ++i) {
@@ -89,8 +113,25 @@ uint64_t FrameSlots::buffer_bytes() const {
     return bytes;
 }
 
-void FrameSlots::write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades,
-                                    const SampledMaps& local) const {
+void FrameSlots::record_placeholder_layout(VkCommandBuffer cmd) {
+    if (placeholder_.ready) return;
+    gpu::transition(device_, cmd, placeholder_.pool, gpu::ImageState::Undefined, gpu::ImageState::ShaderSampled);
+    placeholder_.ready = true;
+}
+
+void FrameSlots::write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades, const SampledMaps& local,
+                                    const std::optional<SampledVirtual>& virtual_map) const {
+    const SampledVirtual bound =
+        virtual_map.value_or(SampledVirtual{placeholder_.clipmap.get(), placeholder_.page_table.get(),
+                                            placeholder_.page_table.size, placeholder_.pool.view});
+    gpu::write_uniform_buffer(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_CLIPMAP_BLOCK, bound.clipmap,
+                              sizeof(shader::PenumbraVirtualClipmap));
+    gpu::write_storage_buffer(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE_BUFFER, bound.page_table,
+                              bound.page_table_bytes);
+    gpu::write_combined_image_sampler(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_POOL, bound.pool,
+                                      pool_comparison_sampler_);
+    gpu::write_combined_image_sampler(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH, bound.pool,
+                                      raw_depth_sampler_);
     const auto write_maps = [&](const SampledMaps& maps, uint32_t comparison, uint32_t raw, uint32_t moments) {
         const VkImageView depth = maps.depth->view;
         gpu::write_combined_image_sampler(device_, slot.sampling_set, comparison, depth, comparison_sampler_);

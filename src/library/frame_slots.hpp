@@ -4,6 +4,7 @@
 // timestamp queries. Slot `frame % frames_in_flight` is reused once its last frame has
 // completed (the caller's guarantee).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "library/shadow_maps.hpp"
@@ -21,7 +22,9 @@ struct FrameSlot {
     VkDescriptorSet caster_set = VK_NULL_HANDLE;    // set 0 of the caster passes
     VkDescriptorSet screen_set = VK_NULL_HANDLE;    // set 1 of the resolve
     gpu::GpuTimer timer;
-    uint64_t frame = 0;  // the frame that last used the slot
+    uint64_t frame = 0;          // the frame that last used the slot
+    bool timer_started = false;  // the frame's first recording call began the timer
+    bool pages_marked = false;   // record_page_marking() ran (the virtual shadow map)
     bool shadow_maps_recorded = false;
     bool visibility_recorded = false;
 };
@@ -33,6 +36,15 @@ struct FrameSetLayouts {
 };
 
 FrameSetLayouts create_frame_set_layouts(const gpu::Device& device);
+
+// The virtual shadow map as the sampling set binds it: the frame's clipmap block, the page
+// table and the pool.
+struct SampledVirtual {
+    VkBuffer clipmap = VK_NULL_HANDLE;
+    VkBuffer page_table = VK_NULL_HANDLE;
+    VkDeviceSize page_table_bytes = 0;
+    VkImageView pool = VK_NULL_HANDLE;
+};
 
 class FrameSlots {
 public:
@@ -46,13 +58,28 @@ public:
 
     // Points the slot's sampling set at the current maps (rewritten every frame: maps are
     // replaced as local lights come and go, and the slot's last frame is complete).
-    void write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades, const SampledMaps& local) const;
+    // `virtual_map`: nullopt with the cascades (the bindings get placeholders whose clipmap has
+    // no level, which the shaders read as "no virtual map").
+    void write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades, const SampledMaps& local,
+                            const std::optional<SampledVirtual>& virtual_map) const;
+
+    // The placeholder pool's first layout transition (once, in the first recorded frame).
+    void record_placeholder_layout(VkCommandBuffer cmd);
 
 private:
+    struct VirtualPlaceholder {
+        gpu::Buffer clipmap;     // a PenumbraVirtualClipmap of zeros: level_count 0
+        gpu::Buffer page_table;  // one entry, unallocated
+        gpu::Image pool;         // one page
+        bool ready = false;      // in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+    };
+
     const gpu::Device& device_;
     gpu::UniqueDescriptorPool pool_;
     gpu::UniqueSampler comparison_sampler_;
     gpu::UniqueSampler raw_depth_sampler_;
+    gpu::UniqueSampler pool_comparison_sampler_;  // the virtual pool: clamp, no array
+    VirtualPlaceholder placeholder_;
     std::vector<FrameSlot> slots_;
 };
 

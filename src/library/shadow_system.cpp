@@ -23,6 +23,7 @@
 #include "library/local_cache.hpp"
 #include "library/retired.hpp"
 #include "library/shadow_maps.hpp"
+#include "library/virtual_shadow_map.hpp"
 #include "passes/shadow_filter_specialization.hpp"
 #include "passes/visibility_resolve_pass.hpp"
 #include "penumbra/errors.hpp"
@@ -86,6 +87,33 @@ void check_view(const ViewDesc& view) {
     }
 }
 
+bool is_virtual(const Settings& settings) { return settings.shadow.technique == ShadowTechnique::Virtual; }
+
+// With the virtual shadow map the cascades' map is a placeholder the descriptor set binds:
+// one small layer, never drawn into after its first frame.
+ShadowSettings cascade_map_settings(const ShadowSettings& settings) {
+    if (settings.technique != ShadowTechnique::Virtual) return settings;
+    ShadowSettings placeholder = settings;
+    placeholder.cascades.count = 1;
+    placeholder.cascades.resolution = 512;
+    placeholder.cascades.scheme = SplitScheme::Practical;
+    placeholder.strategy = ShadowStrategy::PerCascade;
+    placeholder.cache_static_casters = false;
+    return placeholder;
+}
+
+// The screen inputs of record_visibility() and record_page_marking().
+void check_screen(const std::string& call, const ScreenInputs& screen) {
+    const auto reject = [&](const std::string& problem) { throw InputError("ShadowSystem::" + call + ": " + problem); };
+    if (screen.depth == VK_NULL_HANDLE) reject("ScreenInputs::depth is VK_NULL_HANDLE");
+    if (screen.width == 0 || screen.height == 0 || screen.width > kMaxScreenSize || screen.height > kMaxScreenSize) {
+        reject("ScreenInputs::width/height: " + std::to_string(screen.width) + "x" + std::to_string(screen.height) +
+               " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
+    }
+    const glm::mat4 view_projection = library::to_glm(screen.view_projection);
+    if (std::abs(glm::determinant(view_projection)) < 1e-30f) reject("ScreenInputs::view_projection is not invertible");
+}
+
 MapImage map_image(const gpu::Image* image) {
     if (!image) return {};
     return {image->get(), image->view, image->desc.format, image->desc.aspect, image->desc.width, image->desc.layers};
@@ -102,6 +130,8 @@ struct ShadowSystem::Impl {
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
     library::CascadeMaps cascades;
     library::LocalMaps local;
+    std::unique_ptr<library::VirtualShadowMap> virtual_map;  // Settings::shadow.technique = virtual
+    bool cascade_placeholder_drawn = false;  // with virtual_map: the cascades' placeholder is in its layout
     passes::VisibilityResolvePass resolve;
     library::FrameSlots slots;
     library::Geometry geometry;
@@ -142,13 +172,18 @@ struct ShadowSystem::Impl {
           retired(frames_in_flight),
           layouts(library::create_frame_set_layouts(device)),
           alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
-          cascades(device, layouts.caster, alpha_mask_layout, settings.shadow, frames_in_flight),
+          cascades(device, layouts.caster, alpha_mask_layout, cascade_map_settings(settings.shadow), frames_in_flight),
           local(device, layouts.caster, alpha_mask_layout, settings.shadow, retired, frames_in_flight),
+          virtual_map(is_virtual(settings)
+                          ? std::make_unique<library::VirtualShadowMap>(device, layouts.caster, alpha_mask_layout,
+                                                                        settings.shadow, frames_in_flight)
+                          : nullptr),
           resolve(device, layouts.sampling, settings.shadow.filter),
           slots(device, frames_in_flight, layouts, resolve.screen_set_layout()),
           geometry(device, retired, alpha_mask_layout, [this](const passes::VertexFormats& formats) {
               cascades.prepare_pipelines(formats);
               local.prepare_pipelines(formats);
+              if (virtual_map) virtual_map->prepare_pipelines(formats);
           }) {}
 
     ~Impl() {
@@ -164,7 +199,49 @@ struct ShadowSystem::Impl {
         return nullptr;
     }
 
+    // The virtual shadow map's frame: the clipmap around the camera and what invalidates its
+    // pages; the cascades' uniforms keep the camera and filter values, with no cascade.
+    void prepare_virtual_sun(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
+        const Clock::time_point start = Clock::now();
+        const Light* sun_light = sun();
+        const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
+        const bool casts = sun_light && sun_light->cast_shadows;
+        const ShadowSettings placeholder = cascade_map_settings(settings.shadow);
+        const CascadeSet set = compute_cascades(camera, direction, placeholder.cascades, geometry.depth_range_bounds());
+        cascade_draws = std::vector<passes::CascadeDraws>(set.cascades.size());
+        planned_cascades = set;
+        sun_casts = false;  // nothing drawn into the cascades' placeholder
+        planned_static_changes = geometry.static_changes().size();
+        library::VirtualFrameInputs inputs;
+        inputs.frame = frame;
+        inputs.camera = &camera;
+        inputs.footprint_per_metre = pixel_footprint_per_metre(view.fov_y_radians, view.height);
+        inputs.shadow_distance = set.shadow_distance;
+        inputs.light_direction = direction;
+        inputs.sun_angular_diameter_degrees = sun_light ? sun_light->angular_diameter_degrees : 0.0f;
+        inputs.casts = casts;
+        inputs.scene = &scene;
+        inputs.static_changes = geometry.static_changes();
+        inputs.depth_range_bounds = geometry.depth_range_bounds();
+        virtual_map->prepare(inputs, settings.shadow);
+        info.cpu_fit_ms += milliseconds_since(start);
+        cascade_culling = {settings.shadow.caster_culling,
+                           light_facing_is_counter_clockwise(set.cascades.front().view_projection)
+                               ? VK_FRONT_FACE_COUNTER_CLOCKWISE
+                               : VK_FRONT_FACE_CLOCKWISE};
+        info.sun_direction = library::to_public(direction);
+        info.shadow_distance = set.shadow_distance;
+        info.cascades.clear();
+        info.virtual_map = virtual_map->info(frame > frames_in_flight ? frame - frames_in_flight : 0);
+        shader::PenumbraShadowUniforms uniforms =
+            library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
+                                           passes::caster_depth_bias(device, settings.shadow.bias), sampling_frame);
+        uniforms.cascade_count = 0;  // the sun's shadow is the virtual map's (penumbra_sun_is_virtual)
+        std::memcpy(slots.at(frame).shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
+    }
+
     void prepare_sun(const CameraView& camera, const passes::CasterScene& scene) {
+        info.virtual_map.reset();
         Clock::time_point start = Clock::now();
         const Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
@@ -315,6 +392,20 @@ struct ShadowSystem::Impl {
         return slots.at(frame);
     }
 
+    // The virtual shadow map's pages, the cascades' placeholder once, and the local lights.
+    void record_virtual_maps(VkCommandBuffer cmd, library::FrameSlot& slot, const passes::CasterScene& scene) {
+        if (!cascade_placeholder_drawn) {
+            cascades.record(cmd, slot.caster_set, scene, cascade_draws, cascade_map_settings(settings.shadow),
+                            cascade_culling, false, frame, nullptr);
+            cascade_placeholder_drawn = true;
+        }
+        virtual_map->record_pages(cmd, slot.caster_set, scene, frame, settings.shadow.bias, cascade_culling,
+                                  &slot.timer);
+        geometry.forget_static_changes(planned_static_changes);
+        local.record(cmd, slot.caster_set, scene, local_layers, plan, settings.shadow, frame, &slot.timer);
+        if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local.generation());
+    }
+
     void ensure_visibility_image(uint32_t width, uint32_t height, uint32_t slot_count) {
         const uint32_t layers = (slot_count + 3) / 4;
         if (visibility && visibility->desc.width == width && visibility->desc.height == height &&
@@ -355,13 +446,15 @@ void ShadowSystem::update_settings(const Settings& settings) {
     if (requires_recreation(impl_->settings, settings)) {
         throw UsageError(
             "ShadowSystem::update_settings: the new settings change the cascade count or resolution, the filter, "
-            "the strategy or the local shadow budget, resolution or sizing; create a new ShadowSystem for them");
+            "the strategy, the shadow technique, the virtual shadow map's resolution, levels or pool, or the local "
+            "shadow budget, resolution or sizing; create a new ShadowSystem for them");
     }
-    // Biases and culling change the depths the cache holds.
+    // Biases and culling change the depths the caches hold.
     for (const SettingDeclaration& setting : kSettingDeclarations) {
         if (setting.get(impl_->settings) != setting.get(settings)) {
             impl_->cascade_cache.invalidate();
             impl_->local_cache.invalidate();
+            if (impl_->virtual_map) impl_->virtual_map->invalidate();
         }
     }
     impl_->settings = settings;
@@ -378,6 +471,8 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     slot.frame = impl.frame;
     slot.shadow_maps_recorded = false;
     slot.visibility_recorded = false;
+    slot.pages_marked = false;
+    slot.timer_started = false;
     impl.info.frame = impl.frame;
     impl.sampling_frame = view.sampling_frame.value_or(static_cast<uint32_t>(impl.frame - 1));
     impl.info.sun.reset();
@@ -395,12 +490,42 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     const passes::CasterScene& scene = impl.geometry.build_scene();
     impl.info.cpu_fit_ms = milliseconds_since(start);
     impl.info.cpu_cull_ms = 0.0;
-    impl.prepare_sun(camera, scene);
+    if (impl.virtual_map) {
+        impl.prepare_virtual_sun(camera, view, scene);
+    } else {
+        impl.prepare_sun(camera, scene);
+    }
     impl.prepare_local(camera, view, scene);
     impl.report_gpu_counts();
-    impl.slots.write_sampling_set(slot, impl.cascades.sampled(), impl.local.sampled());
+    std::optional<library::SampledVirtual> virtual_bindings;
+    if (impl.virtual_map) {
+        const library::VirtualShadowMap& map = *impl.virtual_map;
+        virtual_bindings = library::SampledVirtual{map.clipmap_buffer(impl.frame), map.page_table(),
+                                                   map.page_table_bytes(), map.pool().view};
+    }
+    impl.slots.write_sampling_set(slot, impl.cascades.sampled(), impl.local.sampled(), virtual_bindings);
     impl.info.descriptor_set = slot.sampling_set;
     return impl.info;
+}
+
+void ShadowSystem::record_page_marking(VkCommandBuffer cmd, const ScreenInputs& screen) {
+    Impl& impl = *impl_;
+    library::FrameSlot& slot = impl.current_slot("record_page_marking");
+    if (slot.shadow_maps_recorded) {
+        throw UsageError(
+            "ShadowSystem::record_page_marking: record_shadow_maps() was already recorded for this frame; mark the "
+            "pages before it");
+    }
+    if (slot.pages_marked) {
+        throw UsageError("ShadowSystem::record_page_marking: already recorded for this frame (once per frame)");
+    }
+    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_page_marking: cmd is VK_NULL_HANDLE");
+    check_screen("record_page_marking", screen);
+    if (!impl.virtual_map) return;
+    if (!slot.timer_started) slot.timer.begin_frame(cmd);
+    slot.timer_started = true;
+    impl.virtual_map->record_marking(cmd, impl.frame, screen, &slot.timer);
+    slot.pages_marked = true;
 }
 
 void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
@@ -410,10 +535,22 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         throw UsageError("ShadowSystem::record_shadow_maps: already recorded for this frame; call prepare() first");
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_shadow_maps: cmd is VK_NULL_HANDLE");
-    slot.timer.begin_frame(cmd);
+    if (impl.virtual_map && !slot.pages_marked) {
+        throw UsageError(
+            "ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() earlier in this "
+            "frame (the pages the frame's pixels sample)");
+    }
+    if (!slot.timer_started) slot.timer.begin_frame(cmd);
+    slot.timer_started = true;
     impl.geometry.record_uploads(cmd, impl.frame);
     // The scene prepare() culled: instances changed since then show in the next frame.
     const passes::CasterScene& scene = impl.geometry.scene();
+    if (impl.virtual_map) {
+        impl.record_virtual_maps(cmd, slot, scene);
+        slot.shadow_maps_recorded = true;
+        return;
+    }
+    impl.slots.record_placeholder_layout(cmd);
     impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
                          impl.sun_casts, impl.frame, &slot.timer);
     // The cache holds this frame's static casters once the commands run; the changes the
@@ -431,23 +568,15 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
 void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen) {
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
-    const auto reject = [](const std::string& problem) {
-        throw InputError("ShadowSystem::record_visibility: " + problem);
-    };
     if (!slot.shadow_maps_recorded) {
         throw UsageError("ShadowSystem::record_visibility: record_shadow_maps() has not been recorded for this frame");
     }
     if (slot.visibility_recorded) {
         throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame)");
     }
-    if (cmd == VK_NULL_HANDLE) reject("cmd is VK_NULL_HANDLE");
-    if (screen.depth == VK_NULL_HANDLE) reject("ScreenInputs::depth is VK_NULL_HANDLE");
-    if (screen.width == 0 || screen.height == 0 || screen.width > kMaxScreenSize || screen.height > kMaxScreenSize) {
-        reject("ScreenInputs::width/height: " + std::to_string(screen.width) + "x" + std::to_string(screen.height) +
-               " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
-    }
+    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_visibility: cmd is VK_NULL_HANDLE");
+    check_screen("record_visibility", screen);
     const glm::mat4 view_projection = library::to_glm(screen.view_projection);
-    if (std::abs(glm::determinant(view_projection)) < 1e-30f) reject("ScreenInputs::view_projection is not invertible");
 
     const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
     impl.ensure_visibility_image(screen.width, screen.height, slot_count);
@@ -493,7 +622,13 @@ VkSpecializationInfo ShaderSpecialization::info() const {
 ShadowMaps ShadowSystem::shadow_maps() const {
     const library::SampledMaps cascades = impl_->cascades.sampled();
     const library::SampledMaps local = impl_->local.sampled();
-    return {map_image(cascades.depth), map_image(cascades.moments), map_image(local.depth), map_image(local.moments)};
+    MapImage virtual_pool;
+    if (impl_->virtual_map) {
+        const gpu::Image& pool = impl_->virtual_map->pool();
+        virtual_pool = {pool.get(), pool.view, pool.desc.format, pool.desc.aspect, pool.desc.width, 1};
+    }
+    return {map_image(cascades.depth), map_image(cascades.moments), map_image(local.depth), map_image(local.moments),
+            virtual_pool};
 }
 
 std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
@@ -515,6 +650,10 @@ MemoryStats ShadowSystem::memory() const {
     stats.local_maps = impl.local.memory_bytes();
     stats.visibility = impl.visibility ? impl.visibility->memory_size : 0u;
     stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
+    if (impl.virtual_map) {
+        stats.virtual_pool = impl.virtual_map->pool_bytes();
+        stats.buffers += impl.virtual_map->buffer_bytes();
+    }
     for (const passes::GpuCasterCulling* culling : {impl.cascades.gpu_culling(), impl.local.gpu_culling()}) {
         if (culling) stats.buffers += culling->buffer_bytes();
     }

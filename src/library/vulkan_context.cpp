@@ -57,6 +57,7 @@ struct VulkanContext::State {
         features.features.depthBiasClamp = enabled.depth_bias_clamp ? VK_TRUE : VK_FALSE;
         features.features.multiDrawIndirect = gpu_driven;
         features.features.drawIndirectFirstInstance = gpu_driven;
+        features.features.shaderClipDistance = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
         desc = {
             context.instance(),     context.physical_device(), context.device(), context.queue(),
             context.queue_family(), VK_API_VERSION_1_3,        &features,        context.vk().vkGetInstanceProcAddr};

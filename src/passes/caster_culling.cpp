@@ -278,25 +278,8 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
         throw UsageError("GpuCasterCulling::record_cull: " + std::to_string(layer_count) + " layers, more than " +
                          std::to_string(kMaxCulledLayers));
     }
-    ++records_;
-    std::erase_if(replaced_, [&](const auto& entry) { return entry.first <= records_; });
-    // The previous frame's draws and dispatch read what this one overwrites.
-    gpu::memory_barrier(device_, cmd,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                            VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
-                        VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    if (scene.version != uploaded_version_ || layer_count != layer_count_ || scene.draws.size() != draw_count_) {
-        upload(cmd, scene, layer_count);
-    }
+    if (!begin_commands(cmd, scene, layer_count)) return;
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
-    if (bucket_count == 0 || layer_count_ == 0) return;
-    const VkDeviceSize statistics_offset = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
-    const VkDeviceSize statistics_bytes = VkDeviceSize{2} * layer_count_ * sizeof(uint32_t);
-    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0, statistics_offset + statistics_bytes, 0);
-    gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     const VkDescriptorSet sets[] = {frame_set, buffers_->set};
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets, 0, nullptr);
@@ -311,6 +294,40 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
     }
     device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     device_->vkCmdDispatch(cmd, (draw_count_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+    finish_commands(cmd, frame);
+}
+
+bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count) {
+    if (layer_count > kMaxCulledLayers) {
+        throw UsageError("GpuCasterCulling::begin_commands: " + std::to_string(layer_count) + " layers, more than " +
+                         std::to_string(kMaxCulledLayers));
+    }
+    ++records_;
+    std::erase_if(replaced_, [&](const auto& entry) { return entry.first <= records_; });
+    // The previous frame's draws and dispatch read what this one overwrites.
+    gpu::memory_barrier(device_, cmd,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                            VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
+                        VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    if (scene.version != uploaded_version_ || layer_count != layer_count_ || scene.draws.size() != draw_count_) {
+        upload(cmd, scene, layer_count);
+    }
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    if (bucket_count == 0 || layer_count_ == 0) return false;
+    const VkDeviceSize statistics_offset = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
+    const VkDeviceSize statistics_bytes = VkDeviceSize{2} * layer_count_ * sizeof(uint32_t);
+    device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0, statistics_offset + statistics_bytes, 0);
+    gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    return true;
+}
+
+void GpuCasterCulling::finish_commands(VkCommandBuffer cmd, uint64_t frame) {
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    const VkDeviceSize statistics_offset = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
+    const VkDeviceSize statistics_bytes = VkDeviceSize{2} * layer_count_ * sizeof(uint32_t);
     gpu::memory_barrier(
         device_, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
         VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,

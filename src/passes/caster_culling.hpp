@@ -82,6 +82,16 @@ public:
     void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, CullLayers layers,
                      const std::vector<bool>& enabled, bool cull, uint64_t frame = 0);
 
+    // For another culling dispatch that writes the same commands (the virtual shadow map's
+    // pages, layer = clipmap level): uploads `scene` as record_cull() does and clears the
+    // counts; false when there is nothing to draw (no bucket or no layer). Then bind
+    // draws_set() at the dispatch's set, dispatch, and call finish_commands(): the commands
+    // ready for the indirect draws, the layers' statistics copied for culled(frame).
+    bool begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count);
+    void finish_commands(VkCommandBuffer cmd, uint64_t frame);
+    VkDescriptorSet draws_set() const { return buffers_ ? buffers_->set : VK_NULL_HANDLE; }
+    uint32_t draw_count() const { return draw_count_; }
+
     // Per layer, the draws and triangles the culling recorded for `frame` selected; nullopt
     // once a later frame's culling reused its slot (after frames in flight + 1 frames), or
     // when none was recorded for it. Read only after that frame's commands completed.

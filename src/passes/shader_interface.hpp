@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "core/glm_config.hpp"
+#include "core/virtual_clipmap.hpp"
 #include "penumbra/settings.hpp"
 #include "penumbra/shadow_system.hpp"
 
@@ -18,6 +19,8 @@ using vec4 = glm::vec4;
 using vec3 = glm::vec3;
 using vec2 = glm::vec2;
 using uvec4 = glm::uvec4;
+using ivec2 = glm::ivec2;
+using ivec4 = glm::ivec4;
 
 #include "penumbra_internal.h"
 
@@ -112,5 +115,38 @@ static_assert(offsetof(ResolvePushConstants, background_depth) == 80);
 static_assert(offsetof(ResolvePushConstants, has_face_normals) == 88);
 static_assert(sizeof(ResolvePushConstants) == 96);
 static_assert(sizeof(ResolvePushConstants) <= 128, "Vulkan guarantees only 128 bytes of push constants");
+
+static_assert(PENUMBRA_MAX_VIRTUAL_LEVELS == kMaxVirtualLevels);
+static_assert(offsetof(PenumbraVirtualLevel, previous_first_page) == 8);
+static_assert(offsetof(PenumbraVirtualLevel, texels_per_metre) == 16);
+static_assert(offsetof(PenumbraVirtualLevel, depth_offset) == 28);
+static_assert(sizeof(PenumbraVirtualLevel) == 32);
+static_assert(offsetof(PenumbraVirtualClipmap, camera_view) == 64);
+static_assert(offsetof(PenumbraVirtualClipmap, camera_position) == 128);
+static_assert(offsetof(PenumbraVirtualClipmap, level_count) == 144);
+static_assert(offsetof(PenumbraVirtualClipmap, lod_scale) == 160);
+static_assert(offsetof(PenumbraVirtualClipmap, invalidation_count) == 176);
+static_assert(offsetof(PenumbraVirtualClipmap, pool_pages_per_row) == 180);
+static_assert(offsetof(PenumbraVirtualClipmap, pool_rows) == 184);
+static_assert(offsetof(PenumbraVirtualClipmap, light_tan_half_angle) == 188);
+static_assert(offsetof(PenumbraVirtualClipmap, fade_start) == 196);
+static_assert(offsetof(PenumbraVirtualClipmap, levels) == 208);
+static_assert(sizeof(PenumbraVirtualClipmap) == 208 + 32 * PENUMBRA_MAX_VIRTUAL_LEVELS);
+static_assert(sizeof(PenumbraVirtualClipmap) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
+static_assert(offsetof(VirtualInvalidation, level) == 16);
+static_assert(sizeof(VirtualInvalidation) == 32);
+static_assert(sizeof(VirtualPhysicalPage) == 8);
+static_assert(offsetof(VirtualCounters, threshold_bucket) == 32);
+static_assert(offsetof(VirtualCounters, clear_vertex_count) == 48);
+static_assert(offsetof(VirtualCounters, page_draws) == 64);
+static_assert(offsetof(VirtualCounters, level_needs) == 80);
+static_assert(offsetof(VirtualCounters, age_histogram) == 80 + 4 * PENUMBRA_MAX_VIRTUAL_LEVELS);
+static_assert(sizeof(VirtualCounters) == 80 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
+static_assert(sizeof(VirtualPageDraw) == 8);
+static_assert(sizeof(VirtualCullPushConstants) == 16);
+static_assert(offsetof(VirtualMarkPushConstants, width) == 64);
+static_assert(offsetof(VirtualMarkPushConstants, background_depth) == 72);
+static_assert(sizeof(VirtualMarkPushConstants) == 80);
+static_assert(sizeof(VirtualStepPushConstants) == 4);
 
 }  // namespace penumbra::shader

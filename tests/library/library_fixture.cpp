@@ -258,7 +258,11 @@ glm::vec3 LibraryTest::ground_point(uint32_t x, uint32_t y) {
 
 void LibraryTest::record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& shadows, const TestImage* normals,
                                            NormalEncoding encoding, const TestImage* face_normals) {
-    const ViewDesc view = top_down_view();
+    shadows.record_visibility(cmd, record_ground_depth(cmd, top_down_view(), normals, encoding, face_normals));
+}
+
+ScreenInputs LibraryTest::record_ground_depth(VkCommandBuffer cmd, const ViewDesc& view, const TestImage* normals,
+                                              NormalEncoding encoding, const TestImage* face_normals) {
     const glm::mat4 view_projection = to_glm(reverse_z_projection(view)) * to_glm(view.view);
     const glm::vec4 clip = view_projection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     // Every pixel at the ground's depth: the plane y = 0 is parallel to the image plane.
@@ -283,15 +287,28 @@ void LibraryTest::record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& sh
         screen.normal_encoding = encoding;
     }
     if (face_normals) screen.face_normals = face_normals->view;
-    shadows.record_visibility(cmd, screen);
+    return screen;
 }
 
 VisibilityImage2D LibraryTest::render_visibility(ShadowSystem& shadows, uint32_t slot, const TestImage* normals,
                                                  NormalEncoding encoding, const TestImage* face_normals) {
     shadows.prepare(top_down_view());
     submit([&](VkCommandBuffer cmd) {
+        const ScreenInputs screen = record_ground_depth(cmd, top_down_view(), normals, encoding, face_normals);
+        shadows.record_page_marking(cmd, screen);
         shadows.record_shadow_maps(cmd);
-        record_ground_visibility(cmd, shadows, normals, encoding, face_normals);
+        shadows.record_visibility(cmd, screen);
+    });
+    return read_visibility(shadows, slot);
+}
+
+VisibilityImage2D LibraryTest::render_visibility_from(ShadowSystem& shadows, const ViewDesc& view, uint32_t slot) {
+    shadows.prepare(view);
+    submit([&](VkCommandBuffer cmd) {
+        const ScreenInputs screen = record_ground_depth(cmd, view, nullptr, NormalEncoding::SignedFloat, nullptr);
+        shadows.record_page_marking(cmd, screen);
+        shadows.record_shadow_maps(cmd);
+        shadows.record_visibility(cmd, screen);
     });
     return read_visibility(shadows, slot);
 }

@@ -108,11 +108,19 @@ protected:
     // The ground point a pixel of top_down_view() sees.
     static glm::vec3 ground_point(uint32_t x, uint32_t y);
 
-    // One whole frame: prepare, record_shadow_maps, the depth of the ground, record_visibility
-    // (with `normals` when given), then read the visibility image's `slot`.
+    // One whole frame: prepare, the depth of the ground, record_page_marking (the virtual
+    // shadow map's; nothing with cascades), record_shadow_maps, record_visibility (with
+    // `normals` when given), then read the visibility image's `slot`.
     VisibilityImage2D render_visibility(ShadowSystem& shadows, uint32_t slot = 0, const TestImage* normals = nullptr,
                                         NormalEncoding encoding = NormalEncoding::SignedFloat,
                                         const TestImage* face_normals = nullptr);
+    // The same frame seen by `view`, a top-down view (top_down_view() moved sideways: the
+    // ground's depth is the same at every pixel).
+    VisibilityImage2D render_visibility_from(ShadowSystem& shadows, const ViewDesc& view, uint32_t slot = 0);
+    // Clears depth_ to the ground's depth under the top-down `view` and returns it as the
+    // screen inputs, ready for compute reads.
+    ScreenInputs record_ground_depth(VkCommandBuffer cmd, const ViewDesc& view, const TestImage* normals,
+                                     NormalEncoding encoding, const TestImage* face_normals);
     // Records the ground depth (cleared) into depth_ and hands it to record_visibility.
     void record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& shadows, const TestImage* normals,
                                   NormalEncoding encoding, const TestImage* face_normals = nullptr);

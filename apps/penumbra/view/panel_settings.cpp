@@ -146,6 +146,8 @@ void draw_setting_group(Settings& settings, std::string_view group, const render
 }
 
 void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* frame) {
+    if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen))
+        draw_setting_group(settings, "virtual", frame);
     if (ImGui::CollapsingHeader("Cascades", ImGuiTreeNodeFlags_DefaultOpen))
         draw_setting_group(settings, "cascades", frame);
     if (ImGui::CollapsingHeader("Bias and blending", ImGuiTreeNodeFlags_DefaultOpen)) {

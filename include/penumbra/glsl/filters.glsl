@@ -32,6 +32,9 @@ struct PenumbraShadowView {
     // The depth bias the shadow pass gave the map's casters: slope factor, largest bias.
     float caster_slope_bias;
     float caster_bias_clamp;
+    // The sun's virtual shadow map level the view reads (penumbra/glsl/virtual.glsl: every
+    // texel through the page table), or -1 for a map of the given samplers.
+    int virtual_level;
 };
 
 // Rotation of the Poisson patterns: interleaved gradient noise per pixel (Jimenez 2014,
@@ -105,15 +108,39 @@ float penumbra_reference_depth(PenumbraShadowView view, vec2 tap_uv, float stati
     return view.depth + dot(view.depth_gradient, tap_uv - view.uv) + static_bias;
 }
 
-// One hardware comparison tap `offset` (UV) away from the receiver.
-float penumbra_compare_tap(sampler2DArrayShadow map, PenumbraShadowView view, vec2 offset, float static_bias) {
-    const vec2 uv = penumbra_view_tap(view, offset);
-    return texture(map, vec4(penumbra_layer_uv(view, uv), view.layer, penumbra_reference_depth(view, uv, static_bias)));
+// A bilinear comparison at `uv` of the view's map: one hardware comparison tap, or four
+// texel reads through a virtual shadow map's pages. (One return after an if/else: an early
+// return here crashes the SPIR-V optimizer of Debian 12's glslc, shaderc 2023.2, at -O.)
+float penumbra_compare_at(sampler2DArrayShadow map, PenumbraShadowView view, vec2 uv, float reference) {
+    float lit;
+    if (view.virtual_level >= 0) {
+        lit = penumbra_virtual_compare(uint(view.virtual_level), uv, reference);
+    } else {
+        lit = texture(map, vec4(penumbra_layer_uv(view, uv), view.layer, reference));
+    }
+    return lit;
 }
 
-// hard: one hardware comparison tap, no receiver-plane bias.
+// The stored depth under `uv` of the view's map (PCSS's blocker search).
+float penumbra_depth_at(sampler2DArray depth_map, PenumbraShadowView view, vec2 uv) {
+    float depth;
+    if (view.virtual_level >= 0) {
+        depth = penumbra_virtual_depth(uint(view.virtual_level), uv);
+    } else {
+        depth = texture(depth_map, vec3(penumbra_layer_uv(view, uv), view.layer)).r;
+    }
+    return depth;
+}
+
+// One comparison tap `offset` (UV) away from the receiver.
+float penumbra_compare_tap(sampler2DArrayShadow map, PenumbraShadowView view, vec2 offset, float static_bias) {
+    const vec2 uv = penumbra_view_tap(view, offset);
+    return penumbra_compare_at(map, view, uv, penumbra_reference_depth(view, uv, static_bias));
+}
+
+// hard: one comparison tap, no receiver-plane bias.
 float penumbra_filter_hard(sampler2DArrayShadow map, PenumbraShadowView view) {
-    return texture(map, vec4(penumbra_layer_uv(view, penumbra_view_tap(view, vec2(0.0))), view.layer, view.depth));
+    return penumbra_compare_at(map, view, penumbra_view_tap(view, vec2(0.0)), view.depth);
 }
 
 // pcf: the (2R+1) x (2R+1) grid of comparison taps one texel apart, as (R+1)^2 weighted
@@ -172,7 +199,7 @@ PenumbraBlockerSearch penumbra_find_blockers(sampler2DArray depth_map, PenumbraS
     PenumbraBlockerSearch search = PenumbraBlockerSearch(0.0, 0u);
     for (uint i = 0u; i < kPenumbraSearchTaps; ++i) {
         const vec2 uv = penumbra_view_tap(view, (rotation * penumbra_poisson_tap(kPenumbraSearchTaps, i)) * radius_uv);
-        const float stored = texture(depth_map, vec3(penumbra_layer_uv(view, uv), view.layer)).r;
+        const float stored = penumbra_depth_at(depth_map, view, uv);
         if (stored > penumbra_reference_depth(view, uv, bias)) {  // reverse-Z: larger = nearer the light
             search.average_distance += penumbra_depth_to_distance(view, stored);
             search.count += 1u;
@@ -235,7 +262,9 @@ float penumbra_pcss_narrow_tap(sampler2DArrayShadow map, PenumbraShadowView view
     const vec2 weight = clamp((position - first - 0.5) / ramp + 0.5, 0.0, 1.0);
     const float reference = penumbra_reference_depth(view, uv, penumbra_receiver_plane_centre_bias(view));
     // Gather order: x = (first.x, first.y + 1), y = (+1, +1), z = (+1, first.y), w = first.
-    const vec4 lit = textureGather(map, vec3((first + 1.0) * texel, view.layer), reference);
+    const vec4 lit = view.virtual_level >= 0
+                         ? penumbra_virtual_gather(uint(view.virtual_level), ivec2(first), reference)
+                         : textureGather(map, vec3((first + 1.0) * texel, view.layer), reference);
     return mix(mix(lit.w, lit.z, weight.x), mix(lit.x, lit.y, weight.x), weight.y);
 }
 

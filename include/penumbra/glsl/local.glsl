@@ -91,6 +91,7 @@ PenumbraShadowView penumbra_local_view(PenumbraLocalShadow light, PenumbraLocalC
     const float search_radius =
         light.radius * (coord.distance - n) / max(coord.distance, 1e-4) * light.uv_scale / (light.fov_scale * n);
     PenumbraShadowView view;
+    view.virtual_level = -1;
     view.uv = coord.uv;
     view.layer = coord.layer;
     view.depth = coord.depth;

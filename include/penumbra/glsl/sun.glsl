@@ -32,6 +32,13 @@ int penumbra_select_cascade(float view_depth) {
     return -1;
 }
 
+// The sun's map a receiver at `world_position` reads: its cascade (by view depth), or with
+// the virtual shadow map its level (penumbra_virtual_receiver_level); -1 for none.
+int penumbra_sun_map_of(vec3 world_position) {
+    if (penumbra_sun_is_virtual()) return penumbra_virtual_receiver_level(world_position);
+    return penumbra_select_cascade(penumbra_view_depth(world_position));
+}
+
 // A receiver point in one cascade's shadow map.
 struct PenumbraShadowCoord {
     vec2 uv;
@@ -43,6 +50,7 @@ struct PenumbraShadowCoord {
 // moves along its normal by a multiple of the cascade's world texel size (normal-offset
 // shadows, Holbert 2011): larger texels need a larger offset.
 vec3 penumbra_project_to_cascade(int cascade, vec3 world_position, vec3 world_normal) {
+    if (penumbra_sun_is_virtual()) return penumbra_project_to_virtual_level(cascade, world_position, world_normal);
     const float offset = penumbra_shadow.normal_offset_texels * penumbra_shadow.cascades[cascade].texel_world_size;
     const vec4 clip = penumbra_shadow.cascades[cascade].view_projection * vec4(world_position + world_normal * offset, 1.0);
     const vec3 ndc = clip.xyz / clip.w;
@@ -61,7 +69,8 @@ vec2 penumbra_receiver_plane_gradient(int cascade, vec3 coord_dx, vec3 coord_dy)
     const float det = determinant(uv_jacobian);
     if (abs(det) < 1e-30) return vec2(0.0);
     const vec2 gradient = vec2(coord_dx.z, coord_dy.z) * inverse(uv_jacobian);
-    const vec2 limit = penumbra_shadow.cascades[cascade].max_depth_gradient;
+    const vec2 limit = penumbra_sun_is_virtual() ? penumbra_virtual_max_depth_gradient(cascade)
+                                                 : penumbra_shadow.cascades[cascade].max_depth_gradient;
     return clamp(gradient, -limit, limit);
 }
 
@@ -80,6 +89,7 @@ struct PenumbraSunReceiver {
 // The cascades a receiver's coordinates are taken in: its own (the first when it has
 // none) and the next one (itself for the last).
 ivec2 penumbra_receiver_cascades(int cascade) {
+    if (penumbra_sun_is_virtual()) return ivec2(max(cascade, 0));  // one level, no blend band
     const int last = max(penumbra_cascade_count(), 1) - 1;
     const int current = clamp(cascade, 0, last);
     return ivec2(current, min(current + 1, last));
@@ -98,7 +108,7 @@ bool penumbra_faces_light(vec3 normal, vec3 face_normal, vec3 to_light) {
 PenumbraSunReceiver penumbra_sun_receiver(vec3 world_position, vec3 world_normal, vec2 pixel) {
     PenumbraSunReceiver receiver;
     receiver.view_depth = penumbra_view_depth(world_position);
-    receiver.cascade = penumbra_select_cascade(receiver.view_depth);
+    receiver.cascade = penumbra_sun_map_of(world_position);
     receiver.pixel = pixel;
     receiver.face_normal = world_normal;
     const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
@@ -129,7 +139,34 @@ void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_
 // the cascade's texels (half a texel inside its edges, as clamp-to-edge addressing would
 // read them): where the cascade wraps around its layer (layer_origin), the texels beyond
 // an edge are the opposite edge's.
+// A level of the virtual shadow map as the filters see it: as a cascade, but every texel
+// read goes through the page table (virtual_level), and the window has no wrap.
+PenumbraShadowView penumbra_virtual_level_view(int level, PenumbraShadowCoord coord) {
+    const vec2 light_radius_per_depth = penumbra_virtual_light_radius_uv_per_depth(level);
+    const float depth = clamp(coord.depth, 0.0, 1.0);
+    PenumbraShadowView view;
+    view.uv = coord.uv;
+    view.layer = 0.0;
+    view.depth = depth;
+    view.depth_gradient = coord.depth_gradient;
+    view.texel_uv = 1.0 / float(penumbra_virtual_side());
+    const float half_texel = 0.5 * view.texel_uv;
+    view.uv_bounds = vec4(vec2(half_texel), vec2(1.0 - half_texel));
+    view.uv_offset = vec2(0.0);
+    view.pcss_search_radius = (1.0 - depth) * light_radius_per_depth;
+    view.pcss_penumbra_scale = light_radius_per_depth;
+    view.pcss_perspective = false;
+    view.pcss_receiver_distance = 1.0 - depth;
+    view.pcss_depth_to_distance = vec4(1.0, -1.0, 1.0, 0.0);  // 1 - depth
+    view.moments_distance = 1.0 - depth;
+    view.caster_slope_bias = penumbra_shadow.caster_slope_bias;
+    view.caster_bias_clamp = penumbra_shadow.caster_bias_clamp;
+    view.virtual_level = level;
+    return view;
+}
+
 PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord) {
+    if (penumbra_sun_is_virtual()) return penumbra_virtual_level_view(cascade, coord);
     const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
     // The cascade's depth range is the static instances' along the light: a receiver beyond
     // it (a caller's surface that is no instance, a dynamic instance above or below every
@@ -153,6 +190,7 @@ PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord)
     view.moments_distance = 1.0 - depth;
     view.caster_slope_bias = penumbra_shadow.caster_slope_bias;
     view.caster_bias_clamp = penumbra_shadow.caster_bias_clamp;
+    view.virtual_level = -1;
     return view;
 }
 
@@ -170,6 +208,14 @@ float penumbra_sample_cascade(int cascade, PenumbraShadowCoord coord, vec2 pixel
 float penumbra_sun_shadow(PenumbraSunReceiver receiver) {
     const int cascade = receiver.cascade;
     if (cascade < 0) return 1.0;
+    if (penumbra_sun_is_virtual()) {
+        // One level per receiver (no band between levels: their texels are as fine as the
+        // pixels on both sides), fading to lit before the shadow distance as the cascades do.
+        const float visibility = penumbra_sample_cascade(cascade, receiver.coords[0], receiver.pixel);
+        const float fade_width = penumbra_virtual.shadow_distance - penumbra_virtual.fade_start;
+        if (fade_width <= 0.0 || receiver.view_depth <= penumbra_virtual.fade_start) return visibility;
+        return mix(visibility, 1.0, clamp((receiver.view_depth - penumbra_virtual.fade_start) / fade_width, 0.0, 1.0));
+    }
     float visibility = penumbra_sample_cascade(cascade, receiver.coords[0], receiver.pixel);
     const float split_near = penumbra_cascade_split_near(cascade);
     const float split_far = penumbra_cascade_split_far(cascade);

@@ -32,6 +32,9 @@ struct EnabledFeatures {
     // and drawIndirectFirstInstance, VkPhysicalDeviceVulkan12Features::drawIndirectCount and
     // shaderOutputLayer, all four.
     bool gpu_driven = false;
+    // The sun's virtual shadow maps: gpu_driven and VkPhysicalDeviceFeatures::shaderClipDistance
+    // (each caster is clipped to the page it is drawn into).
+    bool virtual_pages = false;
 };
 
 // The handles a Device is made from.

@@ -105,6 +105,7 @@ namespace penumbra::gpu {
     X(vkCmdDraw)                        \
     X(vkCmdDrawIndexed)                 \
     X(vkCmdDrawIndexedIndirectCount)    \
+    X(vkCmdDrawIndirect)                \
     X(vkCmdFillBuffer)                  \
     X(vkCmdDispatch)                    \
     X(vkCmdCopyBuffer)                  \

@@ -15,10 +15,13 @@ struct FeatureChain {
     bool draw_indirect_first_instance = false;  // VkPhysicalDeviceFeatures
     bool draw_indirect_count = false;           // Vulkan12Features
     bool shader_output_layer = false;           // Vulkan12Features
+    bool shader_clip_distance = false;          // VkPhysicalDeviceFeatures
     // Everything the layered strategy's GPU-driven culling needs (EnabledFeatures::gpu_driven).
     bool gpu_driven() const {
         return multi_draw_indirect && draw_indirect_first_instance && draw_indirect_count && shader_output_layer;
     }
+    // The virtual shadow maps' page drawing: GPU-driven, each caster clipped to its page.
+    bool virtual_pages() const { return gpu_driven() && shader_clip_distance; }
 };
 
 // Walks the pNext chain; structures it does not know are skipped.

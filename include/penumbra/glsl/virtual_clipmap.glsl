@@ -1,0 +1,64 @@
+// The sun's virtual shadow map clipmap (included by penumbra/glsl/virtual.glsl and by
+// Penumbra's own page passes): which level a receiver samples, its texel in that level, and
+// the page table entry of a page. The same operations as Penumbra's CPU math, so that the
+// pages a pixel's marking requests are the pages its sampling reads. Reads the
+// PenumbraVirtualClipmap named by PENUMBRA_VIRTUAL_CLIPMAP (penumbra_virtual by default).
+#ifndef PENUMBRA_GLSL_VIRTUAL_CLIPMAP
+#define PENUMBRA_GLSL_VIRTUAL_CLIPMAP
+
+#ifndef PENUMBRA_VIRTUAL_CLIPMAP
+#define PENUMBRA_VIRTUAL_CLIPMAP penumbra_virtual
+#endif
+
+const uint kPenumbraVirtualPageTexels = 128u;
+
+// A receiver's virtual texel in `level`, from the window's corner: the world grid's texel
+// less the window's first texel (a whole number of pages).
+vec2 penumbra_virtual_texel_of(uint level, vec3 world_position) {
+    const vec2 light = (PENUMBRA_VIRTUAL_CLIPMAP.light_view * vec4(world_position, 1.0)).xy;
+    precise vec2 texel = light * PENUMBRA_VIRTUAL_CLIPMAP.levels[level].texels_per_metre;
+    return texel - vec2(PENUMBRA_VIRTUAL_CLIPMAP.levels[level].first_page * int(kPenumbraVirtualPageTexels));
+}
+
+bool penumbra_virtual_window_holds(vec2 texel, float margin_texels) {
+    const float side = float(PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side * kPenumbraVirtualPageTexels);
+    return all(greaterThanEqual(texel, vec2(margin_texels))) && all(lessThanEqual(texel, vec2(side - margin_texels)));
+}
+
+// The finest level whose texel is no larger than the receiver's pixel footprint times
+// 2^lod_bias, or the first coarser one whose window holds it `margin_texels` inside; -1
+// when none does (penumbra_select_virtual_level).
+int penumbra_select_virtual_level(vec3 world_position, float margin_texels) {
+    const float footprint =
+        length(world_position - PENUMBRA_VIRTUAL_CLIPMAP.camera_position.xyz) * PENUMBRA_VIRTUAL_CLIPMAP.camera_position.w * PENUMBRA_VIRTUAL_CLIPMAP.lod_scale;
+    const float finest = PENUMBRA_VIRTUAL_CLIPMAP.levels[0].texel_world_size;
+    const int last = int(PENUMBRA_VIRTUAL_CLIPMAP.level_count) - 1;
+    const int wanted = footprint > finest ? int(floor(log2(footprint / finest))) : 0;
+    for (int level = min(wanted, last); level <= last; ++level) {
+        if (penumbra_virtual_window_holds(penumbra_virtual_texel_of(uint(level), world_position), margin_texels)) return level;
+    }
+    return -1;
+}
+
+int penumbra_floor_mod(int value, int modulus) {
+    const int remainder = value % modulus;
+    return remainder < 0 ? remainder + modulus : remainder;
+}
+
+// The page table entry of a window page (toroidal: the world page modulo the window's side).
+uint penumbra_virtual_entry(uint level, ivec2 window_page) {
+    const int side = int(PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side);
+    const ivec2 world_page = PENUMBRA_VIRTUAL_CLIPMAP.levels[level].first_page + window_page;
+    const uint slot = uint(penumbra_floor_mod(world_page.x, side) + penumbra_floor_mod(world_page.y, side) * side);
+    return level * PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side * PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side + slot;
+}
+
+// The world page a slot holds for a window starting at `first_page`.
+ivec2 penumbra_virtual_world_page_of_slot(ivec2 first_page, uint slot) {
+    const int side = int(PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side);
+    const ivec2 slot_xy = ivec2(int(slot % PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side), int(slot / PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side));
+    return first_page + ivec2(penumbra_floor_mod(slot_xy.x - first_page.x, side),
+                              penumbra_floor_mod(slot_xy.y - first_page.y, side));
+}
+
+#endif

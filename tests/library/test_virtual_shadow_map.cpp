@@ -1,0 +1,268 @@
+// The sun's virtual shadow map (Settings::shadow.technique = virtual) through the public
+// API: the box's shadow on the ground against its analytic footprint with every comparison
+// filter; the same shadows as the cascades; cached pages bit-identical to pages drawn anew
+// every frame while the camera moves, a dynamic box moves and static boxes change; a pool
+// too small for the frame's pages serves coarser levels and says so; the statistics; and
+// the errors of bad settings and calls out of order.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "library_fixture.hpp"
+
+namespace penumbra::library_tests {
+namespace {
+
+ViewDesc top_down_at(float x, float z) {
+    return look_at_view({x, 10.0f, z}, {x, 0.0f, z}, {0.0f, 0.0f, -1.0f}, glm::radians(60.0f), 0.1f, 100.0f, 160, 160);
+}
+
+void add_sun(ShadowSystem& shadows) {
+    const LightDesc sun{LightType::Directional, {kSunDirection.x, kSunDirection.y, kSunDirection.z}};
+    shadows.set_lights({&sun, 1});
+}
+
+class VirtualShadowMapTest : public LibraryTest {
+protected:
+    static Settings virtual_settings(ShadowFilter filter = ShadowFilter::Hard) {
+        Settings settings = test_settings();
+        settings.shadow.technique = ShadowTechnique::Virtual;
+        settings.shadow.virtual_maps.pool_mib = 16;  // 256 pages: plenty for a 160 x 160 view
+        settings.shadow.filter.mode = filter;
+        return settings;
+    }
+};
+
+class VirtualFilterTest : public VirtualShadowMapTest, public ::testing::WithParamInterface<ShadowFilter> {};
+
+TEST_P(VirtualFilterTest, TheBoxShadowMatchesItsAnalyticFootprint) {
+    ShadowSystem shadows(system_desc(virtual_settings(GetParam())));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    add_sun(shadows);
+    const VisibilityImage2D image = render_visibility(shadows);
+    ASSERT_EQ(shadows.prepare(top_down_view()).virtual_map->texel_world_size[8], 0.0625f);
+    // The pixels (6.8 cm) sample level 8, whose texels are 6.25 cm: the edge band is the
+    // filter's reach there (pcf: 1 texel, Poisson: 2.5; pcss: the sun's penumbra, 0.53
+    // degrees over 3 m, is about 3 cm), the bilinear tap's texel and the rasteriser's half
+    // texel, stretched on the ground by the sun's slant (|direction| / |direction.y| = 1.12).
+    const float reach = GetParam() == ShadowFilter::Pcf ? 1.0f : GetParam() == ShadowFilter::Poisson ? 2.5f : 0.0f;
+    const float slant = glm::length(kSunDirection) / std::abs(kSunDirection.y);
+    const FootprintCheck check =
+        check_footprint(image, kBoxCentre, kSunDirection, 0.0625f * (reach + 1.5f) * slant + 0.01f);
+    EXPECT_GE(check.iou, 0.97);
+    EXPECT_EQ(check.wrong, 0u) << "of " << check.judged << " pixels away from the edge";
+    EXPECT_GT(check.shadowed, 700u);
+    submit([&](VkCommandBuffer cmd) {
+        const ScreenInputs screen =
+            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
+        shadows.record_page_marking(cmd, screen);
+        shadows.record_shadow_maps(cmd);
+    });
+}
+
+INSTANTIATE_TEST_SUITE_P(ComparisonFilters, VirtualFilterTest,
+                         ::testing::Values(ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Poisson,
+                                           ShadowFilter::Pcss),
+                         [](const ::testing::TestParamInfo<ShadowFilter>& filter) {
+                             return std::string(choice_name(kShadowFilterChoices, filter.param));
+                         });
+
+TEST_F(VirtualShadowMapTest, CastsTheSameShadowsAsTheCascades) {
+    Settings cascade_settings = test_settings();
+    ShadowSystem cascades(system_desc(cascade_settings));
+    ShadowSystem virtual_map(system_desc(virtual_settings()));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    for (ShadowSystem* system : {&cascades, &virtual_map}) {
+        add_scene(*system, box, ground);
+        add_sun(*system);
+    }
+    const VisibilityImage2D expected = render_visibility(cascades);
+    const VisibilityImage2D actual = render_visibility(virtual_map);
+    size_t differ = 0, shadowed = 0;
+    for (size_t i = 0; i < expected.values.size(); ++i) {
+        differ += (expected.values[i] < 0.5f) != (actual.values[i] < 0.5f) ? 1 : 0;
+        shadowed += actual.values[i] < 0.5f ? 1 : 0;
+    }
+    // Both resolve the box's shadow; they differ only along its edge, where the cascades'
+    // texels (2.3 cm here) and the virtual level's (6.3 cm) round differently.
+    EXPECT_GT(shadowed, 1000u);
+    EXPECT_LT(differ, shadowed / 20) << differ << " pixels differ of " << shadowed << " shadowed";
+}
+
+// Static boxes, one that moves every frame, a camera that slides sideways (the windows move
+// by whole pages); frames 4, 7 and 9 move, add and remove static boxes.
+TEST_F(VirtualShadowMapTest, CachedPagesAreBitIdenticalToPagesDrawnEveryFrame) {
+    Settings settings = virtual_settings(ShadowFilter::Pcf);
+    settings.shadow.cache_static_casters = true;
+    ShadowSystem cached(system_desc(settings));
+    settings.shadow.cache_static_casters = false;
+    ShadowSystem uncached(system_desc(settings));
+    BoxesAndMover scenes[2] = {add_ground_and_box_mesh(cached), add_ground_and_box_mesh(uncached)};
+    ShadowSystem* systems[2] = {&cached, &uncached};
+    for (int s = 0; s < 2; ++s) {
+        for (int i = 0; i < 4; ++i) {
+            const glm::vec3 at(-4.0f + 3.0f * static_cast<float>(i), 1.0f + 0.5f * static_cast<float>(i % 2), -1.0f);
+            scenes[s].statics.push_back(systems[s]->add_instance({scenes[s].box_id, translation(at)}));
+        }
+        scenes[s].mover = systems[s]->add_instance(
+            {scenes[s].box_id, translation({0.0f, 2.0f, 2.0f}), kInstanceCastsShadows | kInstanceDynamic});
+        add_sun(*systems[s]);
+    }
+    uint32_t cached_pages = 0, redrawn_cached = 0, redrawn_uncached = 0;
+    for (int f = 0; f < 12; ++f) {
+        const float t = static_cast<float>(f);
+        for (int s = 0; s < 2; ++s) {
+            ShadowSystem& shadows = *systems[s];
+            shadows.set_instance_transform(scenes[s].mover, translation({2.0f * std::sin(0.7f * t), 2.0f, 2.0f}));
+            if (f == 4) shadows.set_instance_transform(scenes[s].statics[1], translation({-1.0f, 3.0f, 1.0f}));
+            if (f == 7)
+                scenes[s].statics.push_back(shadows.add_instance({scenes[s].box_id, translation({1.0f, 4.0f, 0.0f})}));
+            if (f == 9) shadows.remove_instance(scenes[s].statics[0]);
+        }
+        const ViewDesc view = top_down_at(0.31f * t, -0.17f * t);
+        const VisibilityImage2D expected = render_visibility_from(uncached, view);
+        const VisibilityImage2D actual = render_visibility_from(cached, view);
+        ASSERT_EQ(expected.values.size(), actual.values.size());
+        for (size_t i = 0; i < expected.values.size(); ++i) {
+            ASSERT_EQ(expected.values[i], actual.values[i]) << "frame " << f << " pixel " << i;
+        }
+    }
+    // After the frames in flight, the GPU's counts: the cache drew a fraction of the pages.
+    for (int f = 0; f < 4; ++f) {
+        const ViewDesc view = top_down_at(3.72f, -2.04f);
+        for (ShadowSystem* system : systems) {
+            const FrameInfo& info = system->prepare(view);
+            ASSERT_TRUE(info.virtual_map.has_value());
+            if (f == 3) {
+                EXPECT_GT(info.virtual_map->counted_frame, 0u);
+                if (system == &cached) {
+                    cached_pages = info.virtual_map->pages_cached;
+                    redrawn_cached = info.virtual_map->pages_rendered;
+                } else {
+                    redrawn_uncached = info.virtual_map->pages_rendered;
+                    EXPECT_TRUE(info.virtual_map->invalidated_all);
+                }
+            }
+            submit([&](VkCommandBuffer cmd) {
+                const ScreenInputs screen =
+                    record_ground_depth(cmd, view, nullptr, NormalEncoding::SignedFloat, nullptr);
+                system->record_page_marking(cmd, screen);
+                system->record_shadow_maps(cmd);
+            });
+        }
+    }
+    EXPECT_GT(cached_pages, 0u);
+    EXPECT_LT(redrawn_cached, redrawn_uncached) << "the dynamic box's pages only";
+    EXPECT_GT(redrawn_uncached, 0u);
+}
+
+TEST_F(VirtualShadowMapTest, APoolTooSmallServesACoarserLevelAndSaysSo) {
+    Settings settings = virtual_settings();
+    settings.shadow.virtual_maps.lod_bias = -4.0f;  // 16 times finer: hundreds of pages for this view
+    ShadowSystem shadows(system_desc(settings));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    add_sun(shadows);
+    VisibilityImage2D image;
+    for (int f = 0; f < 3; ++f) image = render_visibility(shadows);
+    const FrameInfo& info = shadows.prepare(top_down_view());
+    ASSERT_TRUE(info.virtual_map.has_value());
+    EXPECT_EQ(info.virtual_map->pool_pages, 256u);
+    EXPECT_GT(info.virtual_map->pages_requested, 256u);
+    EXPECT_GT(info.virtual_map->pages_unserved, 0u);
+    EXPECT_EQ(info.virtual_map->pages_resident, 256u);
+    // Never another page's texels: the shadow is still the box's, from coarser texels.
+    const FootprintCheck check = check_footprint(image, kBoxCentre, kSunDirection, 0.3f);
+    EXPECT_GE(check.iou, 0.95);
+    EXPECT_EQ(check.wrong, 0u) << "of " << check.judged;
+    submit([&](VkCommandBuffer cmd) {
+        const ScreenInputs screen =
+            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
+        shadows.record_page_marking(cmd, screen);
+        shadows.record_shadow_maps(cmd);
+    });
+}
+
+TEST_F(VirtualShadowMapTest, ReportsItsLevelsAndMemory) {
+    Settings settings = virtual_settings();
+    settings.shadow.virtual_maps.pool_mib = 32;
+    ShadowSystem shadows(system_desc(settings));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    add_sun(shadows);
+    const FrameInfo& info = shadows.prepare(top_down_view());
+    ASSERT_TRUE(info.virtual_map.has_value());
+    EXPECT_TRUE(info.cascades.empty());
+    ASSERT_EQ(info.virtual_map->levels, 16u);
+    EXPECT_FLOAT_EQ(info.virtual_map->texel_world_size[0], 4.0f / 16384.0f);
+    EXPECT_FLOAT_EQ(info.virtual_map->texel_world_size[15], 4.0f * 32768.0f / 16384.0f);
+    EXPECT_EQ(info.virtual_map->pool_pages, 32u * 16u);
+    EXPECT_TRUE(info.virtual_map->invalidated_all) << "the first frame draws every page it needs";
+    EXPECT_GE(shadows.memory().virtual_pool, uint64_t{32} << 20);
+    EXPECT_EQ(shadows.shadow_maps().virtual_pool.format, VK_FORMAT_D32_SFLOAT);
+    submit([&](VkCommandBuffer cmd) {
+        const ScreenInputs screen =
+            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
+        shadows.record_page_marking(cmd, screen);
+        shadows.record_shadow_maps(cmd);
+    });
+    // The cascades report no virtual map.
+    ShadowSystem cascades(system_desc(test_settings()));
+    EXPECT_FALSE(cascades.prepare(top_down_view()).virtual_map.has_value());
+    EXPECT_EQ(cascades.memory().virtual_pool, 0u);
+    submit([&](VkCommandBuffer cmd) { cascades.record_shadow_maps(cmd); });
+}
+
+std::string error_of(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "no error";
+}
+
+TEST_F(VirtualShadowMapTest, BadSettingsAndCallsOutOfOrderAreNamed) {
+    Settings settings = virtual_settings();
+    settings.shadow.virtual_maps.pool_mib = 0;
+    EXPECT_EQ(error_of([&] { ShadowSystem shadows(system_desc(settings)); }),
+              "ShadowSystem settings: virtual_pool_mib: 0 is outside the allowed range [16, 1024]");
+    settings = virtual_settings();
+    settings.shadow.virtual_maps.lod_bias = 9.0f;
+    EXPECT_EQ(error_of([&] { ShadowSystem shadows(system_desc(settings)); }),
+              "ShadowSystem settings: virtual_lod_bias: 9 is outside the allowed range [-4, 4]");
+    settings = virtual_settings(ShadowFilter::Vsm);
+    EXPECT_EQ(error_of([&] { ShadowSystem shadows(system_desc(settings)); }),
+              "ShadowSystem settings: filter: vsm is not available with shadow_technique virtual (use hard, pcf, "
+              "poisson or pcss)");
+
+    ShadowSystem shadows(system_desc(virtual_settings()));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    add_sun(shadows);
+    shadows.prepare(top_down_view());
+    std::string message;
+    submit([&](VkCommandBuffer cmd) {
+        message = error_of([&] { shadows.record_shadow_maps(cmd); });
+        const ScreenInputs screen =
+            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
+        shadows.record_page_marking(cmd, screen);
+        shadows.record_shadow_maps(cmd);
+        EXPECT_NE(error_of([&] { shadows.record_page_marking(cmd, screen); }).find("record_shadow_maps() was already"),
+                  std::string::npos);
+    });
+    EXPECT_EQ(message,
+              "ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() earlier in this "
+              "frame (the pages the frame's pixels sample)");
+    // A live setting changes without a new system; a sizing one is refused.
+    Settings changed = shadows.settings();
+    changed.shadow.virtual_maps.lod_bias = -1.0f;
+    EXPECT_EQ(error_of([&] { shadows.update_settings(changed); }), "no error");
+    changed.shadow.virtual_maps.pool_mib = 64;
+    EXPECT_NE(error_of([&] { shadows.update_settings(changed); }).find("create a new ShadowSystem"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace penumbra::library_tests
