@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|goals|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|goals|virtual|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -113,6 +113,23 @@ def goal_runs(binary):
     return runs
 
 
+def virtual_runs(binary):
+    """Issue 28's goals: the virtual shadow map against the cascades (both cached) on the 1 M
+    forest at 1080p, orbiting, walking, and with a sun that turns every frame (every page
+    stale); the marking and allocation at 4K, camera still."""
+    runs = []
+    for label, extra in (("orbit", ["--camera-path", "orbit", "--frames", "60"]),
+                         ("walk", ["--camera-path", "walk", "--frames", "120"]),
+                         ("rotating sun", ["--camera-path", "still", "--light-path", "rotate", "--frames", "60"])):
+        for technique in ("cascades", "virtual"):
+            runs.append((f"1 M, 1080p, {technique}, cache, {label}", binary, FOREST,
+                         BASE + extra + ["--warmup", "10", "--shadow-cache", "--shadow-technique", technique]))
+    runs.append(("1 M, 4K, virtual, cache, still", binary, FOREST,
+                 UHD + ["--camera-path", "still", "--frames", "60", "--warmup", "10", "--shadow-cache",
+                        "--shadow-technique", "virtual"]))
+    return runs
+
+
 def median(report, name):
     entry = report["gpu_ms"].get(name)
     return entry["median"] if entry else None
@@ -126,7 +143,8 @@ def cpu_median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "goals", "all"],
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "goals",
+                                           "virtual", "all"],
                         default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
@@ -151,9 +169,11 @@ def main():
         runs += strategy_runs(args.cache_binary or names[0])
     if args.plan in ("goals", "all"):
         runs += goal_runs(args.cache_binary or names[0])
+    if args.plan in ("virtual", "all"):
+        runs += virtual_runs(args.cache_binary or names[0])
     os.makedirs(args.out, exist_ok=True)
-    rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame | CPU culling ms | CPU recording ms |",
-            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame | CPU culling ms | CPU recording ms | virtual mark + allocate ms | virtual cull + raster ms | pages drawn / frame | pages unserved / frame |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     results = []
     for index, (label, binary, scene, extra) in enumerate(runs):
         json_path = os.path.join(args.out, f"run{index:02d}.json")
@@ -162,12 +182,19 @@ def main():
         done = subprocess.run(command, capture_output=True, text=True)
         if done.returncode != 0:
             print(done.stderr, file=sys.stderr)
-            rows.append(f"| {label} | failed ({done.returncode}) | | | | | | | | | |")
+            rows.append(f"| {label} | failed ({done.returncode}) | | | | | | | | | | | | | |")
             continue
         with open(json_path) as file:
             report = json.load(file)
-        drawn = sum(c["texels_rendered"]["mean"] for c in report["cascades"]) if "texels_rendered" in report["cascades"][0] else None
-        copied = sum(c["texels_copied"]["mean"] for c in report["cascades"]) if "texels_copied" in report["cascades"][0] else None
+        cascades = report["cascades"]
+        drawn = sum(c["texels_rendered"]["mean"] for c in cascades) if cascades and "texels_rendered" in cascades[0] else None
+        copied = sum(c["texels_copied"]["mean"] for c in cascades) if cascades and "texels_copied" in cascades[0] else None
+        virtual = report.get("virtual_map")
+        pair = lambda a, b: None if median(report, a) is None else median(report, a) + (median(report, b) or 0.0)
+        virtual_cells = [pair("shadow_virtual_mark", "shadow_virtual_allocate"),
+                         pair("shadow_virtual_cull", "shadow_virtual_raster"),
+                         round(virtual["pages_rendered"]["mean"], 1) if virtual else None,
+                         round(virtual["pages_unserved"]["mean"], 1) if virtual else None]
         cells = [median(report, n) for n in ("shadow_sun", "shadow_local", "lighting", "visibility", "frame")]
         kept = sum(l["layers_kept"]["mean"] for l in report["local_shadows"]["lights"]
                    if "layers_kept" in l) if report.get("local_shadows", {}).get("lights") else None
@@ -175,7 +202,7 @@ def main():
         rows.append(f"| {label} | " + " | ".join(fmt(c) for c in cells) +
                     f" | {fmt(None if drawn is None else round(drawn))} | {fmt(None if copied is None else round(copied))}"
                     f" | {fmt(None if kept is None else round(kept, 1))} | {fmt(cpu_median(report, 'culling'))}"
-                    f" | {fmt(cpu_median(report, 'recording'))} |")
+                    f" | {fmt(cpu_median(report, 'recording'))} | " + " | ".join(fmt(c) for c in virtual_cells) + " |")
         results.append({"label": label, "binary": binary, "scene": scene, "args": extra, "report": report})
         write_report(args.out, rows, results)  # after every run: a run cut short keeps what it measured
     print(write_report(args.out, rows, results))

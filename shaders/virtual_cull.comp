@@ -96,7 +96,8 @@ uint visit_drawn_pages(uint level, ivec2 first, ivec2 last, uint action, uint in
 
 void main() {
     const uint index = gl_GlobalInvocationID.x;
-    if (index >= cull.instance_count) return;
+    // A frame whose pages are all cached (a still or walking camera) draws nothing.
+    if (index >= cull.instance_count || counters.rendered == 0u) return;
     const CullInstance instance = instances[index];
     const vec3 box_min = instance.bounds_min.xyz;
     const vec3 box_max = instance.bounds_max.xyz;

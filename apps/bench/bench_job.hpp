@@ -93,6 +93,22 @@ struct CascadeReport {
     uint64_t cache_reused_frames = 0;
 };
 
+// The sun's virtual shadow map (--shadow-technique virtual), over the measured frames: the
+// GPU's page counts (FrameInfo::virtual_map, of the frame frames-in-flight earlier).
+struct VirtualReport {
+    std::vector<float> texel_world_size;  // metres per texel of each level
+    uint32_t pool_pages = 0;
+    uint64_t pool_bytes = 0;
+    CountSummary pages_requested;  // per frame
+    CountSummary pages_rendered;
+    CountSummary pages_cached;
+    CountSummary pages_unserved;
+    CountSummary pages_resident;
+    CountSummary pages_evicted;
+    CountSummary page_draws;
+    uint64_t invalidated_all_frames = 0;
+};
+
 // One shadowed spot or point light (renderer::LocalShadowStats), over the measured frames.
 struct LocalShadowReport {
     uint32_t light = 0;  // index into the scene's lights
@@ -128,6 +144,7 @@ struct BenchResult {
     std::vector<std::string> cpu_step_order;
     std::map<std::string, Summary> cpu_ms;
     std::vector<CascadeReport> cascades;
+    std::optional<VirtualReport> virtual_map;      // --shadow-technique virtual
     std::vector<LocalShadowReport> local_shadows;  // shadowed local lights, in light order
     // Every shadow map: the cascades, the moments maps of a moment filter and the shared
     // layered map of the shadowed local lights (not the placeholder without any).

@@ -141,6 +141,33 @@ std::string format_local_shadows(const BenchResult& result) {
     return text;
 }
 
+Json virtual_map_json(const std::optional<VirtualReport>& report) {
+    if (!report) return nullptr;
+    return Json{{"texel_world_size", report->texel_world_size},
+                {"pool_pages", report->pool_pages},
+                {"pool_bytes", report->pool_bytes},
+                {"pages_requested", counts_json(report->pages_requested)},
+                {"pages_rendered", counts_json(report->pages_rendered)},
+                {"pages_cached", counts_json(report->pages_cached)},
+                {"pages_unserved", counts_json(report->pages_unserved)},
+                {"pages_resident", counts_json(report->pages_resident)},
+                {"pages_evicted", counts_json(report->pages_evicted)},
+                {"page_draws", counts_json(report->page_draws)},
+                {"invalidated_all_frames", report->invalidated_all_frames}};
+}
+
+std::string format_virtual_map(const BenchResult& result) {
+    if (!result.virtual_map) return "";
+    const VirtualReport& v = *result.virtual_map;
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "virtual pages/frame (mean): requested %.0f, drawn %.0f, cached %.0f, unserved %.0f, resident %.0f "
+                  "of %u (%.0f MiB pool)\n",
+                  v.pages_requested.mean, v.pages_rendered.mean, v.pages_cached.mean, v.pages_unserved.mean,
+                  v.pages_resident.mean, v.pool_pages, static_cast<double>(v.pool_bytes) / (1024.0 * 1024.0));
+    return line;
+}
+
 std::string format_shadow_map_bytes(const BenchResult& result) {
     char line[160];
     std::snprintf(line, sizeof(line), "shadow maps: %llu bytes (%.1f MiB)%s\n",
@@ -164,6 +191,7 @@ std::string format_bench_table(const BenchResult& result) {
                 " frame(s) had no GPU timestamps (unsupported by the queue, or not ready)\n";
     }
     text += format_cascades(result);
+    text += format_virtual_map(result);
     text += format_local_shadows(result);
     text += format_shadow_map_bytes(result);
     if (result.ceiling) {
@@ -209,6 +237,7 @@ std::string bench_json(const BenchResult& result) {
         {"cpu_ms", timings_json(result.cpu_step_order, result.cpu_ms)},
         {"frames_without_gpu_times", result.frames_without_gpu_times},
         {"cascades", cascades},
+        {"virtual_map", virtual_map_json(result.virtual_map)},
         {"local_shadows", local_shadows_json(result.local_shadows)},
         {"shadow_map_bytes", result.shadow_map_bytes},
         {"ceiling", ceiling_json(result.ceiling)},

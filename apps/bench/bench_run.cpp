@@ -81,6 +81,10 @@ struct FrameSamples {
     std::vector<std::vector<uint64_t>> cascade_texels_copied;
     std::vector<uint64_t> cascade_reused;
     std::vector<LocalShadowSamples> local_shadows;
+    // The virtual shadow map's counts, per frame whose counts had arrived.
+    std::optional<VirtualShadowInfo> virtual_map;  // the last frame's (levels, pool)
+    std::map<std::string, std::vector<uint64_t>> virtual_counts;
+    uint64_t virtual_invalidated_all = 0;
     uint32_t frames_without_gpu_times = 0;
 
     void add_gpu_times(const std::vector<gpu::ScopeTime>& times) {
@@ -167,6 +171,21 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
         samples.cascade_texels_rendered[c].push_back(frame.cascades[c].texels_rendered);
         samples.cascade_texels_copied[c].push_back(frame.cascades[c].texels_copied);
         samples.cascade_reused[c] += frame.cascades[c].cache_reused ? 1 : 0;
+    }
+    if (frame.virtual_map) {
+        const VirtualShadowInfo& v = *frame.virtual_map;
+        samples.virtual_map = v;
+        samples.virtual_invalidated_all += v.invalidated_all ? 1 : 0;
+        if (v.counted_frame > 0) {
+            const std::pair<const char*, uint32_t> counts[] = {{"pages_requested", v.pages_requested},
+                                                               {"pages_rendered", v.pages_rendered},
+                                                               {"pages_cached", v.pages_cached},
+                                                               {"pages_unserved", v.pages_unserved},
+                                                               {"pages_resident", v.pages_resident},
+                                                               {"pages_evicted", v.pages_evicted},
+                                                               {"page_draws", v.page_draws}};
+            for (const auto& [name, value] : counts) samples.virtual_counts[name].push_back(value);
+        }
     }
     samples.local_shadows.resize(frame.local_shadows.size());
     for (size_t i = 0; i < frame.local_shadows.size(); ++i) {
@@ -350,6 +369,25 @@ void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchRes
     }
     for (const LocalShadowSamples& light : samples.local_shadows) {
         result.local_shadows.push_back(summarize_local_shadow(light, scene));
+    }
+    if (samples.virtual_map) {
+        VirtualReport report;
+        report.texel_world_size = samples.virtual_map->texel_world_size;
+        report.pool_pages = samples.virtual_map->pool_pages;
+        report.pool_bytes = samples.virtual_map->pool_bytes;
+        const auto counts = [&](const char* name) {
+            const auto found = samples.virtual_counts.find(name);
+            return found == samples.virtual_counts.end() ? CountSummary{} : summarize_counts(found->second);
+        };
+        report.pages_requested = counts("pages_requested");
+        report.pages_rendered = counts("pages_rendered");
+        report.pages_cached = counts("pages_cached");
+        report.pages_unserved = counts("pages_unserved");
+        report.pages_resident = counts("pages_resident");
+        report.pages_evicted = counts("pages_evicted");
+        report.page_draws = counts("page_draws");
+        report.invalidated_all_frames = samples.virtual_invalidated_all;
+        result.virtual_map = report;
     }
     result.frames_without_gpu_times = samples.frames_without_gpu_times;
 }

@@ -319,7 +319,9 @@ struct ShadowMaps {
 // -------------------------------------------------------------- timings and memory
 
 struct PassTime {
-    std::string name;  // "shadow_cascade_<i>", "shadow_multiview", "shadow_moments", "shadow_local", "visibility"
+    // "shadow_cascade_<i>", "shadow_multiview", "shadow_moments", "shadow_local", "visibility";
+    // the virtual shadow map's "shadow_virtual_mark", "_allocate", "_cull" and "_raster"
+    std::string name;
     double milliseconds = 0.0;
 };
 

@@ -320,7 +320,9 @@ struct ShadowSystem::Impl {
         }
         if (frame <= frames_in_flight) return;
         const uint64_t complete = frame - frames_in_flight;
-        if (const auto counted = cascades.gpu_culling()->culled(complete)) {
+        // With the virtual shadow map the cascades' placeholder has no GPU culling.
+        const passes::GpuCasterCulling* cascade_culling_pass = cascades.gpu_culling();
+        if (const auto counted = cascade_culling_pass ? cascade_culling_pass->culled(complete) : std::nullopt) {
             for (size_t c = 0; c < info.cascades.size() && c < counted->size(); ++c) {
                 info.cascades[c].draws = (*counted)[c].draws;
                 info.cascades[c].triangles = (*counted)[c].triangles;

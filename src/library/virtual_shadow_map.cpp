@@ -146,13 +146,17 @@ void VirtualShadowMap::prepare(const VirtualFrameInputs& inputs, const ShadowSet
 
 void VirtualShadowMap::record_marking(VkCommandBuffer cmd, uint64_t frame, const ScreenInputs& screen,
                                       gpu::GpuTimer* timer) {
-    gpu::TimedScope scope(timer, cmd, "virtual_pages");
     shader::VirtualMarkPushConstants constants{};
     constants.inverse_view_projection = glm::inverse(to_glm(screen.view_projection));
     constants.width = screen.width;
     constants.height = screen.height;
     constants.background_depth = screen.background_depth;
-    pages_.record(cmd, frame, screen.depth, screen.depth_layout, constants);
+    {
+        gpu::TimedScope scope(timer, cmd, "shadow_virtual_mark");
+        pages_.record_marking(cmd, frame, screen.depth, screen.depth_layout, constants);
+    }
+    gpu::TimedScope scope(timer, cmd, "shadow_virtual_allocate");
+    pages_.record_allocation(cmd, frame);
 }
 
 void VirtualShadowMap::record_pages(VkCommandBuffer cmd, VkDescriptorSet caster_frame_set,

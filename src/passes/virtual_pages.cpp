@@ -221,8 +221,8 @@ void VirtualPages::record_step(VkCommandBuffer cmd, uint32_t step, uint32_t thre
     compute_to_compute(device_, cmd);
 }
 
-void VirtualPages::record(VkCommandBuffer cmd, uint64_t frame, VkImageView depth, VkImageLayout depth_layout,
-                          const shader::VirtualMarkPushConstants& screen) {
+void VirtualPages::record_marking(VkCommandBuffer cmd, uint64_t frame, VkImageView depth, VkImageLayout depth_layout,
+                                  const shader::VirtualMarkPushConstants& screen) {
     FrameSlot& slot = slots_[frame % slots_.size()];
     gpu::write_combined_image_sampler(device_, slot.depth_set, PENUMBRA_BINDING_VIRTUAL_DEPTH, depth, nearest_,
                                       depth_layout);
@@ -236,7 +236,10 @@ void VirtualPages::record(VkCommandBuffer cmd, uint64_t frame, VkImageView depth
     device_->vkCmdDispatch(cmd, (screen.width + kMarkGroupSize - 1) / kMarkGroupSize,
                            (screen.height + kMarkGroupSize - 1) / kMarkGroupSize, 1);
     compute_to_compute(device_, cmd);
+}
 
+void VirtualPages::record_allocation(VkCommandBuffer cmd, uint64_t frame) {
+    const FrameSlot& slot = slots_[frame % slots_.size()];
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pages_pipeline_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pages_layout_, 0, 1, &slot.pages_set, 0,
                                      nullptr);

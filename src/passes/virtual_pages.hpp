@@ -85,7 +85,14 @@ public:
     // visible to compute shaders) and then the allocation. Afterwards the page table and the
     // list of pages to draw are visible to compute, vertex, fragment and indirect reads.
     void record(VkCommandBuffer cmd, uint64_t frame, VkImageView depth, VkImageLayout depth_layout,
-                const shader::VirtualMarkPushConstants& screen);
+                const shader::VirtualMarkPushConstants& screen) {
+        record_marking(cmd, frame, depth, depth_layout, screen);
+        record_allocation(cmd, frame);
+    }
+    // The two halves of record(), for timing them apart.
+    void record_marking(VkCommandBuffer cmd, uint64_t frame, VkImageView depth, VkImageLayout depth_layout,
+                        const shader::VirtualMarkPushConstants& screen);
+    void record_allocation(VkCommandBuffer cmd, uint64_t frame);
 
     // Copies the counters for the host (counters(frame)); after the frame's last pass that
     // counts (the casters' culling).

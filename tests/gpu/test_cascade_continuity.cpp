@@ -86,6 +86,37 @@ TEST(CascadeContinuity, PoleShadowCrossingACascadeBoundaryHasNoGapAndNoDouble) {
     }
 }
 
+// The virtual shadow map: the same shadow crosses clipmap levels (the receiver's level
+// follows its distance, the "cascade" AOV is the level) and the page edges of each level
+// (128 texels of 1.5 to 12 cm here), with the kernel filters that read across them.
+TEST(VirtualContinuity, PoleShadowCrossingLevelsAndPagesHasNoGapAndNoDouble) {
+    const Scene scene = scene_from_toml(kLongShadowPole);
+    for (const ShadowFilter filter : {ShadowFilter::Pcf, ShadowFilter::Pcss}) {
+        RenderSettings settings = small_settings(320, 240);
+        settings.shadow.technique = ShadowTechnique::Virtual;
+        settings.shadow.virtual_maps.pool_mib = 16;
+        settings.shadow.cascades.max_distance = 80.0f;
+        settings.shadow.filter.mode = filter;
+        const RenderedFrame frame = render_with_validation(scene, settings);
+        ASSERT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
+        std::set<int> levels_seen;
+        int samples = 0;
+        for (float z = -2.5f; z > -21.5f; z -= 0.1f) {
+            const auto centre = world_to_pixel(scene.camera, settings.width, settings.height, {0.0f, 0.0f, z});
+            const auto beside = world_to_pixel(scene.camera, settings.width, settings.height, {0.9f, 0.0f, z});
+            ASSERT_TRUE(centre && beside);
+            ++samples;
+            levels_seen.insert(frame.images.cascade[centre->y * settings.width + centre->x]);
+            const char* name = choice_name(kShadowFilterChoices, filter);
+            EXPECT_LT(visibility_at(frame.images, centre->x, centre->y), 0.5f) << name << ": gap at z=" << z;
+            EXPECT_EQ(visibility_at(frame.images, beside->x, beside->y), 1.0f)
+                << name << ": stray or doubled shadow beside the pole's shadow at z=" << z;
+        }
+        EXPECT_GT(samples, 150);
+        EXPECT_GE(levels_seen.size(), 2u) << "the shadow must cross a level boundary";
+    }
+}
+
 // ---- Alpha-masked casters: the Khronos AlphaBlendModeTest quads ------------------------
 
 const std::filesystem::path kAlphaModel =

@@ -215,6 +215,29 @@ TEST_F(VirtualShadowMapTest, ReportsItsLevelsAndMemory) {
     submit([&](VkCommandBuffer cmd) { cascades.record_shadow_maps(cmd); });
 }
 
+// The layered strategy still culls the spot and point lights on the GPU; the sun's
+// cascades are only a placeholder then, and the GPU's counts of past frames are read
+// without them.
+TEST_F(VirtualShadowMapTest, WorksBesideTheLayeredStrategy) {
+    Settings settings = virtual_settings();
+    settings.shadow.strategy = ShadowStrategy::Layered;
+    ShadowSystem shadows(system_desc(settings));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    add_sun(shadows);
+    VisibilityImage2D image;
+    for (int f = 0; f < 4; ++f) image = render_visibility(shadows);
+    const FootprintCheck check = check_footprint(image, kBoxCentre, kSunDirection, 0.15f);
+    EXPECT_GE(check.iou, 0.97);
+    EXPECT_TRUE(shadows.prepare(top_down_view()).cascades.empty());
+    submit([&](VkCommandBuffer cmd) {
+        const ScreenInputs screen =
+            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
+        shadows.record_page_marking(cmd, screen);
+        shadows.record_shadow_maps(cmd);
+    });
+}
+
 std::string error_of(const std::function<void()>& call) {
     try {
         call();

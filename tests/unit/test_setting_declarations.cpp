@@ -33,9 +33,10 @@ constexpr size_t field_count() {
 }
 
 TEST(SettingDeclarations, EveryFieldOfSettingsHasOneDeclaration) {
-    // ShadowSettings' first three fields are the nested cascade, bias and filter structs.
-    const size_t leaves = field_count<CascadeSettings>() + field_count<BiasSettings>() + field_count<FilterSettings>() +
-                          (field_count<ShadowSettings>() - 3) + field_count<LocalShadowSettings>();
+    // Four of ShadowSettings' fields are the nested virtual map, cascade, bias and filter structs.
+    const size_t leaves = field_count<VirtualShadowSettings>() + field_count<CascadeSettings>() +
+                          field_count<BiasSettings>() + field_count<FilterSettings>() +
+                          (field_count<ShadowSettings>() - 4) + field_count<LocalShadowSettings>();
     EXPECT_EQ(field_count<Settings>(), 2u);
     EXPECT_EQ(std::size(kSettingDeclarations), leaves);
 }

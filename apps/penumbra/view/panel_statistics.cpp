@@ -3,6 +3,8 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "panel.hpp"
 
@@ -105,10 +107,34 @@ void shadow_map_layers(const renderer::GrayImage& strip, const renderer::FrameIn
     if (frame) ImGui::TextDisabled("with the shadow cache: red, static casters drawn again; yellow, dynamic instances");
 }
 
+// The virtual shadow map's frame: its pages (the GPU's counts arrive frames in flight
+// later), its pool, and the texel size of the levels.
+void virtual_map_section(const VirtualShadowInfo& map) {
+    const double pool_mib = static_cast<double>(map.pool_bytes) / (1024.0 * 1024.0);
+    ImGui::Text("pool %u pages (%.0f MiB): %u resident (%.0f %%)", map.pool_pages, pool_mib, map.pages_resident,
+                map.pool_pages ? 100.0 * map.pages_resident / map.pool_pages : 0.0);
+    ImGui::Text("pages: %u requested, %u drawn, %u cached, %u unserved, %u evicted", map.pages_requested,
+                map.pages_rendered, map.pages_cached, map.pages_unserved, map.pages_evicted);
+    ImGui::Text("caster instances drawn into pages: %u%s", map.page_draws,
+                map.invalidated_all ? " (every page stale this frame)" : "");
+    if (map.counted_frame == 0) ImGui::TextDisabled("the GPU's counts arrive after the frames in flight");
+    std::string sizes;
+    for (size_t l = 0; l < map.texel_world_size.size(); ++l) {
+        char size[32];
+        std::snprintf(size, sizeof(size), "%s%.3g", l ? ", " : "", map.texel_world_size[l]);
+        sizes += size;
+    }
+    ImGui::TextWrapped("texel per level (m): %s", sizes.c_str());
+}
+
 }  // namespace
 
 void draw_statistics(const PanelStats& stats) {
     timing_section(stats);
+    if (stats.frame && stats.frame->virtual_map &&
+        ImGui::CollapsingHeader("Virtual shadow map", ImGuiTreeNodeFlags_DefaultOpen)) {
+        virtual_map_section(*stats.frame->virtual_map);
+    }
     if (stats.frame && ImGui::CollapsingHeader("Cascade statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::Text("shadow distance %.1f m", stats.frame->shadow_distance);
         cascade_table(*stats.frame);

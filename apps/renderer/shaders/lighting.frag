@@ -109,7 +109,7 @@ void main() {
     if (draw.flags.x != 0u) emission *= texture(emissive_texture, in_uv).rgb;
     color += emission;
 #ifdef RENDERER_DEFERRED_SHADOWS
-    const int cascade = penumbra_select_cascade(penumbra_view_depth(in_world_position));
+    const int cascade = penumbra_sun_map_of(in_world_position);
 #else
     const int cascade = receiver.cascade;
 #endif

@@ -53,13 +53,35 @@ vec4 penumbra_virtual_gather(uint level, ivec2 first, float reference) {
 }
 
 // A bilinear comparison tap at `uv` (the level's window in [0, 1]), as a hardware
-// comparison sampler with linear filtering reads a map.
+// comparison sampler with linear filtering reads a map. Where the four texels lie in one
+// page (127 taps in 128 per axis) it is one hardware comparison in that page of the pool;
+// across a page's edge, four texel reads, each through its own page. (One return after an
+// if/else: see penumbra_compare_at.)
 float penumbra_virtual_compare(uint level, vec2 uv, float reference) {
     const vec2 position = uv * float(penumbra_virtual_side()) - 0.5;
     const vec2 first = floor(position);
     const vec2 weight = position - first;
-    const vec4 lit = penumbra_virtual_gather(level, ivec2(first), reference);
-    return mix(mix(lit.w, lit.z, weight.x), mix(lit.x, lit.y, weight.x), weight.y);
+    const ivec2 texel = ivec2(first);
+    const int page_texels = int(kPenumbraVirtualPageTexels);
+    const ivec2 in_page = texel % page_texels;
+    const uint value = penumbra_page_table[penumbra_virtual_entry(level, max(texel, ivec2(0)) / page_texels)];
+    const uint ready = PENUMBRA_PAGE_ALLOCATED | PENUMBRA_PAGE_VALID;
+    float lit;
+    if (all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(in_page, ivec2(page_texels - 1))) &&
+        (value & ready) == ready) {
+        const uint physical = value & PENUMBRA_PAGE_PHYSICAL_MASK;
+        const uint row = penumbra_virtual.pool_pages_per_row;
+        const vec2 pool_page = vec2(float(physical % row), float(physical / row));
+        const vec2 pool_texels = vec2(float(row), float(penumbra_virtual.pool_rows)) * float(page_texels);
+        // The hardware reads texels floor(c - 0.5) and the next with weight fract(c - 0.5).
+        const vec2 coordinate = pool_page * float(page_texels) + vec2(in_page) + weight + 0.5;
+        // An explicit level: implicit derivatives are undefined in this divergent branch.
+        lit = textureLod(penumbra_virtual_pool, vec3(coordinate / pool_texels, reference), 0.0);
+    } else {
+        const vec4 taps = penumbra_virtual_gather(level, texel, reference);
+        lit = mix(mix(taps.w, taps.z, weight.x), mix(taps.x, taps.y, weight.x), weight.y);
+    }
+    return lit;
 }
 
 // The stored depth of the texel under `uv` (PCSS's blocker search).
