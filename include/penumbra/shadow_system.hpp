@@ -9,7 +9,7 @@
 //   // bind frame.descriptor_set at your set index), or resolve screen-space visibility:
 //   shadows.record_visibility(cmd, screen);                     // compute, from your depth
 //
-// Penumbra records commands and never submits, waits or presents. It inserts barriers
+// Penumbra records commands and never submits, waits (but in ~ShadowSystem) or presents. It inserts barriers
 // for its own images only; the state of the caller's images on entry and exit is part of
 // each call's contract below. A ShadowSystem is not thread-safe: call it from one thread
 // at a time (separate ShadowSystems may be used from separate threads).
@@ -335,8 +335,11 @@ public:
     // Checks the device (DeviceError naming what is missing) and the settings (InputError),
     // then creates the pipelines and the maps the settings ask for.
     explicit ShadowSystem(const ShadowSystemDesc& desc);
-    // Destroys everything Penumbra created. The caller must have waited for every
-    // submission that used this ShadowSystem (e.g. vkDeviceWaitIdle).
+    // Waits for DeviceDesc::queue to be idle (vkQueueWaitIdle: frames submitted and not
+    // waited for complete first; no wait when the caller already waited), then destroys
+    // everything Penumbra created. The queue is externally synchronised: no other thread
+    // may submit to it while this runs. Frames submitted on another queue are the caller's
+    // to wait for.
     ~ShadowSystem();
     ShadowSystem(const ShadowSystem&) = delete;
     ShadowSystem& operator=(const ShadowSystem&) = delete;
