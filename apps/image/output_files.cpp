@@ -65,7 +65,8 @@ void check_name_length(const fs::path& requested, const fs::path& target, const 
     std::error_code error;
     constexpr size_t kTemporaryExtraBytes = 43;  // ".<pid>-<16 hex>.penumbra-tmp" and the leading dot
     const size_t path_bytes = fs::absolute(target, error).native().size() + kTemporaryExtraBytes;
-    if (path_bytes >= PATH_MAX) refuse(requested, "the path is too long (at most " + std::to_string(PATH_MAX) + " bytes)");
+    if (path_bytes >= PATH_MAX)
+        refuse(requested, "the path is too long (at most " + std::to_string(PATH_MAX) + " bytes)");
 }
 
 }  // namespace

@@ -189,7 +189,8 @@ void TemporaryFile::rename_to(const fs::path& target) {
     const int descriptor = write_descriptor_;
     write_descriptor_ = -1;
     if (::close(descriptor) != 0) refuse(label_, std::string("writing failed: ") + std::strerror(errno));
-    if (::rename(path_.c_str(), target.c_str()) != 0) refuse(label_, std::string("cannot write: ") + std::strerror(errno));
+    if (::rename(path_.c_str(), target.c_str()) != 0)
+        refuse(label_, std::string("cannot write: ") + std::strerror(errno));
     renamed_ = true;
 }
 

@@ -53,11 +53,11 @@ double normalised_determinant(const Mat4& world) {
         }
         length_product *= std::sqrt(squared);
     }
-    const double (&a)[3] = columns[0];
-    const double (&b)[3] = columns[1];
-    const double (&d)[3] = columns[2];
-    const double determinant = a[0] * (b[1] * d[2] - b[2] * d[1]) - b[0] * (a[1] * d[2] - a[2] * d[1]) +
-                               d[0] * (a[1] * b[2] - a[2] * b[1]);
+    const double(&a)[3] = columns[0];
+    const double(&b)[3] = columns[1];
+    const double(&d)[3] = columns[2];
+    const double determinant =
+        a[0] * (b[1] * d[2] - b[2] * d[1]) - b[0] * (a[1] * d[2] - a[2] * d[1]) + d[0] * (a[1] * b[2] - a[2] * b[1]);
     return length_product > 0.0 ? determinant / length_product : 0.0;
 }
 

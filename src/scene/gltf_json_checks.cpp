@@ -296,9 +296,8 @@ void check_gltf_json(std::string_view json, const std::string& origin, const std
     });
     checker.each(document, "nodes",
                  [&](const Json& node, const std::string& where) { check_node(checker, targets, node, where); });
-    checker.each(document, "meshes", [&](const Json& mesh, const std::string& where) {
-        check_primitives(checker, targets, mesh, where);
-    });
+    checker.each(document, "meshes",
+                 [&](const Json& mesh, const std::string& where) { check_primitives(checker, targets, mesh, where); });
     checker.each(document, "materials", [&](const Json& material, const std::string& where) {
         check_material(checker, targets, material, where);
     });

@@ -11,9 +11,9 @@
 
 #include <csignal>
 #include <cstdlib>
-#include <iterator>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -150,7 +150,8 @@ TEST_F(Outputs, AKilledWritersTemporaryIsRemovedByTheNextWriter) {
 // Two `penumbra render` runs to one -o at once: both succeed, and the file is one of their
 // images, whole.
 TEST_F(Outputs, ConcurrentRendersToOneOutputBothWriteAWholeImage) {
-    const std::string render = "'" + std::string(PENUMBRA_BINARY) + "' render builtin:default -o out.png ";
+    const std::string render =
+        "'" + std::string(penumbra::testing::penumbra_binary()) + "' render builtin:default -o out.png ";
     const std::string both = "cd '" + dir_.string() + "' && (" + render + "--width 32 --height 18 > a.txt 2>&1 & " +
                              render + "--width 48 --height 27 > b.txt 2>&1; b=$?; wait $!; a=$?; exit $((a | b)))";
     const int status = std::system(both.c_str());

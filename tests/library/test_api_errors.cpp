@@ -302,8 +302,11 @@ TEST_F(ApiMisuse, ValuesBeyondTheContractAreRefused) {
 
     Mat4 huge_scale = translation(kBoxCentre);
     huge_scale(0, 0) = huge_scale(1, 1) = huge_scale(2, 2) = 1e30f;
-    expect_error<InputError>([&] { shadows.add_instance({mesh, huge_scale}); },
-                             "ShadowSystem::add_instance: world: places the mesh at");
+    expect_error<InputError>(
+        [&] {
+            shadows.add_instance({mesh, huge_scale});
+        },
+        "ShadowSystem::add_instance: world: places the mesh at");
     const Mat4 far_away = translation({1e30f, 0.0f, 0.0f});
     expect_error<InputError>([&] { shadows.set_instance_transform(instance, far_away); },
                              "ShadowSystem::set_instance_transform: world: places the mesh at (1e+30");
@@ -314,8 +317,11 @@ TEST_F(ApiMisuse, ValuesBeyondTheContractAreRefused) {
     projective(3, 2) = -1.0f;
     expect_error<InputError>([&] { shadows.set_instance_transform(instance, projective); },
                              "world: is not affine: its bottom row is (0, 0, -1, 1), not (0, 0, 0, 1)");
-    expect_error<InputError>([&] { shadows.add_instance({mesh, Mat4{}, kInstanceCastsShadows | (1u << 4)}); },
-                             "ShadowSystem::add_instance: flags: 0x11 holds bits InstanceFlags does not define");
+    expect_error<InputError>(
+        [&] {
+            shadows.add_instance({mesh, Mat4{}, kInstanceCastsShadows | (1u << 4)});
+        },
+        "ShadowSystem::add_instance: flags: 0x11 holds bits InstanceFlags does not define");
     expect_error<InputError>([&] { shadows.set_instance_flags(instance, 0x80000000u); }, "set_instance_flags: flags");
 
     MeshArrays far_mesh = box_mesh();
@@ -324,8 +330,11 @@ TEST_F(ApiMisuse, ValuesBeyondTheContractAreRefused) {
                              "ShadowSystem::add_mesh: positions[3]: (3e+38, 0, 0) is beyond 1e+09 in magnitude");
 
     LightDesc unknown_type{static_cast<LightType>(9), {0.0f, -1.0f, 0.0f}};
-    expect_error<InputError>([&] { shadows.set_lights({&unknown_type, 1}); },
-                             "ShadowSystem::set_lights: lights[0].type: 9 is not a LightType");
+    expect_error<InputError>(
+        [&] {
+            shadows.set_lights({&unknown_type, 1});
+        },
+        "ShadowSystem::set_lights: lights[0].type: 9 is not a LightType");
     LightDesc far_light{LightType::Point, {0.0f, -1.0f, 0.0f}, {0.0f, 2e9f, 0.0f}};
     expect_error<InputError>([&] { shadows.set_lights({&far_light, 1}); }, "lights[0].position: (0, 2e+09, 0)");
 

@@ -134,8 +134,7 @@ TEST(SceneErrors, IntegersADoubleCannotHold) {
 TEST(SceneErrors, MoreLightsThanAShadowSystemTakes) {
     std::string text;
     for (int i = 0; i < 301; ++i) text += "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\n";
-    EXPECT_EQ(scene_error(text),
-              "scene.toml: lights: 301 lights, at most 256 (the lights one ShadowSystem takes)");
+    EXPECT_EQ(scene_error(text), "scene.toml: lights: 301 lights, at most 256 (the lights one ShadowSystem takes)");
     std::string most;
     for (int i = 0; i < 256; ++i) most += "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\n";
     EXPECT_EQ(testing::parse_scene_text(most).lights.size(), 256u);
