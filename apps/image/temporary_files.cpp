@@ -13,7 +13,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <mutex>
 #include <optional>
 #include <random>
 
@@ -52,20 +51,19 @@ extern "C" void remove_temporaries_and_reraise(int signal_number) {
     std::raise(signal_number);
 }
 
-// Installed once, and only where nobody else handles these signals.
+// Installed wherever a signal still has its default action, checked at each registration
+// (not once per process): a signal the process ignores (a background job's SIGINT) stays
+// ignored, and one reset to its default later (a forked child) gets the cleanup again.
 void install_signal_cleanup() {
-    static std::once_flag once;
-    std::call_once(once, [] {
-        struct sigaction action {};
-        action.sa_handler = remove_temporaries_and_reraise;
-        sigemptyset(&action.sa_mask);
-        for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
-            struct sigaction previous {};
-            if (sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_DFL) {
-                sigaction(signal_number, &action, nullptr);
-            }
+    struct sigaction action {};
+    action.sa_handler = remove_temporaries_and_reraise;
+    sigemptyset(&action.sa_mask);
+    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+        struct sigaction previous {};
+        if (sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_DFL) {
+            sigaction(signal_number, &action, nullptr);
         }
-    });
+    }
 }
 
 // The slot now holding `path`, or -1 when all are taken or the path is too long (a

@@ -50,7 +50,8 @@ TEST_F(Outputs, TemporariesAreRemovedWhenTheProcessIsSignalled) {
         ASSERT_GE(child, 0);
         if (child == 0) {
             const rlimit no_core{0, 0};
-            setrlimit(RLIMIT_CORE, &no_core);  // SIGQUIT's default action dumps core
+            setrlimit(RLIMIT_CORE, &no_core);     // SIGQUIT's default action dumps core
+            std::signal(signal_number, SIG_DFL);  // a background shell's job ignores SIGINT and SIGQUIT
             penumbra::OutputFiles output({a, b}, penumbra::OutputFolders::MayBeCreated);
             output.write(a, "first file");
             std::raise(signal_number);
