@@ -205,7 +205,9 @@ TEST_F(Cli, ConfigThatIsNotAReadableFile) {
 
     write_file("config.toml", "[output]\nwidth = 50\n");
     fs::permissions(dir_ / "config.toml", fs::perms::none);
-    // Root reads any file: run as nobody then (the shell, still root, makes the redirections).
+    // Root reads any file: run as nobody then (the shell, still root, makes the redirections;
+    // nobody may write the folder, so that the output check passes and the config is read).
+    fs::permissions(dir_, fs::perms::all);
     const std::string as_user = ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups" : "";
     expect_failure(run("render --config config.toml -o out.png", as_user), 2,
                    "penumbra: config.toml: cannot be read: Permission denied");
