@@ -125,8 +125,6 @@ TEST(SceneErrors, IntegersADoubleCannotHold) {
                 StartsWith("scene.toml: objects[0].scale: -9223372036854775808 is beyond 1e9"));
     EXPECT_THAT(scene_error("[[lights]]\ntype = \"directional\"\nintensity = 9007199254740993\n"),
                 StartsWith("scene.toml: lights[0].intensity: 9007199254740993 is beyond 1e9"));
-    EXPECT_THAT(scene_error("[shadow]\nresolution = 9223372036854775807\n"),
-                StartsWith("scene.toml: shadow.resolution: 9223372036854775807 is out of range"));
 }
 
 // More lights than a ShadowSystem takes is the scene file's error, naming it and the key
