@@ -325,6 +325,8 @@ void measure(std::vector<CapturedFrame>& frames, const CompareJob& job, CompareR
 }  // namespace
 
 void validate_compare_job(const CompareJob& job) {
+    // An empty folder would put seven files into the current one: say "." for that.
+    if (job.out_dir.empty()) throw InputError("--out-dir: empty; name a folder (\".\" for the current one)");
     if (job.rays < 1 || job.rays > kMaxRays) {
         throw InputError("--rays: must be 1.." + std::to_string(kMaxRays) + ", got " + std::to_string(job.rays));
     }

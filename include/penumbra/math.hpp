@@ -33,6 +33,14 @@ struct Mat4 {
     friend bool operator==(const Mat4&, const Mat4&) = default;
 };
 
+// The largest coordinate, in metres along any axis, that geometry and lights may have in
+// world space (and meshes in model space): Penumbra's math is 32-bit float, which still
+// carries squares (lengths, dot products) of numbers up to 1e9; beyond, a normalisation or
+// projection overflows. The ShadowSystem refuses anything beyond it with an InputError
+// naming the argument. Every caster and receiver widens the lights' depth ranges, so keep
+// the world as small as it is: far-off geometry costs every shadow depth precision.
+inline constexpr float kMaxWorldMagnitude = 1e9f;
+
 // An axis-aligned box. A box with min > max on any axis is empty.
 struct Bounds {
     Vec3 min;

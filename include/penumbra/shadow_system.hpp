@@ -9,7 +9,7 @@
 //   // bind frame.descriptor_set at your set index), or resolve screen-space visibility:
 //   shadows.record_visibility(cmd, screen);                     // compute, from your depth
 //
-// Penumbra records commands and never submits, waits or presents. It inserts barriers
+// Penumbra records commands and never submits, waits (but in ~ShadowSystem) or presents. It inserts barriers
 // for its own images only; the state of the caller's images on entry and exit is part of
 // each call's contract below. A ShadowSystem is not thread-safe: call it from one thread
 // at a time (separate ShadowSystems may be used from separate threads).
@@ -78,7 +78,8 @@ struct MeshDesc {
     uint32_t index_count = 0;   // a multiple of 3
     int32_t vertex_offset = 0;  // added to every index (vkCmdDrawIndexed's vertexOffset)
     // Model-space bounds of the vertices the indices reach: Penumbra cannot read GPU
-    // buffers and culls with these. Must contain the mesh (a smaller box drops shadows).
+    // buffers and culls with these. Must contain the mesh (a smaller box drops shadows),
+    // within kMaxWorldMagnitude.
     Bounds bounds;
     std::optional<VertexStream> uvs;  // required with alpha_mask
     std::optional<AlphaMaskDesc> alpha_mask;
@@ -87,7 +88,7 @@ struct MeshDesc {
 // A triangle list on the CPU that Penumbra uploads into buffers of its own (copied during
 // the next record_shadow_maps()). Bounds are computed from the positions.
 struct MeshData {
-    std::span<const Vec3> positions;
+    std::span<const Vec3> positions;    // finite, within kMaxWorldMagnitude
     std::span<const uint32_t> indices;  // a multiple of 3, each < positions.size()
     std::span<const Vec2> uvs;          // empty, or one per position (required with alpha_mask)
     std::optional<AlphaMaskDesc> alpha_mask;
@@ -108,11 +109,17 @@ enum InstanceFlags : uint32_t {
     // cached texels its old and new bounds cover.
     kInstanceDynamic = 1u << 3,
 };
+// Every flag above; other bits are an InputError.
+inline constexpr uint32_t kInstanceAllFlags =
+    kInstanceCastsShadows | kInstanceDoubleSided | kInstanceAlphaMasked | kInstanceDynamic;
 
 struct InstanceDesc {
     MeshId mesh;
-    Mat4 world;  // model -> world; any invertible affine transform (mirroring is fine)
-    uint32_t flags = kInstanceCastsShadows | kInstanceAlphaMasked;
+    // model -> world; any invertible affine transform (mirroring is fine): bottom row exactly
+    // (0, 0, 0, 1), and the mesh's bounds placed within kMaxWorldMagnitude. InputError
+    // ("world: ...") otherwise.
+    Mat4 world;
+    uint32_t flags = kInstanceCastsShadows | kInstanceAlphaMasked;  // InstanceFlags only
 };
 
 // -------------------------------------------------------------------------- the frame
@@ -364,8 +371,11 @@ public:
     // Checks the device (DeviceError naming what is missing) and the settings (InputError),
     // then creates the pipelines and the maps the settings ask for.
     explicit ShadowSystem(const ShadowSystemDesc& desc);
-    // Destroys everything Penumbra created. The caller must have waited for every
-    // submission that used this ShadowSystem (e.g. vkDeviceWaitIdle).
+    // Waits for DeviceDesc::queue to be idle (vkQueueWaitIdle: frames submitted and not
+    // waited for complete first; no wait when the caller already waited), then destroys
+    // everything Penumbra created. The queue is externally synchronised: no other thread
+    // may submit to it while this runs. Frames submitted on another queue are the caller's
+    // to wait for.
     ~ShadowSystem();
     ShadowSystem(const ShadowSystem&) = delete;
     ShadowSystem& operator=(const ShadowSystem&) = delete;
@@ -376,6 +386,8 @@ public:
     MeshId add_mesh(const MeshData& mesh);
     // A mesh still used by an instance cannot be removed (UsageError).
     void remove_mesh(MeshId mesh);
+    // InputError naming the argument for a world transform or flags InstanceDesc does not
+    // allow (see there); the instance is then unchanged.
     InstanceId add_instance(const InstanceDesc& instance);
     void set_instance_transform(InstanceId instance, const Mat4& world);
     void set_instance_flags(InstanceId instance, uint32_t flags);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "library/conversions.hpp"
+#include "library/instance_checks.hpp"
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
@@ -127,6 +128,7 @@ MeshId Geometry::add_mesh(const MeshDesc& desc) {
     if (desc.index_buffer == VK_NULL_HANDLE) reject(call, "index_buffer", "is VK_NULL_HANDLE");
     check_indices(desc.index_type, desc.index_offset, desc.index_count, call);
     check_bounds(desc.bounds, call);
+    check_bounds_magnitude(desc.bounds, call);
     if (desc.alpha_mask) {
         check_alpha_mask(*desc.alpha_mask, call);
         if (!desc.uvs) reject(call, "uvs", "are required with an alpha mask");
@@ -159,9 +161,7 @@ MeshId Geometry::add_mesh(const MeshData& data) {
                        " positions)");
         }
     }
-    for (const Vec3& position : data.positions) {
-        if (!finite(position)) reject(call, "positions", "must be finite");
-    }
+    check_positions(data.positions, call);
     if (!data.uvs.empty() && data.uvs.size() != data.positions.size()) {
         reject(call, "uvs",
                std::to_string(data.uvs.size()) + " given for " + std::to_string(data.positions.size()) + " positions");
@@ -271,12 +271,9 @@ void Geometry::remove_mesh(MeshId id, uint64_t frame) {
 
 InstanceId Geometry::add_instance(const InstanceDesc& desc) {
     Mesh& mesh = find_mesh(desc.mesh, "add_instance");
-    const glm::mat4 world = to_glm(desc.world);
-    for (int i = 0; i < 16; ++i) {
-        if (!std::isfinite(desc.world.m[static_cast<size_t>(i)])) reject("add_instance", "world", "must be finite");
-    }
-    Instance instance{next_instance_id_++, desc.mesh.value, world, desc.flags, {}};
-    update_bounds(instance);
+    const Aabb world_bounds = checked_world_bounds(desc.world, mesh.bounds, "add_instance");
+    check_instance_flags(desc.flags, "add_instance");
+    const Instance instance{next_instance_id_++, desc.mesh.value, to_glm(desc.world), desc.flags, world_bounds};
     note_static_change(instance);
     ++mesh.instances;
     instance_index_.emplace(instance.id, static_cast<uint32_t>(instances_.size()));
@@ -304,24 +301,19 @@ void Geometry::forget_static_changes(size_t count) {
                                                                                  count, static_changes_.size())));
 }
 
-void Geometry::update_bounds(Instance& instance) {
-    instance.world_bounds = transform_aabb(meshes_.at(instance.mesh).bounds, instance.world);
-}
-
 void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {
     Instance& instance = find_instance(id, "set_instance_transform");
-    for (const float value : world.m) {
-        if (!std::isfinite(value)) reject("set_instance_transform", "world", "must be finite");
-    }
+    const Aabb world_bounds = checked_world_bounds(world, meshes_.at(instance.mesh).bounds, "set_instance_transform");
     note_static_change(instance);
     instance.world = to_glm(world);
-    update_bounds(instance);
+    instance.world_bounds = world_bounds;
     note_static_change(instance);
     ++changes_;
 }
 
 void Geometry::set_instance_flags(InstanceId id, uint32_t flags) {
     Instance& instance = find_instance(id, "set_instance_flags");
+    check_instance_flags(flags, "set_instance_flags");
     if (flags == instance.flags) return;
     note_static_change(instance);  // what it was (a static caster's depths go)
     instance.flags = flags;

@@ -83,7 +83,6 @@ private:
     VkBuffer upload(std::span<const std::byte> bytes, VkBufferUsageFlags usage, Mesh& mesh);
     Mesh& find_mesh(MeshId mesh, const char* call);
     Instance& find_instance(InstanceId instance, const char* call);
-    void update_bounds(Instance& instance);
     void note_static_change(const Instance& instance);
 
     const gpu::Device& device_;

@@ -33,6 +33,20 @@ public:
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
             throw InputError(prefix_ + field + ": must be finite");
         }
+        if (std::abs(v.x) > kMaxWorldMagnitude || std::abs(v.y) > kMaxWorldMagnitude ||
+            std::abs(v.z) > kMaxWorldMagnitude) {
+            std::ostringstream message;
+            message << prefix_ << field << ": (" << v.x << ", " << v.y << ", " << v.z << ") is beyond "
+                    << kMaxWorldMagnitude << " in magnitude (kMaxWorldMagnitude)";
+            throw InputError(message.str());
+        }
+    }
+
+    // An enum value the caller cast from a number LightType does not define.
+    void require_type(LightType type) const {
+        if (type == LightType::Directional || type == LightType::Spot || type == LightType::Point) return;
+        throw InputError(prefix_ + "type: " + std::to_string(static_cast<int>(type)) +
+                         " is not a LightType (Directional, Spot or Point)");
     }
 
 private:
@@ -41,6 +55,7 @@ private:
 
 void check_light(const LightDesc& light, size_t index) {
     const LightChecker check(index);
+    check.require_type(light.type);
     if (light.type == LightType::Directional) {
         check.require_direction(light.direction, "direction");
         check.require(light.angular_diameter_degrees >= 0.0f && light.angular_diameter_degrees <= 45.0f,
@@ -55,9 +70,10 @@ void check_light(const LightDesc& light, size_t index) {
         check.require(light.inner_angle_degrees >= 0.0f && light.inner_angle_degrees <= light.outer_angle_degrees,
                       "inner_angle_degrees", light.inner_angle_degrees, "is outside [0, outer_angle_degrees]");
     }
-    check.require(light.range > 0.0f && std::isfinite(light.range), "range", light.range, "must be finite and > 0");
-    check.require(light.radius >= 0.0f && std::isfinite(light.radius), "radius", light.radius,
-                  "must be finite and >= 0");
+    check.require(light.range > 0.0f && light.range <= kMaxWorldMagnitude, "range", light.range,
+                  "must be > 0 and at most kMaxWorldMagnitude");
+    check.require(light.radius >= 0.0f && light.radius <= kMaxWorldMagnitude, "radius", light.radius,
+                  "must be >= 0 and at most kMaxWorldMagnitude");
     check.require(light.shadow_resolution == 0 || (light.shadow_resolution >= 16 && light.shadow_resolution <= 8192),
                   "shadow_resolution", static_cast<float>(light.shadow_resolution), "is not 0 or within 16..8192");
 }

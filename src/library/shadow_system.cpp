@@ -421,7 +421,13 @@ struct ShadowSystem::Impl {
 
 ShadowSystem::ShadowSystem(const ShadowSystemDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
 
-ShadowSystem::~ShadowSystem() = default;
+ShadowSystem::~ShadowSystem() {
+    // Frames the caller submitted and did not wait for may still use the maps, buffers and
+    // pipelines destroyed below: wait for the queue they run on (DeviceDesc::queue). It
+    // returns at once when the caller already waited; a lost device has nothing to wait for,
+    // so its result is ignored (a destructor does not throw).
+    if (impl_) impl_->device->vkQueueWaitIdle(impl_->device.queue());
+}
 
 MeshId ShadowSystem::add_mesh(const MeshDesc& mesh) { return impl_->geometry.add_mesh(mesh); }
 MeshId ShadowSystem::add_mesh(const MeshData& mesh) { return impl_->geometry.add_mesh(mesh); }

@@ -3,6 +3,7 @@
 
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/loader.hpp"
+#include "penumbra/settings.hpp"
 #include "scene/scene_objects.hpp"
 #include "scene/toml_fields.hpp"
 
@@ -120,15 +121,17 @@ glm::vec3 read_ambient(TomlTableReader reader, const glm::vec3& fallback) {
     return color;
 }
 
-std::string read_text_file(const std::filesystem::path& file, const std::string& origin) {
-    std::error_code error;
-    if (!std::filesystem::exists(file, error)) throw InputError(origin + ": scene file not found");
-    if (!std::filesystem::is_regular_file(file, error)) throw InputError(origin + ": not a regular file");
-    std::ifstream stream(file, std::ios::binary);
-    std::ostringstream text;
-    text << stream.rdbuf();
-    if (!stream) throw InputError(origin + ": cannot read the scene file");
-    return text.str();
+// A ShadowSystem takes at most kMaxLights lights: a scene with more is this file's error,
+// named here, not the library's later ("ShadowSystem::set_lights: 301 lights").
+void check_light_count(const std::string& origin, const Scene& scene, size_t from_lights_table) {
+    if (scene.lights.size() <= kMaxLights) return;
+    const std::string most = ", at most " + std::to_string(kMaxLights) + " (the lights one ShadowSystem takes)";
+    if (scene.lights.size() == from_lights_table) {
+        throw_scene_error(origin, "lights", std::to_string(from_lights_table) + " lights" + most);
+    }
+    throw_scene_error(origin, "objects",
+                      "the glTF models' lights bring the scene to " + std::to_string(scene.lights.size()) +
+                          " lights (" + std::to_string(from_lights_table) + " from [[lights]])" + most);
 }
 
 }  // namespace
@@ -147,6 +150,7 @@ Scene parse_scene_toml(std::string_view text, const std::string& origin, const s
     for (size_t i = 0; i < lights.size(); ++i) {
         scene.lights.push_back(read_light(TomlTableReader(*lights[i], origin, "lights[" + std::to_string(i) + "]")));
     }
+    check_light_count(origin, scene, lights.size());
     if (const toml::table* ambient = reader.optional_table("ambient")) {
         scene.ambient = read_ambient(TomlTableReader(*ambient, origin, "ambient"), scene.ambient);
     }
@@ -154,6 +158,7 @@ Scene parse_scene_toml(std::string_view text, const std::string& origin, const s
     // Unknown top-level tables are reported before the (possibly slow) model loading.
     reader.reject_unknown_keys();
     append_scene_objects(reader, scene, base_directory);
+    check_light_count(origin, scene, lights.size());
     return scene;
 }
 
@@ -162,7 +167,7 @@ Scene load_scene(const std::string& path_or_builtin) {
         return builtin_scene(path_or_builtin.substr(kBuiltinPrefix.size()));
     }
     const std::filesystem::path file(path_or_builtin);
-    const std::string text = read_text_file(file, path_or_builtin);
+    const std::string text = read_text_file(file, path_or_builtin, "scene file");
     return parse_scene_toml(text, path_or_builtin, file.parent_path());
 }
 

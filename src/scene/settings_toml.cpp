@@ -107,15 +107,12 @@ const std::map<std::string, TableHandler>& config_file_tables() {
 }  // namespace
 
 SettingsOverrides load_settings_from_scene_file(const std::filesystem::path& scene_file) {
-    return read_tables(parse_toml_file(scene_file), scene_file.string(),
+    return read_tables(parse_toml_file(scene_file, "scene file"), scene_file.string(),
                        {{"output", read_output_table}, {"shadow", read_shadow_table}}, false);
 }
 
 SettingsOverrides load_settings_file(const std::filesystem::path& config_file) {
-    if (!std::filesystem::is_regular_file(config_file)) {
-        throw InputError(config_file.string() + ": config file not found");
-    }
-    return read_tables(parse_toml_file(config_file), config_file.string(), config_file_tables(), true);
+    return read_tables(parse_toml_file(config_file, "config file"), config_file.string(), config_file_tables(), true);
 }
 
 SettingsOverrides parse_settings_text(const std::string& text, const std::string& origin) {

@@ -1,7 +1,10 @@
 #include "scene/toml_fields.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <sstream>
 #include <utility>
 
@@ -66,6 +69,15 @@ std::string type_name(const toml::node& node) {
     }
 }
 
+// A TOML number as a double. toml++'s value<double>() is empty for an integer a double
+// cannot hold exactly (beyond 2^53), so integers are converted here, rounded: every such
+// integer is far beyond the 1e9 limit that the callers then apply.
+std::optional<double> number_as_double(const toml::node& node) {
+    if (const auto* integer = node.as_integer()) return static_cast<double>(integer->get());
+    if (const auto* floating = node.as_floating_point()) return floating->get();
+    return std::nullopt;
+}
+
 [[noreturn]] void throw_parse_error(const toml::parse_error& error, const std::string& origin, bool with_position) {
     std::string description(error.description());
     // toml++ descriptions may span lines; the message must stay one line.
@@ -88,12 +100,22 @@ toml::table parse_toml_text(std::string_view text, const std::string& origin, bo
     }
 }
 
-toml::table parse_toml_file(const std::filesystem::path& file) {
-    try {
-        return toml::parse_file(file.string());
-    } catch (const toml::parse_error& error) {
-        throw_parse_error(error, file.string(), true);
-    }
+std::string read_text_file(const std::filesystem::path& file, const std::string& origin, std::string_view kind) {
+    std::error_code error;
+    const std::filesystem::file_status status = std::filesystem::status(file, error);
+    if (!std::filesystem::exists(status)) throw InputError(origin + ": " + std::string(kind) + " not found");
+    // A FIFO or a device (/dev/zero) would block the read, or never end it.
+    if (!std::filesystem::is_regular_file(status)) throw InputError(origin + ": not a regular file");
+    std::ifstream stream(file, std::ios::binary);
+    if (!stream) throw InputError(origin + ": cannot be read: " + std::strerror(errno));
+    std::ostringstream text;
+    text << stream.rdbuf();
+    if (stream.bad()) throw InputError(origin + ": cannot be read: " + std::strerror(errno));
+    return text.str();
+}
+
+toml::table parse_toml_file(const std::filesystem::path& file, std::string_view kind) {
+    return parse_toml_text(read_text_file(file, file.string(), kind), file.string());
 }
 
 void throw_scene_error(const std::string& origin, const std::string& key_path, const std::string& problem) {
@@ -152,7 +174,7 @@ std::optional<double> TomlTableReader::optional_number(std::string_view key) {
     const toml::node* node = find(key);
     if (node == nullptr) return std::nullopt;
     if (!node->is_number()) fail(key, "expected a number, got " + describe_toml_value(*node));
-    const double value = *node->value<double>();
+    const double value = *number_as_double(*node);
     if (!std::isfinite(value)) fail(key, "expected a finite number, got " + value_text(*node));
     if (std::abs(value) > kMaxNumberMagnitude) fail(key, value_text(*node) + " is beyond " + kMagnitudeLimitText);
     return value;
@@ -210,7 +232,7 @@ std::vector<double> TomlTableReader::number_array(std::string_view key, const to
     }
     std::vector<double> values;
     for (const toml::node& element : array) {
-        const std::optional<double> value = element.is_number() ? element.value<double>() : std::nullopt;
+        const std::optional<double> value = number_as_double(element);
         if (!value || !std::isfinite(*value)) fail(key, "expected " + expected + ", got " + describe_toml_value(array));
         if (std::abs(*value) > kMaxNumberMagnitude) {
             fail(key, value_text(element) + " is beyond " + kMagnitudeLimitText);

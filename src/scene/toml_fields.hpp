@@ -34,8 +34,13 @@ std::string describe_toml_value(const toml::node& node);
 // `with_position` is false, for text that is itself one line of a larger file).
 toml::table parse_toml_text(std::string_view text, const std::string& origin, bool with_position = true);
 
-// Reads and parses a TOML file; errors name the file as parse_toml_text() does.
-toml::table parse_toml_file(const std::filesystem::path& file);
+// The whole of a regular file; throws InputError "<origin>: <kind> not found", "<origin>: not
+// a regular file" (a folder, FIFO or device) or "<origin>: cannot be read: <reason>".
+std::string read_text_file(const std::filesystem::path& file, const std::string& origin, std::string_view kind);
+
+// Reads (as read_text_file) and parses a TOML file; errors name the file as parse_toml_text()
+// does.
+toml::table parse_toml_file(const std::filesystem::path& file, std::string_view kind);
 
 class TomlTableReader {
 public:

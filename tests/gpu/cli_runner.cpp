@@ -12,6 +12,8 @@ namespace fs = std::filesystem;
 
 namespace penumbra::testing {
 
+const char* penumbra_binary() { return PENUMBRA_BINARY; }
+
 std::string read_text(const fs::path& path) {
     std::ifstream file(path);
     std::stringstream text;

@@ -15,6 +15,9 @@ struct RunResult {
     std::string err;
 };
 
+// The `penumbra` binary under test, for commands that run it more than once at a time.
+const char* penumbra_binary();
+
 // The whole file as text; empty when it cannot be read.
 std::string read_text(const std::filesystem::path& path);
 

@@ -290,6 +290,64 @@ TEST_F(ApiMisuse, InvalidLightsAreRefusedAndTheOldOnesKept) {
     EXPECT_EQ(check.wrong, 0u);
 }
 
+// Values beyond the header's contract (issue 32, item 8): coordinates beyond
+// kMaxWorldMagnitude, singular or projective transforms, flags and light types the enums do
+// not define. Each is an InputError naming the call and the argument, and changes nothing.
+TEST_F(ApiMisuse, ValuesBeyondTheContractAreRefused) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    const InstanceId instance = add_scene(shadows, box, ground);
+    const MeshId mesh = shadows.add_mesh(box.data());
+
+    Mat4 huge_scale = translation(kBoxCentre);
+    huge_scale(0, 0) = huge_scale(1, 1) = huge_scale(2, 2) = 1e30f;
+    expect_error<InputError>(
+        [&] {
+            shadows.add_instance({mesh, huge_scale});
+        },
+        "ShadowSystem::add_instance: world: places the mesh at");
+    const Mat4 far_away = translation({1e30f, 0.0f, 0.0f});
+    expect_error<InputError>([&] { shadows.set_instance_transform(instance, far_away); },
+                             "ShadowSystem::set_instance_transform: world: places the mesh at (1e+30");
+    Mat4 singular = translation(kBoxCentre);
+    singular(1, 1) = 0.0f;
+    expect_error<InputError>([&] { shadows.add_instance({mesh, singular}); }, "world: is not invertible");
+    Mat4 projective;
+    projective(3, 2) = -1.0f;
+    expect_error<InputError>([&] { shadows.set_instance_transform(instance, projective); },
+                             "world: is not affine: its bottom row is (0, 0, -1, 1), not (0, 0, 0, 1)");
+    expect_error<InputError>(
+        [&] {
+            shadows.add_instance({mesh, Mat4{}, kInstanceCastsShadows | (1u << 4)});
+        },
+        "ShadowSystem::add_instance: flags: 0x11 holds bits InstanceFlags does not define");
+    expect_error<InputError>([&] { shadows.set_instance_flags(instance, 0x80000000u); }, "set_instance_flags: flags");
+
+    MeshArrays far_mesh = box_mesh();
+    far_mesh.positions[3] = {3e38f, 0.0f, 0.0f};
+    expect_error<InputError>([&] { shadows.add_mesh(far_mesh.data()); },
+                             "ShadowSystem::add_mesh: positions[3]: (3e+38, 0, 0) is beyond 1e+09 in magnitude");
+
+    LightDesc unknown_type{static_cast<LightType>(9), {0.0f, -1.0f, 0.0f}};
+    expect_error<InputError>(
+        [&] {
+            shadows.set_lights({&unknown_type, 1});
+        },
+        "ShadowSystem::set_lights: lights[0].type: 9 is not a LightType");
+    LightDesc far_light{LightType::Point, {0.0f, -1.0f, 0.0f}, {0.0f, 2e9f, 0.0f}};
+    expect_error<InputError>([&] { shadows.set_lights({&far_light, 1}); }, "lights[0].position: (0, 2e+09, 0)");
+
+    // The limit itself, a mirror and all the defined flags are fine.
+    Mat4 mirror = translation(kBoxCentre);
+    mirror(0, 0) = -1.0f;
+    EXPECT_NO_THROW(shadows.remove_instance(shadows.add_instance({mesh, mirror, kInstanceAllFlags})));
+    // Nothing changed: the box of add_scene() still casts its shadow.
+    const FootprintCheck check = check_footprint(render_visibility(shadows), kBoxCentre, kSunDirection, 0.3f);
+    EXPECT_GT(check.shadowed, 500u);
+    EXPECT_EQ(check.wrong, 0u);
+}
+
 TEST_F(ApiMisuse, InvalidViewIsAnInputError) {
     ShadowSystem shadows(system_desc());
     ViewDesc view = top_down_view();

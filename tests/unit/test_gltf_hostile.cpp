@@ -183,6 +183,54 @@ TEST_F(GltfHostile, NodeTranslationBeyondTheFloatMathIsRefused) {
                 HasSubstr("nodes[0]: transform holds a number that is not finite or beyond 1e9 in magnitude"));
 }
 
+// The quad fixture's text with the first `from` replaced by `to`.
+std::string quad_with(const std::string& from, const std::string& to) {
+    std::ifstream file(test_data("gltf/quad.gltf"));
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+// Indices that name no element (issue 32, item 3): tinygltf reads them into an int, so 2^32
+// named element 0 and a material of 2^31 read as "none". Each is refused, naming the JSON
+// path, the index and how many elements there are; so is an int-sized enum beyond an int.
+TEST_F(GltfHostile, IndicesThatNameNoElementAreRefused) {
+    const struct {
+        std::string from, to, message;
+    } cases[] = {
+        {"\"mesh\": 0", "\"mesh\": 4294967296",
+         "nodes[0].mesh: mesh 4294967296 does not exist (the file has 1 meshes)"},
+        {"\"scene\": 0", "\"scene\": 4294967296", ": scene: scene 4294967296 does not exist (the file has 1 scenes)"},
+        {"[\n    0\n   ]", "[4294967296]", "scenes[0].nodes[0]: node 4294967296 does not exist (the file has 1 nodes)"},
+        {"\"material\": 0", "\"material\": 2147483648",
+         "meshes[0].primitives[0].material: material 2147483648 does not exist (the file has 1 materials)"},
+        {"\"material\": 0", "\"material\": 4294967296",
+         "meshes[0].primitives[0].material: material 4294967296 does not exist"},
+        {"\"material\": 0", "\"material\": 1", "meshes[0].primitives[0].material: material 1 does not exist"},
+        {"\"indices\": 3", "\"indices\": 18446744073709551615",
+         "meshes[0].primitives[0].indices: accessor 18446744073709551615 does not exist (the file has 4 accessors)"},
+        {"\"POSITION\": 0", "\"POSITION\": 4294967296",
+         "meshes[0].primitives[0].attributes.POSITION: accessor 4294967296 does not exist"},
+        {"\"buffer\": 0", "\"buffer\": 4294967296",
+         "bufferViews[0].buffer: buffer 4294967296 does not exist (the file has 1 buffers)"},
+        {"\"bufferView\": 0", "\"bufferView\": 4294967296",
+         "accessors[0].bufferView: bufferView 4294967296 does not exist (the file has 4 buffer views)"},
+        {"\"componentType\": 5126", "\"componentType\": 4294972422",
+         "accessors[0].componentType: expected an integer from 0 to 2147483647, got 4294972422"},
+        {"\"indices\": 3", "\"indices\": 3, \"mode\": 4294967300",
+         "meshes[0].primitives[0].mode: expected an integer from 0 to 2147483647, got 4294967300"},
+        {"\"roughnessFactor\"", "\"baseColorTexture\": {\"index\": 4294967296}, \"roughnessFactor\"",
+         "materials[0].pbrMetallicRoughness.baseColorTexture.index: texture 4294967296 does not exist (the file has "
+         "0 textures)"},
+        {"\"mesh\": 0", "\"mesh\": 0, \"extensions\": {\"KHR_lights_punctual\": {\"light\": 4294967296}}",
+         "nodes[0].extensions.KHR_lights_punctual.light: light 4294967296 does not exist (the file has 0 lights)"},
+    };
+    for (const auto& c : cases) {
+        EXPECT_THAT(load_error(write("index.gltf", quad_with(c.from, c.to))), HasSubstr(c.message)) << c.to;
+    }
+}
+
 // tinygltf reads a GLB of any container version as version 2.
 TEST_F(GltfHostile, GlbOfAnotherVersionIsRefused) {
     std::ifstream file(test_data("gltf/quad.glb"), std::ios::binary);

@@ -113,6 +113,31 @@ TEST(SceneErrors, NumbersBeyondTheFloatMath) {
     EXPECT_NO_THROW(testing::parse_scene_text("[camera]\nfar = 1e9\n"));
 }
 
+// Integers a double cannot hold exactly (beyond 2^53) are refused by the same rule, at their
+// key, in plain numbers and in arrays (issue 32: they were read through an empty optional).
+TEST(SceneErrors, IntegersADoubleCannotHold) {
+    EXPECT_EQ(scene_error("[camera]\nfov = 9223372036854775807\n"),
+              "scene.toml: camera.fov: 9223372036854775807 is beyond 1e9 in magnitude, the largest Penumbra's 32-bit "
+              "float math carries");
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"directional\"\ndirection = [0, -9007199254740993, 0]\n"),
+                StartsWith("scene.toml: lights[0].direction: -9007199254740993 is beyond 1e9"));
+    EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\nscale = -9223372036854775808\n"),
+                StartsWith("scene.toml: objects[0].scale: -9223372036854775808 is beyond 1e9"));
+    EXPECT_THAT(scene_error("[[lights]]\ntype = \"directional\"\nintensity = 9007199254740993\n"),
+                StartsWith("scene.toml: lights[0].intensity: 9007199254740993 is beyond 1e9"));
+}
+
+// More lights than a ShadowSystem takes is the scene file's error, naming it and the key
+// (issue 32, item 10), not the library's later "ShadowSystem::set_lights: 301 lights".
+TEST(SceneErrors, MoreLightsThanAShadowSystemTakes) {
+    std::string text;
+    for (int i = 0; i < 301; ++i) text += "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\n";
+    EXPECT_EQ(scene_error(text), "scene.toml: lights: 301 lights, at most 256 (the lights one ShadowSystem takes)");
+    std::string most;
+    for (int i = 0; i < 256; ++i) most += "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\n";
+    EXPECT_EQ(testing::parse_scene_text(most).lights.size(), 256u);
+}
+
 TEST(SceneErrors, UnknownKeyListsTheValidOnes) {
     EXPECT_THAT(scene_error("[camera]\nfovy = 60\n"), HasSubstr("(expected eye, target, up, fov, near, far)"));
 }

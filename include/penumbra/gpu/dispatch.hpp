@@ -40,6 +40,7 @@ namespace penumbra::gpu {
     X(vkDestroyDevice)                  \
     X(vkGetDeviceQueue)                 \
     X(vkDeviceWaitIdle)                 \
+    X(vkQueueWaitIdle)                  \
     X(vkQueueSubmit2)                   \
     X(vkAllocateMemory)                 \
     X(vkFreeMemory)                     \
