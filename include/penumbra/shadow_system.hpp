@@ -323,10 +323,13 @@ struct ShadowSystemDesc {
 };
 
 // The constants of penumbra/shadow.glsl's specialization, for the caller's pipelines.
+// `entries` and `data` view storage that the ShadowSystem owns and never changes: they, and
+// the VkSpecializationInfo that info() returns, stay valid until the ShadowSystem is
+// destroyed, in every copy and after any copy, move or destruction of this struct (so
+// `shadows.shader_specialization(0).info()` may be kept).
 struct ShaderSpecialization {
-    std::vector<VkSpecializationMapEntry> entries;
-    std::vector<uint32_t> data;
-    // Points into entries and data: valid while this object lives and is not copied.
+    std::span<const VkSpecializationMapEntry> entries;
+    std::span<const uint32_t> data;  // one 4-byte value per entry
     VkSpecializationInfo info() const;
 };
 
@@ -348,6 +351,8 @@ public:
     // A mesh still used by an instance cannot be removed (UsageError).
     void remove_mesh(MeshId mesh);
     InstanceId add_instance(const InstanceDesc& instance);
+    // Setting the matrix an instance already has (or the flags it already has) changes
+    // nothing: cached shadow maps stay valid, so uploading every transform every frame is free.
     void set_instance_transform(InstanceId instance, const Mat4& world);
     void set_instance_flags(InstanceId instance, uint32_t flags);
     void remove_instance(InstanceId instance);
@@ -391,9 +396,10 @@ public:
     ShadowMaps shadow_maps() const;
 
     // GPU time of each pass of `frame` (a FrameInfo::frame), once the submission that
-    // recorded it has completed; nullopt when the queue family has no timestamps, when the
-    // frame's slot has been reused (older than frames_in_flight), or when the results are
-    // not there yet. Never waits.
+    // recorded it has completed, and still after the prepare() that reuses its slot (which
+    // keeps them): so any of the last 2 x frames_in_flight frames. nullopt when the queue
+    // family has no timestamps, for an older frame, or when the results are not there yet.
+    // Never waits.
     std::optional<GpuTimes> gpu_times(uint64_t frame) const;
     MemoryStats memory() const;
 

@@ -9,6 +9,7 @@
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::library {
 namespace {
@@ -53,14 +54,13 @@ void check_stream(const gpu::Device& device, const VertexStream& stream, const s
     if (stream.buffer == VK_NULL_HANDLE) reject(call, name + ".buffer", "is VK_NULL_HANDLE");
     if (std::find(allowed.begin(), allowed.end(), stream.format) == allowed.end()) {
         reject(call, name + ".format",
-               "VkFormat " + std::to_string(stream.format) +
-                   " is not supported (docs/library.md lists the vertex formats)");
+               gpu::format_name(stream.format) + " is not supported (docs/library.md lists the vertex formats)");
     }
     VkFormatProperties properties{};
     device->vkGetPhysicalDeviceFormatProperties(device.physical_device(), stream.format, &properties);
     if (!(properties.bufferFeatures & VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT)) {
         reject(call, name + ".format",
-               "VkFormat " + std::to_string(stream.format) + " cannot be a vertex attribute on this device");
+               gpu::format_name(stream.format) + " cannot be a vertex attribute on this device");
     }
     if (stream.stride < format_bytes(stream.format)) {
         reject(call, name + ".stride",
@@ -313,8 +313,12 @@ void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {
     for (const float value : world.m) {
         if (!std::isfinite(value)) reject("set_instance_transform", "world", "must be finite");
     }
+    // The same matrix again (an engine that uploads every transform every frame) changes
+    // nothing: the cached depths of a static caster stay, and the scene is not rebuilt.
+    const glm::mat4 transform = to_glm(world);
+    if (transform == instance.world) return;
     note_static_change(instance);
-    instance.world = to_glm(world);
+    instance.world = transform;
     update_bounds(instance);
     note_static_change(instance);
     ++changes_;

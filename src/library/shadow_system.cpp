@@ -4,9 +4,11 @@
 // before it changes anything.
 #include "penumbra/shadow_system.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <string>
 
 #include "core/camera_math.hpp"
@@ -134,6 +136,29 @@ struct ShadowSystem::Impl {
     std::vector<LocalLayerHistory> local_history;
     std::unique_ptr<gpu::Image> visibility;
     uint32_t visibility_slots = 0;
+    // Every specialization shader_specialization() handed out, kept for the system's life
+    // (ShaderSpecialization views them); one per distinct content.
+    struct Specialization {
+        std::vector<VkSpecializationMapEntry> entries;
+        std::vector<uint32_t> data;
+    };
+    mutable std::deque<Specialization> specializations;
+    // GPU times of the frames whose slots prepare() reused (complete by its contract), the
+    // newest last, at most frames_in_flight of them: gpu_times() of a frame still answers
+    // after the prepare() that retired it, when an engine that waits for a slot's fence
+    // first can read it.
+    std::deque<GpuTimes> retired_times;
+
+    // Before the current frame's prepare() reuses `slot`: keeps its last frame's times.
+    void keep_times_of(const library::FrameSlot& slot) {
+        if (slot.frame == 0 || !slot.shadow_maps_recorded) return;
+        const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();
+        if (!times) return;  // no timestamps, or the frame was never submitted
+        GpuTimes kept{slot.frame, {}};
+        for (const gpu::ScopeTime& time : *times) kept.passes.push_back({time.name, time.milliseconds});
+        retired_times.push_back(std::move(kept));
+        while (retired_times.size() > frames_in_flight) retired_times.pop_front();
+    }
 
     explicit Impl(const ShadowSystemDesc& desc)
         : device(make_device(desc.device)),
@@ -375,6 +400,7 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     impl.frame += 1;
     impl.retired.release(impl.frame);
     library::FrameSlot& slot = impl.slots.at(impl.frame);
+    impl.keep_times_of(slot);
     slot.frame = impl.frame;
     slot.shadow_maps_recorded = false;
     slot.visibility_recorded = false;
@@ -477,17 +503,30 @@ VisibilityImage ShadowSystem::visibility_image() const {
 VkDescriptorSetLayout ShadowSystem::descriptor_set_layout() const { return impl_->layouts.sampling; }
 
 ShaderSpecialization ShadowSystem::shader_specialization(uint32_t first_constant_id) const {
-    ShaderSpecialization result;
+    Impl::Specialization made;
     for (const gpu::SpecializationValue& value : passes::shadow_filter_specialization(impl_->settings.shadow.filter)) {
-        result.entries.push_back({first_constant_id + value.constant_id,
-                                  static_cast<uint32_t>(result.data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
-        result.data.push_back(value.value);
+        made.entries.push_back({first_constant_id + value.constant_id,
+                                static_cast<uint32_t>(made.data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+        made.data.push_back(value.value);
     }
-    return result;
+    const auto same = [&made](const Impl::Specialization& kept) {
+        return kept.data == made.data &&
+               std::equal(kept.entries.begin(), kept.entries.end(), made.entries.begin(), made.entries.end(),
+                          [](const VkSpecializationMapEntry& a, const VkSpecializationMapEntry& b) {
+                              return a.constantID == b.constantID && a.offset == b.offset && a.size == b.size;
+                          });
+    };
+    auto kept = std::find_if(impl_->specializations.begin(), impl_->specializations.end(), same);
+    if (kept == impl_->specializations.end()) {
+        // A deque never moves its elements (nor so their vectors' storage) when it grows.
+        impl_->specializations.push_back(std::move(made));
+        kept = std::prev(impl_->specializations.end());
+    }
+    return {kept->entries, kept->data};
 }
 
 VkSpecializationInfo ShaderSpecialization::info() const {
-    return {static_cast<uint32_t>(entries.size()), entries.data(), data.size() * sizeof(uint32_t), data.data()};
+    return {static_cast<uint32_t>(entries.size()), entries.data(), data.size_bytes(), data.data()};
 }
 
 ShadowMaps ShadowSystem::shadow_maps() const {
@@ -498,7 +537,13 @@ ShadowMaps ShadowSystem::shadow_maps() const {
 
 std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
     const Impl& impl = *impl_;
-    if (frame == 0 || frame > impl.frame || frame + impl.frames_in_flight <= impl.frame) return std::nullopt;
+    if (frame == 0 || frame > impl.frame) return std::nullopt;
+    if (frame + impl.frames_in_flight <= impl.frame) {  // its slot was reused: what prepare() kept
+        for (const GpuTimes& times : impl.retired_times) {
+            if (times.frame == frame) return times;
+        }
+        return std::nullopt;
+    }
     const library::FrameSlot& slot = impl.slots.at(frame);
     if (slot.frame != frame || !slot.shadow_maps_recorded) return std::nullopt;
     const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();
