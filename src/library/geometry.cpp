@@ -101,8 +101,8 @@ void check_indices(VkIndexType type, VkDeviceSize offset, uint32_t count, const 
     }
 }
 
-Aabb bounds_of(std::span<const Vec3> positions) {
-    Aabb bounds;
+core::Aabb bounds_of(std::span<const Vec3> positions) {
+    core::Aabb bounds;
     for (const Vec3& position : positions) bounds.expand(to_glm(position));
     return bounds;
 }
@@ -305,7 +305,7 @@ void Geometry::forget_static_changes(size_t count) {
 }
 
 void Geometry::update_bounds(Instance& instance) {
-    instance.world_bounds = transform_aabb(meshes_.at(instance.mesh).bounds, instance.world);
+    instance.world_bounds = core::transform_aabb(meshes_.at(instance.mesh).bounds, instance.world);
 }
 
 void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {
@@ -350,8 +350,8 @@ void Geometry::remove_instance(InstanceId id) {
 const passes::CasterScene& Geometry::build_scene() {
     scene_.meshes.clear();
     scene_.draws.clear();
-    world_bounds_ = Aabb{};
-    static_bounds_ = Aabb{};
+    world_bounds_ = core::Aabb{};
+    static_bounds_ = core::Aabb{};
     for (auto& [id, mesh] : meshes_) {
         mesh.scene_index = static_cast<uint32_t>(scene_.meshes.size());
         scene_.meshes.push_back(mesh.caster);

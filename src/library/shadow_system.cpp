@@ -108,7 +108,7 @@ struct ShadowSystem::Impl {
     library::FrameSlots slots;
     library::Geometry geometry;
 
-    std::vector<Light> lights;
+    std::vector<core::Light> lights;
     uint64_t frame = 0;           // prepare() calls so far; the current frame's number
     uint32_t sampling_frame = 0;  // rotates the Poisson/PCSS patterns (ViewDesc::sampling_frame)
     FrameInfo info;
@@ -182,8 +182,8 @@ struct ShadowSystem::Impl {
         retired.release(~uint64_t{0} / 2);
     }
 
-    const Light* sun() const {
-        for (const Light& light : lights) {
+    const core::Light* sun() const {
+        for (const core::Light& light : lights) {
             if (light.type == LightType::Directional) return &light;
         }
         return nullptr;
@@ -191,7 +191,7 @@ struct ShadowSystem::Impl {
 
     void prepare_sun(const CameraView& camera, const passes::CasterScene& scene) {
         Clock::time_point start = Clock::now();
-        const Light* sun_light = sun();
+        const core::Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
         CascadeSet set = compute_cascades(camera, direction, settings.shadow.cascades, geometry.depth_range_bounds());
         place_in_layers(set, settings.shadow.cascades.resolution,
@@ -369,7 +369,7 @@ void ShadowSystem::remove_instance(InstanceId instance) { impl_->geometry.remove
 
 void ShadowSystem::set_lights(std::span<const LightDesc> lights) {
     library::check_lights(lights);
-    std::vector<Light> converted;
+    std::vector<core::Light> converted;
     converted.reserve(lights.size());
     for (const LightDesc& light : lights) converted.push_back(library::to_light(light));
     impl_->lights = std::move(converted);
