@@ -370,6 +370,10 @@ public:
     // CPU work of a frame: cascade splits and fitting for `view`, the local lights' fits,
     // budget and sizing, caster culling, and the frame's uniforms. Starts a new frame (see
     // ShadowSystemDesc::frames_in_flight). The result is valid until the next prepare().
+    // The frame frames_in_flight frames earlier, whose slot this one reuses, must have
+    // completed on the GPU: where the queue has timestamps, a frame whose results are not
+    // there yet (the caller has more frames in flight, or never submitted it) is a
+    // UsageError naming frames_in_flight, thrown before anything changes.
     const FrameInfo& prepare(const ViewDesc& view);
 
     // Records the frame's shadow passes into `cmd` (a primary command buffer in the

@@ -149,11 +149,24 @@ struct ShadowSystem::Impl {
     // first can read it.
     std::deque<GpuTimes> retired_times;
 
-    // Before the current frame's prepare() reuses `slot`: keeps its last frame's times.
-    void keep_times_of(const library::FrameSlot& slot) {
-        if (slot.frame == 0 || !slot.shadow_maps_recorded) return;
+    // Before prepare() reuses `slot` for the next frame: checks that the frame which last
+    // used it has completed, and keeps its times. Its timestamps are the witness: by
+    // prepare()'s contract they are all available; one that is not means the caller has
+    // more frames in flight than this system was made for (or never submitted the frame),
+    // and rewriting the slot's descriptor set now would race the GPU. Without timestamps
+    // (a queue family without them) nothing is checked.
+    void retire_slot(const library::FrameSlot& slot) {
+        if (slot.frame == 0 || !slot.shadow_maps_recorded || !slot.timer.supported()) return;
         const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();
-        if (!times) return;  // no timestamps, or the frame was never submitted
+        if (!times) {
+            throw UsageError("ShadowSystem::prepare: frame " + std::to_string(slot.frame) + ", " +
+                             std::to_string(frames_in_flight) +
+                             " frame(s) ago, has not completed on the GPU (or was never submitted); "
+                             "ShadowSystemDesc::frames_in_flight is " +
+                             std::to_string(frames_in_flight) +
+                             ": wait for that frame before prepare(), or create the ShadowSystem with as many "
+                             "frames in flight as the renderer has");
+        }
         GpuTimes kept{slot.frame, {}};
         for (const gpu::ScopeTime& time : *times) kept.passes.push_back({time.name, time.milliseconds});
         retired_times.push_back(std::move(kept));
@@ -397,10 +410,10 @@ const Settings& ShadowSystem::settings() const { return impl_->settings; }
 const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     check_view(view);
     Impl& impl = *impl_;
+    library::FrameSlot& slot = impl.slots.at(impl.frame + 1);
+    impl.retire_slot(slot);  // before anything changes: throws when the slot is still in use
     impl.frame += 1;
     impl.retired.release(impl.frame);
-    library::FrameSlot& slot = impl.slots.at(impl.frame);
-    impl.keep_times_of(slot);
     slot.frame = impl.frame;
     slot.shadow_maps_recorded = false;
     slot.visibility_recorded = false;

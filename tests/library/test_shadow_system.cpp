@@ -277,6 +277,53 @@ TEST_F(ShadowSystemFrames, FramesInFlightOverlapWithoutHazards) {
     vkFreeCommandBuffers(device_.device, pool_, kFrames, commands.data());
 }
 
+// A renderer that keeps more frames in flight than the system was made for reaches a
+// prepare() whose slot the GPU may still use. Made deterministic here with a frame that is
+// recorded but held back: prepare() of the frame that reuses its slot is a UsageError
+// naming frames_in_flight, changes nothing, and succeeds once that frame has completed.
+TEST_F(ShadowSystemFrames, MoreFramesInFlightThanTheSystemAreNamed) {
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, families.data());
+    if (families[device_.queue_family].timestampValidBits == 0) GTEST_SKIP() << "the check needs timestamps";
+    ShadowSystem shadows(system_desc(test_settings(), 2));
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    render_visibility(shadows);  // frame 1: uploads, submitted and complete
+    VkCommandBuffer held = VK_NULL_HANDLE;
+    VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocate_info.commandPool = pool_;
+    allocate_info.commandBufferCount = 1;
+    TEST_VK(vkAllocateCommandBuffers(device_.device, &allocate_info, &held));
+    EXPECT_EQ(shadows.prepare(top_down_view()).frame, 2u);
+    const VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    TEST_VK(vkBeginCommandBuffer(held, &begin));
+    shadows.record_shadow_maps(held);  // frame 2: recorded, not submitted yet
+    TEST_VK(vkEndCommandBuffer(held));
+    render_visibility(shadows);  // frame 3 reuses frame 1's slot: complete
+    try {
+        shadows.prepare(top_down_view());  // frame 4 would reuse frame 2's
+        ADD_FAILURE() << "prepare() rewrote the slot of a frame that has not completed";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("frame 2, 2 frame(s) ago, has not completed"), std::string::npos)
+            << error.what();
+        EXPECT_NE(std::string(error.what()).find("ShadowSystemDesc::frames_in_flight is 2"), std::string::npos)
+            << error.what();
+    }
+    VkCommandBufferSubmitInfo command{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    command.commandBuffer = held;
+    VkSubmitInfo2 submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit_info.commandBufferInfoCount = 1;
+    submit_info.pCommandBufferInfos = &command;
+    TEST_VK(vkQueueSubmit2(device_.queue, 1, &submit_info, VK_NULL_HANDLE));
+    TEST_VK(vkQueueWaitIdle(device_.queue));
+    EXPECT_EQ(shadows.prepare(top_down_view()).frame, 4u) << "the failed prepare() changed nothing";
+    EXPECT_TRUE(shadows.gpu_times(2).has_value());
+    vkFreeCommandBuffers(device_.device, pool_, 1, &held);
+}
+
 // Caster face culling, seen from the sun above: a one-sided quad facing up shows its front
 // to the light. BackFaces keeps it, FrontFaces drops it unless it is double-sided; the
 // quad facing down is the other way round; None always draws.
