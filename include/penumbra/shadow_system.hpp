@@ -320,6 +320,9 @@ struct ShadowSystemDesc {
     // frame F reuses the per-frame resources of frame F - frames_in_flight, whose
     // submission must have completed (1..8).
     uint32_t frames_in_flight = 2;
+    // Timestamp queries around every pass, for gpu_times(). False records none: gpu_times()
+    // is always nullopt, and prepare() cannot tell a frame still in flight (see prepare()).
+    bool timestamps = true;
 };
 
 // The constants of penumbra/shadow.glsl's specialization, for the caller's pipelines.

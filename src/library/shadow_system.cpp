@@ -99,6 +99,7 @@ struct ShadowSystem::Impl {
     gpu::Device device;
     Settings settings;
     uint32_t frames_in_flight;
+    bool timestamps;  // ShadowSystemDesc::timestamps
     library::RetiredObjects retired;
     library::FrameSetLayouts layouts;
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
@@ -149,6 +150,9 @@ struct ShadowSystem::Impl {
     // first can read it.
     std::deque<GpuTimes> retired_times;
 
+    // The timer the passes of `slot` record into; null (no queries) without timestamps.
+    gpu::GpuTimer* timer_of(library::FrameSlot& slot) { return timestamps ? &slot.timer : nullptr; }
+
     // Before prepare() reuses `slot` for the next frame: checks that the frame which last
     // used it has completed, and keeps its times. Its timestamps are the witness: by
     // prepare()'s contract they are all available; one that is not means the caller has
@@ -156,7 +160,7 @@ struct ShadowSystem::Impl {
     // and rewriting the slot's descriptor set now would race the GPU. Without timestamps
     // (a queue family without them) nothing is checked.
     void retire_slot(const library::FrameSlot& slot) {
-        if (slot.frame == 0 || !slot.shadow_maps_recorded || !slot.timer.supported()) return;
+        if (slot.frame == 0 || !slot.shadow_maps_recorded || !timestamps || !slot.timer.supported()) return;
         const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();
         if (!times) {
             throw UsageError("ShadowSystem::prepare: frame " + std::to_string(slot.frame) + ", " +
@@ -177,6 +181,7 @@ struct ShadowSystem::Impl {
         : device(make_device(desc.device)),
           settings(checked_settings(desc.settings)),
           frames_in_flight(checked_frames_in_flight(desc.frames_in_flight)),
+          timestamps(desc.timestamps),
           retired(frames_in_flight),
           layouts(library::create_frame_set_layouts(device)),
           alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
@@ -449,19 +454,20 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         throw UsageError("ShadowSystem::record_shadow_maps: already recorded for this frame; call prepare() first");
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_shadow_maps: cmd is VK_NULL_HANDLE");
-    slot.timer.begin_frame(cmd);
+    gpu::GpuTimer* timer = impl.timer_of(slot);
+    if (timer) timer->begin_frame(cmd);
     impl.geometry.record_uploads(cmd, impl.frame);
     // The scene prepare() culled: instances changed since then show in the next frame.
     const passes::CasterScene& scene = impl.geometry.scene();
     impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
-                         impl.sun_casts, impl.frame, &slot.timer);
+                         impl.sun_casts, impl.frame, timer);
     // The cache holds this frame's static casters once the commands run; the changes the
     // plan covered are drawn.
     if (impl.cascades.cached())
         impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
     impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, impl.frame,
-                      &slot.timer);
+                      timer);
     if (impl.settings.shadow.cache_static_casters)
         impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
     slot.shadow_maps_recorded = true;
@@ -501,7 +507,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
-    gpu::TimedScope scope(&slot.timer, cmd, "visibility");
+    gpu::TimedScope scope(impl.timer_of(slot), cmd, "visibility");
     impl.resolve.record(cmd, slot.sampling_set, slot.screen_set, *impl.visibility, constants);
     slot.visibility_recorded = true;
 }
@@ -550,7 +556,7 @@ ShadowMaps ShadowSystem::shadow_maps() const {
 
 std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
     const Impl& impl = *impl_;
-    if (frame == 0 || frame > impl.frame) return std::nullopt;
+    if (!impl.timestamps || frame == 0 || frame > impl.frame) return std::nullopt;
     if (frame + impl.frames_in_flight <= impl.frame) {  // its slot was reused: what prepare() kept
         for (const GpuTimes& times : impl.retired_times) {
             if (times.frame == frame) return times;

@@ -277,6 +277,29 @@ TEST_F(ShadowSystemFrames, FramesInFlightOverlapWithoutHazards) {
     vkFreeCommandBuffers(device_.device, pool_, kFrames, commands.data());
 }
 
+// Timestamps switched off: no query is recorded (a frame's times are never there), and the
+// same frames with them on do have times, where the queue can time.
+TEST_F(ShadowSystemFrames, TimestampsSwitchedOffRecordNoTimes) {
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, families.data());
+    const bool queue_times = families[device_.queue_family].timestampValidBits != 0;
+    for (const bool timestamps : {false, true}) {
+        ShadowSystemDesc desc = system_desc();
+        desc.timestamps = timestamps;
+        ShadowSystem shadows(desc);
+        add_scene(shadows, box, ground);
+        for (int f = 0; f < 3; ++f) render_visibility(shadows);
+        for (uint64_t frame = 1; frame <= 3; ++frame) {
+            EXPECT_EQ(shadows.gpu_times(frame).has_value(), timestamps && queue_times)
+                << "frame " << frame << (timestamps ? ", timestamps on" : ", timestamps off");
+        }
+    }
+}
+
 // A renderer that keeps more frames in flight than the system was made for reaches a
 // prepare() whose slot the GPU may still use. Made deterministic here with a frame that is
 // recorded but held back: prepare() of the frame that reuses its slot is a UsageError
