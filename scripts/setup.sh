@@ -2,18 +2,27 @@
 # Installs everything Penumbra needs to build, render and test on Debian 12, from
 # Debian's own packages. Non-interactive and idempotent: packages already present are
 # not fetched again, and `apt-get update` runs only when something is missing.
+#   scripts/setup.sh            everything: the library, the tools, the tests, CI
+#   scripts/setup.sh --library  only what the library alone needs to build and install
+#                               (docs/library.md, "Getting it"): the toolchain, Vulkan's
+#                               headers and loader, glslc and glm
 set -euo pipefail
 
-packages=(
+library_packages=(
   # toolchain
-  g++ cmake ninja-build pkg-config clang-format
+  g++ cmake ninja-build pkg-config
+  # Vulkan: headers + loader and the GLSL compiler; math inside the library (build only)
+  libvulkan-dev glslc libglm-dev
+)
+other_packages=(
+  clang-format
   # fuzzing: clang with libFuzzer and the sanitizers' runtimes (tests/fuzz)
   clang libclang-rt-14-dev
-  # Vulkan: headers + loader, the GLSL compiler, Mesa's lavapipe CPU driver (used when no
-  # GPU is present, and by CI), the Khronos validation layer (every test runs with it)
-  libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
-  # libraries: math, glTF (with its stb/json dependencies), TOML, command line, PNG, tests
-  libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
+  # Mesa's lavapipe CPU driver (used when no GPU is present, and by CI) and the Khronos
+  # validation layer (every test runs with it)
+  mesa-vulkan-drivers vulkan-validationlayers
+  # libraries: glTF (with its stb/json dependencies), TOML, command line, PNG, tests
+  libtinygltf-dev libstb-dev nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
   libpng-dev googletest libgtest-dev
   # ray tracing: Embree 3 BVHs for `penumbra compare`'s ground-truth shadow rays
   libembree-dev
@@ -23,6 +32,15 @@ packages=(
   # real glTF 2.0 models (Khronos samples) for bench/quality_report.py's real-asset table
   assimp-testmodels
 )
+
+case "${1:-}" in
+  "") packages=("${library_packages[@]}" "${other_packages[@]}") ;;
+  --library) packages=("${library_packages[@]}") ;;
+  *)
+    echo "usage: scripts/setup.sh [--library]" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for package in "${packages[@]}"; do

@@ -8,6 +8,9 @@ bash scripts/setup.sh
 bash scripts/build.sh
 bash scripts/check-format.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
+# docs/library.md "Getting it" as printed, in a fresh copy of the tree: the library alone,
+# installed, then its own tests built without the tools.
+bash scripts/check_library_build.sh
 # Unit and library tests again under ASan + UBSan (build-sanitize/).
 bash scripts/sanitize.sh
 # Every fuzz harness for 15 s (clang, ASan + UBSan) from its seed corpus: tests/fuzz/README.md.

@@ -356,13 +356,19 @@ struct ShadowSystemDesc {
     // frame F reuses the per-frame resources of frame F - frames_in_flight, whose
     // submission must have completed (1..8).
     uint32_t frames_in_flight = 2;
+    // Timestamp queries around every pass, for gpu_times(). False records none: gpu_times()
+    // is always nullopt, and prepare() cannot tell a frame still in flight (see prepare()).
+    bool timestamps = true;
 };
 
 // The constants of penumbra/shadow.glsl's specialization, for the caller's pipelines.
+// `entries` and `data` view storage that the ShadowSystem owns and never changes: they, and
+// the VkSpecializationInfo that info() returns, stay valid until the ShadowSystem is
+// destroyed, in every copy and after any copy, move or destruction of this struct (so
+// `shadows.shader_specialization(0).info()` may be kept).
 struct ShaderSpecialization {
-    std::vector<VkSpecializationMapEntry> entries;
-    std::vector<uint32_t> data;
-    // Points into entries and data: valid while this object lives and is not copied.
+    std::span<const VkSpecializationMapEntry> entries;
+    std::span<const uint32_t> data;  // one 4-byte value per entry
     VkSpecializationInfo info() const;
 };
 
@@ -389,6 +395,8 @@ public:
     // InputError naming the argument for a world transform or flags InstanceDesc does not
     // allow (see there); the instance is then unchanged.
     InstanceId add_instance(const InstanceDesc& instance);
+    // Setting the matrix an instance already has (or the flags it already has) changes
+    // nothing: cached shadow maps stay valid, so uploading every transform every frame is free.
     void set_instance_transform(InstanceId instance, const Mat4& world);
     void set_instance_flags(InstanceId instance, uint32_t flags);
     void remove_instance(InstanceId instance);
@@ -406,6 +414,10 @@ public:
     // CPU work of a frame: cascade splits and fitting for `view`, the local lights' fits,
     // budget and sizing, caster culling, and the frame's uniforms. Starts a new frame (see
     // ShadowSystemDesc::frames_in_flight). The result is valid until the next prepare().
+    // The frame frames_in_flight frames earlier, whose slot this one reuses, must have
+    // completed on the GPU: where the queue has timestamps, a frame whose results are not
+    // there yet (the caller has more frames in flight, or never submitted it) is a
+    // UsageError naming frames_in_flight, thrown before anything changes.
     const FrameInfo& prepare(const ViewDesc& view);
 
     // The virtual shadow map (Settings::shadow.technique = virtual) draws only the pages the
@@ -444,9 +456,10 @@ public:
     ShadowMaps shadow_maps() const;
 
     // GPU time of each pass of `frame` (a FrameInfo::frame), once the submission that
-    // recorded it has completed; nullopt when the queue family has no timestamps, when the
-    // frame's slot has been reused (older than frames_in_flight), or when the results are
-    // not there yet. Never waits.
+    // recorded it has completed, and still after the prepare() that reuses its slot (which
+    // keeps them): so any of the last 2 x frames_in_flight frames. nullopt when the queue
+    // family has no timestamps, for an older frame, or when the results are not there yet.
+    // Never waits.
     std::optional<GpuTimes> gpu_times(uint64_t frame) const;
     MemoryStats memory() const;
 

@@ -28,7 +28,7 @@ glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float to
     return m;
 }
 
-CameraView make_camera_view(const Camera& camera, float aspect) {
+CameraView make_camera_view(const core::Camera& camera, float aspect) {
     CameraView result;
     result.eye = camera.eye;
     result.forward = glm::normalize(camera.target - camera.eye);

@@ -6,7 +6,7 @@
 #include <array>
 
 #include "core/glm_config.hpp"
-#include "penumbra/scene/scene.hpp"
+#include "core/shadow_inputs.hpp"
 
 namespace penumbra {
 
@@ -32,7 +32,7 @@ glm::mat4 orthographic_reverse_z(float left, float right, float bottom, float to
 
 // Builds the camera's matrices. Requires eye != target and a non-degenerate up vector
 // (the scene loader validates both; an up parallel to the view direction is replaced).
-CameraView make_camera_view(const Camera& camera, float aspect);
+CameraView make_camera_view(const core::Camera& camera, float aspect);
 
 // The same for a caller's view matrix (world -> view, looking down -Z); the eye and the
 // forward direction are taken from its inverse. Requires an invertible `view`.

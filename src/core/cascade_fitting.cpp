@@ -62,7 +62,7 @@ LightOrthoBox fit_stable_box(const BoundingSphere& light_space_sphere, uint32_t 
 LightOrthoBox fit_tight_box(const std::array<glm::vec3, 8>& light_space_points, uint32_t resolution,
                             float padding_texels) {
     // 1. Light-space bounds of the points.
-    Aabb bounds;
+    core::Aabb bounds;
     for (const glm::vec3& point : light_space_points) bounds.expand(point);
     // 2. Texel size such that the bounds, the padding on both sides and one texel of
     //    snapping slack fill the map exactly: resolution * texel = size + (2 p + 1) texel.
@@ -80,7 +80,7 @@ LightOrthoBox fit_tight_box(const std::array<glm::vec3, 8>& light_space_points, 
     return box;
 }
 
-LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds) {
+LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const core::Aabb& light_space_scene_bounds) {
     if (light_space_scene_bounds.empty()) return box;
     // The scene's extent along the light, whatever the slice: every caster and every
     // receiver lies inside it, and a cascade that moves keeps its depth mapping, so that

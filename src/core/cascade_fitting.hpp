@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "core/camera_math.hpp"
-#include "penumbra/scene/scene.hpp"
+#include "core/shadow_inputs.hpp"
 
 namespace penumbra {
 
@@ -51,7 +51,7 @@ inline constexpr float kMinDepthMargin = 0.01f;
 // between the light and the slice are rendered, every receiver lies inside, the biases
 // keep their size in metres, and the mapping of depth does not change when the camera
 // moves (so that a cascade's depths can be cached). An empty box leaves the slice's range.
-LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const Aabb& light_space_scene_bounds);
+LightOrthoBox depth_range_of_scene(const LightOrthoBox& box, const core::Aabb& light_space_scene_bounds);
 
 // Reverse-Z orthographic projection of the box: near_distance -> depth 1, far -> 0.
 glm::mat4 light_projection(const LightOrthoBox& box);

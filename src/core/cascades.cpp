@@ -71,7 +71,7 @@ Cascade make_cascade(const glm::mat4& light_view, const LightOrthoBox& box, uint
 }  // namespace
 
 CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_direction, const CascadeSettings& settings,
-                            const Aabb& scene_bounds) {
+                            const core::Aabb& scene_bounds) {
     CascadeSet set;
     // 1. Splits over [near, shadow distance].
     set.shadow_distance = shadow_distance_for(camera, settings);
@@ -81,7 +81,7 @@ CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_dir
     // 2. One light view for every cascade.
     const glm::mat4 light_view = light_view_matrix(light_direction);
     set.light_direction = glm::normalize(light_direction);
-    const Aabb light_space_scene = transform_aabb(scene_bounds, light_view);
+    const core::Aabb light_space_scene = core::transform_aabb(scene_bounds, light_view);
     // 3.-5. Fit, take the scene's depth range, project.
     for (int i = 0; i < settings.count; ++i) {
         const LightOrthoBox slice_box = fit_slice(camera, light_view, settings, splits[i], splits[i + 1]);
@@ -91,11 +91,11 @@ CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_dir
     return set;
 }
 
-bool caster_may_shadow_cascade(const Cascade& cascade, const Aabb& world_box) {
+bool caster_may_shadow_cascade(const Cascade& cascade, const core::Aabb& world_box) {
     if (world_box.empty()) return false;
     // The projection is affine, so Arvo's method bounds the box in clip space directly:
     // x, y in [-1, 1] is the cascade's rectangle, depth 0 its far side (reverse-Z).
-    const Aabb clip_box = transform_aabb(world_box, cascade.view_projection);
+    const core::Aabb clip_box = core::transform_aabb(world_box, cascade.view_projection);
     const bool overlaps_x = clip_box.min.x <= 1.0f && clip_box.max.x >= -1.0f;
     const bool overlaps_y = clip_box.min.y <= 1.0f && clip_box.max.y >= -1.0f;
     // Only the far side culls: boxes nearer the light than the near plane (depth > 1)

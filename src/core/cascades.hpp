@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/camera_math.hpp"
-#include "penumbra/scene/scene.hpp"
+#include "core/shadow_inputs.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra {
@@ -68,13 +68,13 @@ struct CascadeSet {
 // max_distance does not exceed the camera near plane or manual splits do not fit inside
 // [near, shadow_distance].
 CascadeSet compute_cascades(const CameraView& camera, const glm::vec3& light_direction, const CascadeSettings& settings,
-                            const Aabb& scene_bounds);
+                            const core::Aabb& scene_bounds);
 
 // Caster culling: true when a world-space box can cast a shadow into the cascade, i.e. it
 // intersects the cascade's volume extended toward the light (the box is tested in light
 // space against the cascade's XY rectangle; its Z is only tested on the far side: boxes
 // nearer the light than the near plane pass, the shadow pass flattens them with depth
 // clamp). An empty box never casts.
-bool caster_may_shadow_cascade(const Cascade& cascade, const Aabb& world_box);
+bool caster_may_shadow_cascade(const Cascade& cascade, const core::Aabb& world_box);
 
 }  // namespace penumbra

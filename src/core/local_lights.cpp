@@ -21,24 +21,24 @@ glm::mat4 look_along(const glm::vec3& eye, const glm::vec3& forward, const glm::
 
 }  // namespace
 
-bool local_shadow_is_cube(const Light& light) {
+bool local_shadow_is_cube(const core::Light& light) {
     return light.type == LightType::Point ||
            (light.type == LightType::Spot && light.outer_angle_degrees > kMaxPerspectiveSpotAngle);
 }
 
-uint32_t local_shadow_layers(const Light& light) {
+uint32_t local_shadow_layers(const core::Light& light) {
     if (light.type == LightType::Directional) return 0;
     return local_shadow_is_cube(light) ? 6 : 1;
 }
 
-float local_shadow_half_fov(const Light& light) {
+float local_shadow_half_fov(const core::Light& light) {
     return glm::radians(local_shadow_is_cube(light) ? 45.0f : light.outer_angle_degrees);
 }
 
-LocalShadowPlan plan_local_shadows(std::span<const Light> lights, const LocalShadowSettings& settings) {
+LocalShadowPlan plan_local_shadows(std::span<const core::Light> lights, const LocalShadowSettings& settings) {
     LocalShadowPlan plan;
     for (uint32_t i = 0; i < lights.size(); ++i) {
-        const Light& light = lights[i];
+        const core::Light& light = lights[i];
         if (light.type == LightType::Directional || !light.cast_shadows) continue;
         const uint32_t layers = local_shadow_layers(light);
         if (plan.slots.size() >= settings.budget || plan.layer_count + layers > kMaxLocalShadowLayers) {
@@ -58,9 +58,9 @@ LocalShadowPlan plan_local_shadows(std::span<const Light> lights, const LocalSha
     return plan;
 }
 
-float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& boxes, float max_far) {
+float nearest_caster_distance(const glm::vec3& point, const std::vector<core::Aabb>& boxes, float max_far) {
     float nearest = max_far;
-    for (const Aabb& box : boxes) {
+    for (const core::Aabb& box : boxes) {
         if (box.empty()) continue;
         const glm::vec3 closest = glm::clamp(point, box.min, box.max);
         nearest = std::min(nearest, glm::length(closest - point));
@@ -69,13 +69,13 @@ float nearest_caster_distance(const glm::vec3& point, const std::vector<Aabb>& b
     return std::clamp(nearest, kMinLocalShadowNear, std::max(kMinLocalShadowNear, max_far * 0.5f));
 }
 
-float local_shadow_near_plane(const Light& light, float nearest_caster) {
+float local_shadow_near_plane(const core::Light& light, float nearest_caster) {
     const float corner_tangent = std::sqrt(2.0f) * std::tan(local_shadow_half_fov(light));
     const float corner_cosine = 1.0f / std::sqrt(1.0f + corner_tangent * corner_tangent);
     return std::max(kMinLocalShadowNear, nearest_caster * corner_cosine);
 }
 
-glm::mat4 spot_shadow_view_projection(const Light& spot, float near_plane) {
+glm::mat4 spot_shadow_view_projection(const core::Light& spot, float near_plane) {
     const float fov = glm::radians(2.0f * spot.outer_angle_degrees);
     const glm::mat4 view = look_along(spot.position, spot.direction, glm::vec3(0.0f, 1.0f, 0.0f));
     return perspective_reverse_z(fov, 1.0f, near_plane, spot.range) * view;
@@ -90,7 +90,7 @@ std::array<glm::mat4, 6> point_shadow_view_projections(const glm::vec3& position
     return faces;
 }
 
-bool cube_face_reaches_cone(const Light& light, size_t face) {
+bool cube_face_reaches_cone(const core::Light& light, size_t face) {
     if (light.type != LightType::Spot) return true;
     const glm::vec3 axis = kCubeFaceAxes.at(face);
     const float degrees_from_spot_axis =
@@ -99,9 +99,10 @@ bool cube_face_reaches_cone(const Light& light, size_t face) {
     return degrees_from_spot_axis - face_corner_degrees < light.outer_angle_degrees;
 }
 
-void fit_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, const std::vector<Aabb>& caster_boxes) {
+void fit_local_shadows(LocalShadowPlan& plan, std::span<const core::Light> lights,
+                       const std::vector<core::Aabb>& caster_boxes) {
     for (LocalShadowSlot& slot : plan.slots) {
-        const Light& light = lights[slot.light];
+        const core::Light& light = lights[slot.light];
         slot.near_plane =
             local_shadow_near_plane(light, nearest_caster_distance(light.position, caster_boxes, light.range));
         slot.far_plane = light.range;
@@ -114,7 +115,7 @@ void fit_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, con
     }
 }
 
-Sphere local_light_bounds(const Light& light) {
+Sphere local_light_bounds(const core::Light& light) {
     if (light.type != LightType::Spot) return {light.position, light.range};
     const float cos_outer = std::cos(glm::radians(light.outer_angle_degrees));
     const float radius = light.range / (2.0f * std::max(cos_outer, 1e-3f));
@@ -144,7 +145,7 @@ bool sphere_outside_frustum(const glm::mat4& view_projection, const Sphere& sphe
 
 }  // namespace
 
-uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera, uint32_t viewport_height,
+uint32_t coverage_shadow_resolution(const core::Light& light, const CameraView& camera, uint32_t viewport_height,
                                     uint32_t max_resolution) {
     const uint32_t min_resolution = std::min(kMinCoverageShadowResolution, max_resolution);
     const Sphere bounds = local_light_bounds(light);
@@ -159,7 +160,7 @@ uint32_t coverage_shadow_resolution(const Light& light, const CameraView& camera
     return std::clamp(next_power_of_two(pixels_across), min_resolution, max_resolution);
 }
 
-void size_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, const CameraView& camera,
+void size_local_shadows(LocalShadowPlan& plan, std::span<const core::Light> lights, const CameraView& camera,
                         uint32_t viewport_height, uint32_t max_resolution) {
     for (LocalShadowSlot& slot : plan.slots) {
         if (slot.fixed_resolution) continue;
@@ -167,7 +168,7 @@ void size_local_shadows(LocalShadowPlan& plan, std::span<const Light> lights, co
     }
 }
 
-bool caster_may_shadow_frustum(const glm::mat4& view_projection, const Aabb& box) {
+bool caster_may_shadow_frustum(const glm::mat4& view_projection, const core::Aabb& box) {
     if (box.empty()) return false;
     // Gribb-Hartmann: rows of the clip matrix combine into the planes -w <= x, y <= w and
     // 0 <= z <= w (reverse-Z, so z >= 0 is the far plane and z <= w the near plane).
@@ -182,7 +183,7 @@ bool caster_may_shadow_frustum(const glm::mat4& view_projection, const Aabb& box
     return true;
 }
 
-bool caster_may_shadow_sphere(const glm::vec3& center, float radius, const Aabb& box) {
+bool caster_may_shadow_sphere(const glm::vec3& center, float radius, const core::Aabb& box) {
     if (box.empty()) return false;
     // Squared, as the GPU's culling compares (shaders/caster_cull.comp), without a square root.
     const glm::vec3 offset = glm::clamp(center, box.min, box.max) - center;

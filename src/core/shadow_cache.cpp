@@ -89,12 +89,12 @@ std::vector<TexelRect> exposed_by_shift(glm::ivec2 shift, uint32_t resolution) {
     return rects;
 }
 
-TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32_t resolution) {
+TexelRect caster_footprint(const Cascade& cascade, const core::Aabb& world_box, uint32_t resolution) {
     if (world_box.empty()) return {};
     // Arvo's method bounds the box in clip space (the projection is affine); only the far
     // side culls, as in caster_may_shadow_cascade (nearer boxes are flattened onto the
     // near plane by depth clamp).
-    const Aabb clip_box = transform_aabb(world_box, cascade.view_projection);
+    const core::Aabb clip_box = core::transform_aabb(world_box, cascade.view_projection);
     // A box too large to project (infinite or NaN clip coordinates: bounds near the float
     // range) may reach every texel.
     const auto finite = [](const glm::vec3& v) {
@@ -114,15 +114,16 @@ TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32
     return intersect(rect, whole_map(resolution));
 }
 
-bool may_cast_into_layer(const LocalLayerKey& layer, const Aabb& box) {
+bool may_cast_into_layer(const LocalLayerKey& layer, const core::Aabb& box) {
     if (box.empty() || !caster_may_shadow_frustum(layer.view_projection, box)) return false;
     return layer.sphere.w <= 0.0f || caster_may_shadow_sphere(glm::vec3(layer.sphere), layer.sphere.w, box);
 }
 
 bool local_layer_reusable(const std::optional<LocalLayerKey>& kept, const LocalLayerKey& current,
-                          std::span<const Aabb> changed_static_bounds, std::span<const Aabb> dynamic_bounds) {
+                          std::span<const core::Aabb> changed_static_bounds,
+                          std::span<const core::Aabb> dynamic_bounds) {
     if (!kept || !(*kept == current)) return false;
-    const auto reaches = [&](const Aabb& box) { return may_cast_into_layer(current, box); };
+    const auto reaches = [&](const core::Aabb& box) { return may_cast_into_layer(current, box); };
     return std::none_of(changed_static_bounds.begin(), changed_static_bounds.end(), reaches) &&
            std::none_of(dynamic_bounds.begin(), dynamic_bounds.end(), reaches);
 }
@@ -134,14 +135,14 @@ int64_t CascadeUpdate::redraw_texels() const {
 }
 
 CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Cascade& current, uint32_t resolution,
-                                  std::span<const Aabb> changed_static_bounds) {
+                                  std::span<const core::Aabb> changed_static_bounds) {
     CascadeUpdate update;
     const std::optional<glm::ivec2> shift = cached ? whole_texel_shift(*cached, current) : std::nullopt;
     if (!shift) return update;
     update.reuse = true;
     update.shift = *shift;
     update.redraw = exposed_by_shift(*shift, resolution);
-    for (const Aabb& bounds : changed_static_bounds) {
+    for (const core::Aabb& bounds : changed_static_bounds) {
         const TexelRect footprint = caster_footprint(current, bounds, resolution);
         if (!footprint.empty()) update.redraw.push_back(footprint);
     }

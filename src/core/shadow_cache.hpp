@@ -74,7 +74,7 @@ std::vector<TexelRect> exposed_by_shift(glm::ivec2 shift, uint32_t resolution);
 // footprint (its projection onto the map, an orthographic light's shadow-map texels),
 // rounded out to whole texels plus one texel of margin for rasterisation at the edges,
 // clipped to the map. Empty for an empty box, one outside the map or beyond its far side.
-TexelRect caster_footprint(const Cascade& cascade, const Aabb& world_box, uint32_t resolution);
+TexelRect caster_footprint(const Cascade& cascade, const core::Aabb& world_box, uint32_t resolution);
 
 // What to draw into a cascade this frame when a cache of its static casters exists.
 struct CascadeUpdate {
@@ -95,7 +95,7 @@ inline constexpr size_t kMaxRedrawRects = 16;
 // by whole texels; redraw the exposed strips and the changed casters' footprints in the
 // current cascade. Falls back to rendering everything when that is most of the map.
 CascadeUpdate plan_cascade_update(const std::optional<Cascade>& cached, const Cascade& current, uint32_t resolution,
-                                  std::span<const Aabb> changed_static_bounds);
+                                  std::span<const core::Aabb> changed_static_bounds);
 
 // Cached spot and point lights: a layer of the local map (a spot, or one cube face) as it
 // was rendered. The same key, and no caster change that can reach the layer, means its
@@ -108,13 +108,14 @@ struct LocalLayerKey {
 };
 
 // Whether a world box can cast into the layer (its frustum, and the light's range for a cube).
-bool may_cast_into_layer(const LocalLayerKey& layer, const Aabb& box);
+bool may_cast_into_layer(const LocalLayerKey& layer, const core::Aabb& box);
 
 // Whether a layer rendered for `kept` can be sampled as it is for `current`: the same key
 // (light position, direction, range, near plane and resolution unchanged), no static caster
 // changed where it can cast into the layer (`changed_static_bounds`: old and new bounds),
 // and no dynamic caster that can cast into it (`dynamic_bounds`: drawn every frame).
 bool local_layer_reusable(const std::optional<LocalLayerKey>& kept, const LocalLayerKey& current,
-                          std::span<const Aabb> changed_static_bounds, std::span<const Aabb> dynamic_bounds);
+                          std::span<const core::Aabb> changed_static_bounds,
+                          std::span<const core::Aabb> dynamic_bounds);
 
 }  // namespace penumbra

@@ -54,14 +54,14 @@ void validate_virtual_clipmap_config(const VirtualClipmapConfig& config, const c
 }
 
 VirtualClipmap compute_virtual_clipmap(const glm::vec3& camera_position, const glm::vec3& light_direction,
-                                       const VirtualClipmapConfig& config, const Aabb& scene_bounds) {
+                                       const VirtualClipmapConfig& config, const core::Aabb& scene_bounds) {
     VirtualClipmap clipmap;
     clipmap.light_view = light_view_matrix(light_direction);
     clipmap.light_direction = glm::normalize(light_direction);
     clipmap.level_resolution = config.level_resolution;
     clipmap.pages_per_side = config.level_resolution / kVirtualPageTexels;
     const glm::vec2 camera_in_light(clipmap.light_view * glm::vec4(camera_position, 1.0f));
-    const Aabb light_space_scene = transform_aabb(scene_bounds, clipmap.light_view);
+    const core::Aabb light_space_scene = core::transform_aabb(scene_bounds, clipmap.light_view);
     const int half_pages = static_cast<int>(clipmap.pages_per_side / 2);
     for (uint32_t l = 0; l < config.level_count; ++l) {
         VirtualLevel level;
@@ -124,10 +124,10 @@ PageRect pages_around(const VirtualClipmap& clipmap, glm::vec2 texel, float radi
     return rect;
 }
 
-PageRect world_pages_of_box(const VirtualClipmap& clipmap, int level, const Aabb& world_box) {
+PageRect world_pages_of_box(const VirtualClipmap& clipmap, int level, const core::Aabb& world_box) {
     if (world_box.empty()) return {};
     const VirtualLevel& l = clipmap.levels.at(static_cast<size_t>(level));
-    const Aabb light = transform_aabb(world_box, clipmap.light_view);
+    const core::Aabb light = core::transform_aabb(world_box, clipmap.light_view);
     const float page_metres = l.texel_world_size * static_cast<float>(kVirtualPageTexels);
     const glm::vec2 low = glm::vec2(light.min) - l.texel_world_size;
     const glm::vec2 high = glm::vec2(light.max) + l.texel_world_size;

@@ -61,7 +61,7 @@ void validate_virtual_clipmap_config(const VirtualClipmapConfig& config, const c
 // centred on the scene, as the cascades': depth_range_of_scene), so depths drawn in one
 // frame stay valid in the next. Requires a validated config.
 VirtualClipmap compute_virtual_clipmap(const glm::vec3& camera_position, const glm::vec3& light_direction,
-                                       const VirtualClipmapConfig& config, const Aabb& scene_bounds);
+                                       const VirtualClipmapConfig& config, const core::Aabb& scene_bounds);
 
 // World metres per pixel at `distance` from the camera for a vertical field of view and an
 // image height: the footprint the level choice compares texels with.
@@ -90,7 +90,7 @@ PageRect pages_around(const VirtualClipmap& clipmap, glm::vec2 texel, float radi
 // The world pages [min, max) of `level` that a world-space box's casters reach: its
 // light-space rectangle (shadows fall along the light) grown by one texel for the
 // rasteriser's coverage at the edges. Not clipped to the window; empty for an empty box.
-PageRect world_pages_of_box(const VirtualClipmap& clipmap, int level, const Aabb& world_box);
+PageRect world_pages_of_box(const VirtualClipmap& clipmap, int level, const core::Aabb& world_box);
 
 // The page table slot of a window page: the world page modulo pages_per_side on each axis
 // (toroidal addressing, as the cascades' layers: a world page keeps its slot while the

@@ -155,7 +155,8 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
 void CascadeCache::invalidate() { layers_.clear(); }
 
 std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes::CasterScene& scene, bool cull,
-                                             bool cached, std::span<const Aabb> changes, uint32_t resolution) const {
+                                             bool cached, std::span<const core::Aabb> changes,
+                                             uint32_t resolution) const {
     std::vector<CascadeDraws> draws(set.cascades.size());
     for (size_t c = 0; c < set.cascades.size(); ++c) {
         const Cascade& cascade = set.cascades[c];

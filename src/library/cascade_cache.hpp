@@ -36,7 +36,7 @@ public:
     // cache that keep the cache's static texels where the dynamic casters draw. `changes`
     // are the world bounds of static casters changed since the last commit().
     std::vector<passes::CascadeDraws> plan(const CascadeSet& set, const passes::CasterScene& scene, bool cull,
-                                           bool cached, std::span<const Aabb> changes, uint32_t resolution) const;
+                                           bool cached, std::span<const core::Aabb> changes, uint32_t resolution) const;
 
     // The frame that plan() made was recorded: the map now holds `set`'s static casters.
     void commit(const CascadeSet& set, const std::vector<passes::CascadeDraws>& draws, uint32_t resolution);

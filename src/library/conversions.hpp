@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "core/glm_config.hpp"
+#include "core/shadow_inputs.hpp"
 #include "penumbra/lights.hpp"
 #include "penumbra/math.hpp"
-#include "penumbra/scene/scene.hpp"
 
 namespace penumbra::library {
 
@@ -26,7 +26,7 @@ inline Mat4 to_public(const glm::mat4& m) {
     return result;
 }
 
-inline Aabb to_aabb(const Bounds& bounds) { return {to_glm(bounds.min), to_glm(bounds.max)}; }
+inline core::Aabb to_aabb(const Bounds& bounds) { return {to_glm(bounds.min), to_glm(bounds.max)}; }
 
 // The internal light of the local-light and cascade math (colour and intensity unused).
 // A direction normalised in double precision: any finite non-zero vector set_lights()
@@ -40,8 +40,8 @@ inline glm::vec3 unit_direction(const Vec3& v) {
     return {static_cast<float>(x / length), static_cast<float>(y / length), static_cast<float>(z / length)};
 }
 
-inline Light to_light(const LightDesc& desc) {
-    Light light;
+inline core::Light to_light(const LightDesc& desc) {
+    core::Light light;
     light.type = desc.type;
     light.direction = unit_direction(desc.direction);
     light.position = to_glm(desc.position);

@@ -15,12 +15,12 @@ VkFrontFace facing_light(const glm::mat4& view_projection) {
 
 }  // namespace
 
-std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                         const passes::CasterScene& scene, bool cull,
-                                                         const std::vector<bool>& kept, bool gpu_culls) {
+std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const core::Light> lights,
+                                                         const LocalShadowPlan& plan, const passes::CasterScene& scene,
+                                                         bool cull, const std::vector<bool>& kept, bool gpu_culls) {
     std::vector<passes::LocalShadowLayer> layers;
     for (const LocalShadowSlot& slot : plan.slots) {
-        const Light& light = lights[slot.light];
+        const core::Light& light = lights[slot.light];
         const bool cube = local_shadow_is_cube(light);
         for (size_t face = 0; face < slot.view_projection.size(); ++face) {
             passes::LocalShadowLayer layer{slot.first_layer + static_cast<uint32_t>(face),
@@ -43,7 +43,7 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> 
                 continue;
             }
             for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-                const Aabb& box = scene.draws[d].world_bounds;
+                const core::Aabb& box = scene.draws[d].world_bounds;
                 const bool may_cast = caster_may_shadow_frustum(slot.view_projection[face], box) &&
                                       (!cube || caster_may_shadow_sphere(light.position, light.range, box));
                 if (!cull || may_cast) layer.draws.push_back(d);
@@ -54,15 +54,15 @@ std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> 
     return layers;
 }
 
-std::vector<Aabb> caster_bounds(const passes::CasterScene& scene) {
-    std::vector<Aabb> boxes;
+std::vector<core::Aabb> caster_bounds(const passes::CasterScene& scene) {
+    std::vector<core::Aabb> boxes;
     boxes.reserve(scene.draws.size());
     for (const passes::CasterDraw& draw : scene.draws) boxes.push_back(draw.world_bounds);
     return boxes;
 }
 
 shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
-                                                     const Light* sun, bool sun_casts_shadows,
+                                                     const core::Light* sun, bool sun_casts_shadows,
                                                      const ShadowSettings& settings,
                                                      const passes::CasterDepthBias& caster_bias, uint32_t frame_index) {
     shader::PenumbraShadowUniforms uniforms{};
@@ -106,13 +106,13 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
     return uniforms;
 }
 
-shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, const LocalShadowPlan& plan,
+shader::PenumbraLocalShadows build_local_shadows(std::span<const core::Light> lights, const LocalShadowPlan& plan,
                                                  const ShadowSettings& settings,
                                                  const passes::CasterDepthBias& caster_bias) {
     shader::PenumbraLocalShadows uniforms{};
     uniforms.light_count = static_cast<uint32_t>(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
-        const Light& light = lights[i];
+        const core::Light& light = lights[i];
         shader::PenumbraLocalShadow& out = uniforms.lights[i];
         out.position = light.position;
         out.range = light.range;

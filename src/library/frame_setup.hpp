@@ -8,10 +8,10 @@
 #include "core/camera_math.hpp"
 #include "core/cascades.hpp"
 #include "core/local_lights.hpp"
+#include "core/shadow_inputs.hpp"
 #include "passes/casters.hpp"
 #include "passes/local_shadow_pass.hpp"
 #include "passes/shader_interface.hpp"
-#include "penumbra/scene/scene.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::library {
@@ -27,19 +27,20 @@ struct CullStats {
 // of faces toward its light. Layers whose index `kept` marks (cached local shadows) are
 // listed with `keep` and no draws: nothing is culled for them. `gpu_culls` (the layered
 // strategy): the layers to cull are marked gpu_culled, without draw lists.
-std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                         const passes::CasterScene& scene, bool cull,
-                                                         const std::vector<bool>& kept = {}, bool gpu_culls = false);
+std::vector<passes::LocalShadowLayer> cull_local_casters(std::span<const core::Light> lights,
+                                                         const LocalShadowPlan& plan, const passes::CasterScene& scene,
+                                                         bool cull, const std::vector<bool>& kept = {},
+                                                         bool gpu_culls = false);
 
 // World bounds of every draw (what local lights fit their near planes to).
-std::vector<Aabb> caster_bounds(const passes::CasterScene& scene);
+std::vector<core::Aabb> caster_bounds(const passes::CasterScene& scene);
 
 shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
-                                                     const Light* sun, bool sun_casts_shadows,
+                                                     const core::Light* sun, bool sun_casts_shadows,
                                                      const ShadowSettings& settings,
                                                      const passes::CasterDepthBias& caster_bias, uint32_t frame_index);
 
-shader::PenumbraLocalShadows build_local_shadows(std::span<const Light> lights, const LocalShadowPlan& plan,
+shader::PenumbraLocalShadows build_local_shadows(std::span<const core::Light> lights, const LocalShadowPlan& plan,
                                                  const ShadowSettings& settings,
                                                  const passes::CasterDepthBias& caster_bias);
 

@@ -10,6 +10,7 @@
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/check.hpp"
 
 namespace penumbra::library {
 namespace {
@@ -54,14 +55,13 @@ void check_stream(const gpu::Device& device, const VertexStream& stream, const s
     if (stream.buffer == VK_NULL_HANDLE) reject(call, name + ".buffer", "is VK_NULL_HANDLE");
     if (std::find(allowed.begin(), allowed.end(), stream.format) == allowed.end()) {
         reject(call, name + ".format",
-               "VkFormat " + std::to_string(stream.format) +
-                   " is not supported (docs/library.md lists the vertex formats)");
+               gpu::format_name(stream.format) + " is not supported (docs/library.md lists the vertex formats)");
     }
     VkFormatProperties properties{};
     device->vkGetPhysicalDeviceFormatProperties(device.physical_device(), stream.format, &properties);
     if (!(properties.bufferFeatures & VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT)) {
         reject(call, name + ".format",
-               "VkFormat " + std::to_string(stream.format) + " cannot be a vertex attribute on this device");
+               gpu::format_name(stream.format) + " cannot be a vertex attribute on this device");
     }
     if (stream.stride < format_bytes(stream.format)) {
         reject(call, name + ".stride",
@@ -102,8 +102,8 @@ void check_indices(VkIndexType type, VkDeviceSize offset, uint32_t count, const 
     }
 }
 
-Aabb bounds_of(std::span<const Vec3> positions) {
-    Aabb bounds;
+core::Aabb bounds_of(std::span<const Vec3> positions) {
+    core::Aabb bounds;
     for (const Vec3& position : positions) bounds.expand(to_glm(position));
     return bounds;
 }
@@ -271,7 +271,7 @@ void Geometry::remove_mesh(MeshId id, uint64_t frame) {
 
 InstanceId Geometry::add_instance(const InstanceDesc& desc) {
     Mesh& mesh = find_mesh(desc.mesh, "add_instance");
-    const Aabb world_bounds = checked_world_bounds(desc.world, mesh.bounds, "add_instance");
+    const core::Aabb world_bounds = checked_world_bounds(desc.world, mesh.bounds, "add_instance");
     check_instance_flags(desc.flags, "add_instance");
     const Instance instance{next_instance_id_++, desc.mesh.value, to_glm(desc.world), desc.flags, world_bounds};
     note_static_change(instance);
@@ -303,9 +303,13 @@ void Geometry::forget_static_changes(size_t count) {
 
 void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {
     Instance& instance = find_instance(id, "set_instance_transform");
-    const Aabb world_bounds = checked_world_bounds(world, meshes_.at(instance.mesh).bounds, "set_instance_transform");
+    const auto world_bounds = checked_world_bounds(world, meshes_.at(instance.mesh).bounds, "set_instance_transform");
+    // The same matrix again (an engine that uploads every transform every frame) changes
+    // nothing: the cached depths of a static caster stay, and the scene is not rebuilt.
+    const glm::mat4 transform = to_glm(world);
+    if (transform == instance.world) return;
     note_static_change(instance);
-    instance.world = to_glm(world);
+    instance.world = transform;
     instance.world_bounds = world_bounds;
     note_static_change(instance);
     ++changes_;
@@ -338,8 +342,8 @@ void Geometry::remove_instance(InstanceId id) {
 const passes::CasterScene& Geometry::build_scene() {
     scene_.meshes.clear();
     scene_.draws.clear();
-    world_bounds_ = Aabb{};
-    static_bounds_ = Aabb{};
+    world_bounds_ = core::Aabb{};
+    static_bounds_ = core::Aabb{};
     for (auto& [id, mesh] : meshes_) {
         mesh.scene_index = static_cast<uint32_t>(scene_.meshes.size());
         scene_.meshes.push_back(mesh.caster);

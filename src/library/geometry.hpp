@@ -8,12 +8,12 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/shadow_inputs.hpp"
 #include "library/retired.hpp"
 #include "passes/casters.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
-#include "penumbra/scene/scene.hpp"
 #include "penumbra/shadow_system.hpp"
 
 namespace penumbra::library {
@@ -36,15 +36,15 @@ public:
     // receivers bound the cascades' depth range too).
     const passes::CasterScene& build_scene();
     const passes::CasterScene& scene() const { return scene_; }  // as the last build_scene() made it
-    const Aabb& world_bounds() const { return world_bounds_; }
+    const core::Aabb& world_bounds() const { return world_bounds_; }
     // The bounds that set the cascades' depth range: the static instances' (not
     // kInstanceDynamic), or every instance's when all are dynamic. Instances that move every
     // frame would otherwise change the depth mapping, and with it every cached texel.
-    const Aabb& depth_range_bounds() const { return static_bounds_.empty() ? world_bounds_ : static_bounds_; }
+    const core::Aabb& depth_range_bounds() const { return static_bounds_.empty() ? world_bounds_ : static_bounds_; }
     // World bounds, old and new, of every static caster (casting, not kInstanceDynamic)
     // added, moved, changed or removed since they were last forgotten: the texels of the
     // cached cascades they cover are stale.
-    const std::vector<Aabb>& static_changes() const { return static_changes_; }
+    const std::vector<core::Aabb>& static_changes() const { return static_changes_; }
     // Forgets the first `count` (those a recorded frame has redrawn).
     void forget_static_changes(size_t count);
     uint64_t triangles(uint32_t draw) const { return scene_.meshes[scene_.draws[draw].mesh].index_count / 3; }
@@ -58,7 +58,7 @@ public:
 private:
     struct Mesh {
         passes::CasterMesh caster;
-        Aabb bounds;
+        core::Aabb bounds;
         uint32_t instances = 0;
         std::vector<gpu::Buffer> owned;  // uploaded streams (MeshData)
         VkDescriptorSet alpha_mask_set = VK_NULL_HANDLE;
@@ -70,7 +70,7 @@ private:
         uint32_t mesh = 0;  // MeshId value
         glm::mat4 world{1.0f};
         uint32_t flags = 0;
-        Aabb world_bounds;
+        core::Aabb world_bounds;
     };
     struct Upload {
         gpu::Buffer staging;
@@ -98,9 +98,9 @@ private:
     uint32_t alpha_masks_in_last_pool_ = 0;
     std::vector<Upload> uploads_;
     passes::CasterScene scene_;
-    Aabb world_bounds_;
-    Aabb static_bounds_;
-    std::vector<Aabb> static_changes_;
+    core::Aabb world_bounds_;
+    core::Aabb static_bounds_;
+    std::vector<core::Aabb> static_changes_;
     uint64_t changes_ = 0;  // mutations so far (CasterScene::version)
 };
 

@@ -83,7 +83,7 @@ void check_bounds_magnitude(const Bounds& bounds, const char* call) {
     }
 }
 
-Aabb checked_world_bounds(const Mat4& world, const Aabb& mesh_bounds, const char* call) {
+core::Aabb checked_world_bounds(const Mat4& world, const core::Aabb& mesh_bounds, const char* call) {
     for (const float value : world.m) {
         if (!std::isfinite(value)) reject(call, "world", "must be finite");
     }
@@ -98,7 +98,7 @@ Aabb checked_world_bounds(const Mat4& world, const Aabb& mesh_bounds, const char
         reject(call, "world",
                "is not invertible (its 3x3 part is singular: normalised determinant " + number(determinant) + ")");
     }
-    const Aabb bounds = transform_aabb(mesh_bounds, to_glm(world));
+    const core::Aabb bounds = core::transform_aabb(mesh_bounds, to_glm(world));
     const Vec3 low = to_public(bounds.min);
     const Vec3 high = to_public(bounds.max);
     if (!finite(low) || !finite(high) || !within_limit(low) || !within_limit(high)) {

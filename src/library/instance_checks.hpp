@@ -7,7 +7,7 @@
 #include <span>
 
 #include "penumbra/math.hpp"
-#include "penumbra/scene/scene.hpp"
+#include "core/shadow_inputs.hpp"
 
 namespace penumbra::library {
 
@@ -20,7 +20,7 @@ void check_bounds_magnitude(const Bounds& bounds, const char* call);
 
 // `world` finite, affine (bottom row 0, 0, 0, 1), invertible (its 3x3 part not singular)
 // and placing `mesh_bounds` within kMaxWorldMagnitude; returns the instance's world bounds.
-Aabb checked_world_bounds(const Mat4& world, const Aabb& mesh_bounds, const char* call);
+core::Aabb checked_world_bounds(const Mat4& world, const core::Aabb& mesh_bounds, const char* call);
 
 // Only bits that InstanceFlags defines (kInstanceAllFlags).
 void check_instance_flags(uint32_t flags, const char* call);

@@ -2,10 +2,11 @@
 
 namespace penumbra::library {
 
-std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const Light> lights, const LocalShadowPlan& plan) {
+std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const core::Light> lights,
+                                                           const LocalShadowPlan& plan) {
     std::vector<std::optional<LocalLayerKey>> keys(plan.layer_count);
     for (const LocalShadowSlot& slot : plan.slots) {
-        const Light& light = lights[slot.light];
+        const core::Light& light = lights[slot.light];
         const glm::vec4 sphere = local_shadow_is_cube(light) ? glm::vec4(light.position, light.range) : glm::vec4(0.0f);
         for (size_t face = 0; face < slot.view_projection.size(); ++face) {
             const size_t layer = slot.first_layer + face;
@@ -15,12 +16,12 @@ std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const Light
     return keys;
 }
 
-std::vector<bool> LocalShadowCache::kept_layers(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                                const passes::CasterScene& scene, std::span<const Aabb> changes,
+std::vector<bool> LocalShadowCache::kept_layers(std::span<const core::Light> lights, const LocalShadowPlan& plan,
+                                                const passes::CasterScene& scene, std::span<const core::Aabb> changes,
                                                 uint64_t map_generation) const {
     std::vector<bool> kept(plan.layer_count, false);
     if (map_generation != generation_ || layers_.empty()) return kept;
-    std::vector<Aabb> dynamic;
+    std::vector<core::Aabb> dynamic;
     for (const passes::CasterDraw& draw : scene.draws) {
         if (draw.dynamic) dynamic.push_back(draw.world_bounds);
     }
@@ -33,7 +34,8 @@ std::vector<bool> LocalShadowCache::kept_layers(std::span<const Light> lights, c
     return kept;
 }
 
-void LocalShadowCache::commit(std::span<const Light> lights, const LocalShadowPlan& plan, uint64_t map_generation) {
+void LocalShadowCache::commit(std::span<const core::Light> lights, const LocalShadowPlan& plan,
+                              uint64_t map_generation) {
     layers_ = local_layer_keys(lights, plan);
     generation_ = map_generation;
 }

@@ -17,7 +17,8 @@ namespace penumbra::library {
 
 // The key of each layer of `plan` (per slot: its spot layer or its six cube faces), indexed
 // by layer.
-std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const Light> lights, const LocalShadowPlan& plan);
+std::vector<std::optional<LocalLayerKey>> local_layer_keys(std::span<const core::Light> lights,
+                                                           const LocalShadowPlan& plan);
 
 class LocalShadowCache {
 public:
@@ -28,12 +29,12 @@ public:
     // when the map is the one the cache describes (`map_generation`,
     // LocalMaps::generation()). `changes` are the world bounds of static casters changed
     // since the last commit().
-    std::vector<bool> kept_layers(std::span<const Light> lights, const LocalShadowPlan& plan,
-                                  const passes::CasterScene& scene, std::span<const Aabb> changes,
+    std::vector<bool> kept_layers(std::span<const core::Light> lights, const LocalShadowPlan& plan,
+                                  const passes::CasterScene& scene, std::span<const core::Aabb> changes,
                                   uint64_t map_generation) const;
 
     // The frame was recorded: the map's layers hold `plan`'s lights.
-    void commit(std::span<const Light> lights, const LocalShadowPlan& plan, uint64_t map_generation);
+    void commit(std::span<const core::Light> lights, const LocalShadowPlan& plan, uint64_t map_generation);
 
 private:
     std::vector<std::optional<LocalLayerKey>> layers_;

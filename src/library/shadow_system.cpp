@@ -4,9 +4,11 @@
 // before it changes anything.
 #include "penumbra/shadow_system.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <string>
 
 #include "core/camera_math.hpp"
@@ -125,6 +127,7 @@ struct ShadowSystem::Impl {
     gpu::Device device;
     Settings settings;
     uint32_t frames_in_flight;
+    bool timestamps;  // ShadowSystemDesc::timestamps
     library::RetiredObjects retired;
     library::FrameSetLayouts layouts;
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
@@ -136,7 +139,7 @@ struct ShadowSystem::Impl {
     library::FrameSlots slots;
     library::Geometry geometry;
 
-    std::vector<Light> lights;
+    std::vector<core::Light> lights;
     uint64_t frame = 0;           // prepare() calls so far; the current frame's number
     uint32_t sampling_frame = 0;  // rotates the Poisson/PCSS patterns (ViewDesc::sampling_frame)
     FrameInfo info;
@@ -164,11 +167,51 @@ struct ShadowSystem::Impl {
     std::vector<LocalLayerHistory> local_history;
     std::unique_ptr<gpu::Image> visibility;
     uint32_t visibility_slots = 0;
+    // Every specialization shader_specialization() handed out, kept for the system's life
+    // (ShaderSpecialization views them); one per distinct content.
+    struct Specialization {
+        std::vector<VkSpecializationMapEntry> entries;
+        std::vector<uint32_t> data;
+    };
+    mutable std::deque<Specialization> specializations;
+    // GPU times of the frames whose slots prepare() reused (complete by its contract), the
+    // newest last, at most frames_in_flight of them: gpu_times() of a frame still answers
+    // after the prepare() that retired it, when an engine that waits for a slot's fence
+    // first can read it.
+    std::deque<GpuTimes> retired_times;
+
+    // The timer the passes of `slot` record into; null (no queries) without timestamps.
+    gpu::GpuTimer* timer_of(library::FrameSlot& slot) { return timestamps ? &slot.timer : nullptr; }
+
+    // Before prepare() reuses `slot` for the next frame: checks that the frame which last
+    // used it has completed, and keeps its times. Its timestamps are the witness: by
+    // prepare()'s contract they are all available; one that is not means the caller has
+    // more frames in flight than this system was made for (or never submitted the frame),
+    // and rewriting the slot's descriptor set now would race the GPU. Without timestamps
+    // (a queue family without them) nothing is checked.
+    void retire_slot(const library::FrameSlot& slot) {
+        if (slot.frame == 0 || !slot.shadow_maps_recorded || !timestamps || !slot.timer.supported()) return;
+        const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();
+        if (!times) {
+            throw UsageError("ShadowSystem::prepare: frame " + std::to_string(slot.frame) + ", " +
+                             std::to_string(frames_in_flight) +
+                             " frame(s) ago, has not completed on the GPU (or was never submitted); "
+                             "ShadowSystemDesc::frames_in_flight is " +
+                             std::to_string(frames_in_flight) +
+                             ": wait for that frame before prepare(), or create the ShadowSystem with as many "
+                             "frames in flight as the renderer has");
+        }
+        GpuTimes kept{slot.frame, {}};
+        for (const gpu::ScopeTime& time : *times) kept.passes.push_back({time.name, time.milliseconds});
+        retired_times.push_back(std::move(kept));
+        while (retired_times.size() > frames_in_flight) retired_times.pop_front();
+    }
 
     explicit Impl(const ShadowSystemDesc& desc)
         : device(make_device(desc.device)),
           settings(checked_settings(desc.settings)),
           frames_in_flight(checked_frames_in_flight(desc.frames_in_flight)),
+          timestamps(desc.timestamps),
           retired(frames_in_flight),
           layouts(library::create_frame_set_layouts(device)),
           alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
@@ -192,8 +235,8 @@ struct ShadowSystem::Impl {
         retired.release(~uint64_t{0} / 2);
     }
 
-    const Light* sun() const {
-        for (const Light& light : lights) {
+    const core::Light* sun() const {
+        for (const core::Light& light : lights) {
             if (light.type == LightType::Directional) return &light;
         }
         return nullptr;
@@ -203,7 +246,7 @@ struct ShadowSystem::Impl {
     // pages; the cascades' uniforms keep the camera and filter values, with no cascade.
     void prepare_virtual_sun(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
         const Clock::time_point start = Clock::now();
-        const Light* sun_light = sun();
+        const core::Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
         const bool casts = sun_light && sun_light->cast_shadows;
         const ShadowSettings placeholder = cascade_map_settings(settings.shadow);
@@ -243,7 +286,7 @@ struct ShadowSystem::Impl {
     void prepare_sun(const CameraView& camera, const passes::CasterScene& scene) {
         info.virtual_map.reset();
         Clock::time_point start = Clock::now();
-        const Light* sun_light = sun();
+        const core::Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
         CascadeSet set = compute_cascades(camera, direction, settings.shadow.cascades, geometry.depth_range_bounds());
         place_in_layers(set, settings.shadow.cascades.resolution,
@@ -402,9 +445,9 @@ struct ShadowSystem::Impl {
             cascade_placeholder_drawn = true;
         }
         virtual_map->record_pages(cmd, slot.caster_set, scene, frame, settings.shadow.bias, cascade_culling,
-                                  &slot.timer);
+                                  timer_of(slot));
         geometry.forget_static_changes(planned_static_changes);
-        local.record(cmd, slot.caster_set, scene, local_layers, plan, settings.shadow, frame, &slot.timer);
+        local.record(cmd, slot.caster_set, scene, local_layers, plan, settings.shadow, frame, timer_of(slot));
         if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local.generation());
     }
 
@@ -443,7 +486,7 @@ void ShadowSystem::remove_instance(InstanceId instance) { impl_->geometry.remove
 
 void ShadowSystem::set_lights(std::span<const LightDesc> lights) {
     library::check_lights(lights);
-    std::vector<Light> converted;
+    std::vector<core::Light> converted;
     converted.reserve(lights.size());
     for (const LightDesc& light : lights) converted.push_back(library::to_light(light));
     impl_->lights = std::move(converted);
@@ -473,9 +516,10 @@ const Settings& ShadowSystem::settings() const { return impl_->settings; }
 const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     check_view(view);
     Impl& impl = *impl_;
+    library::FrameSlot& slot = impl.slots.at(impl.frame + 1);
+    impl.retire_slot(slot);  // before anything changes: throws when the slot is still in use
     impl.frame += 1;
     impl.retired.release(impl.frame);
-    library::FrameSlot& slot = impl.slots.at(impl.frame);
     slot.frame = impl.frame;
     slot.shadow_maps_recorded = false;
     slot.visibility_recorded = false;
@@ -530,9 +574,10 @@ void ShadowSystem::record_page_marking(VkCommandBuffer cmd, const ScreenInputs& 
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_page_marking: cmd is VK_NULL_HANDLE");
     check_screen("record_page_marking", screen);
     if (!impl.virtual_map) return;
-    if (!slot.timer_started) slot.timer.begin_frame(cmd);
+    gpu::GpuTimer* timer = impl.timer_of(slot);
+    if (timer && !slot.timer_started) timer->begin_frame(cmd);
     slot.timer_started = true;
-    impl.virtual_map->record_marking(cmd, impl.frame, screen, &slot.timer);
+    impl.virtual_map->record_marking(cmd, impl.frame, screen, timer);
     slot.pages_marked = true;
 }
 
@@ -548,7 +593,8 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
             "ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() earlier in this "
             "frame (the pages the frame's pixels sample)");
     }
-    if (!slot.timer_started) slot.timer.begin_frame(cmd);
+    gpu::GpuTimer* timer = impl.timer_of(slot);
+    if (timer && !slot.timer_started) timer->begin_frame(cmd);
     slot.timer_started = true;
     impl.geometry.record_uploads(cmd, impl.frame);
     // The scene prepare() culled: instances changed since then show in the next frame.
@@ -560,14 +606,14 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
     }
     impl.slots.record_placeholder_layout(cmd);
     impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
-                         impl.sun_casts, impl.frame, &slot.timer);
+                         impl.sun_casts, impl.frame, timer);
     // The cache holds this frame's static casters once the commands run; the changes the
     // plan covered are drawn.
     if (impl.cascades.cached())
         impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
     impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, impl.frame,
-                      &slot.timer);
+                      timer);
     if (impl.settings.shadow.cache_static_casters)
         impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
     slot.shadow_maps_recorded = true;
@@ -599,7 +645,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
-    gpu::TimedScope scope(&slot.timer, cmd, "visibility");
+    gpu::TimedScope scope(impl.timer_of(slot), cmd, "visibility");
     impl.resolve.record(cmd, slot.sampling_set, slot.screen_set, *impl.visibility, constants);
     slot.visibility_recorded = true;
 }
@@ -614,17 +660,30 @@ VisibilityImage ShadowSystem::visibility_image() const {
 VkDescriptorSetLayout ShadowSystem::descriptor_set_layout() const { return impl_->layouts.sampling; }
 
 ShaderSpecialization ShadowSystem::shader_specialization(uint32_t first_constant_id) const {
-    ShaderSpecialization result;
+    Impl::Specialization made;
     for (const gpu::SpecializationValue& value : passes::shadow_filter_specialization(impl_->settings.shadow.filter)) {
-        result.entries.push_back({first_constant_id + value.constant_id,
-                                  static_cast<uint32_t>(result.data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
-        result.data.push_back(value.value);
+        made.entries.push_back({first_constant_id + value.constant_id,
+                                static_cast<uint32_t>(made.data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+        made.data.push_back(value.value);
     }
-    return result;
+    const auto same = [&made](const Impl::Specialization& kept) {
+        return kept.data == made.data &&
+               std::equal(kept.entries.begin(), kept.entries.end(), made.entries.begin(), made.entries.end(),
+                          [](const VkSpecializationMapEntry& a, const VkSpecializationMapEntry& b) {
+                              return a.constantID == b.constantID && a.offset == b.offset && a.size == b.size;
+                          });
+    };
+    auto kept = std::find_if(impl_->specializations.begin(), impl_->specializations.end(), same);
+    if (kept == impl_->specializations.end()) {
+        // A deque never moves its elements (nor so their vectors' storage) when it grows.
+        impl_->specializations.push_back(std::move(made));
+        kept = std::prev(impl_->specializations.end());
+    }
+    return {kept->entries, kept->data};
 }
 
 VkSpecializationInfo ShaderSpecialization::info() const {
-    return {static_cast<uint32_t>(entries.size()), entries.data(), data.size() * sizeof(uint32_t), data.data()};
+    return {static_cast<uint32_t>(entries.size()), entries.data(), data.size_bytes(), data.data()};
 }
 
 ShadowMaps ShadowSystem::shadow_maps() const {
@@ -641,7 +700,13 @@ ShadowMaps ShadowSystem::shadow_maps() const {
 
 std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
     const Impl& impl = *impl_;
-    if (frame == 0 || frame > impl.frame || frame + impl.frames_in_flight <= impl.frame) return std::nullopt;
+    if (!impl.timestamps || frame == 0 || frame > impl.frame) return std::nullopt;
+    if (frame + impl.frames_in_flight <= impl.frame) {  // its slot was reused: what prepare() kept
+        for (const GpuTimes& times : impl.retired_times) {
+            if (times.frame == frame) return times;
+        }
+        return std::nullopt;
+    }
     const library::FrameSlot& slot = impl.slots.at(frame);
     if (slot.frame != frame || !slot.shadow_maps_recorded) return std::nullopt;
     const std::optional<std::vector<gpu::ScopeTime>> times = slot.timer.read();

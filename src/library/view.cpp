@@ -8,7 +8,7 @@ namespace penumbra {
 
 ViewDesc look_at_view(Vec3 eye, Vec3 target, Vec3 up, float fov_y_radians, float near_plane, float far_plane,
                       uint32_t width, uint32_t height) {
-    Camera camera;
+    core::Camera camera;
     camera.eye = library::to_glm(eye);
     camera.target = library::to_glm(target);
     camera.up = library::to_glm(up);

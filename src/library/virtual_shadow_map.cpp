@@ -77,7 +77,7 @@ std::vector<shader::VirtualInvalidation> VirtualShadowMap::invalidations(const V
     // Static casters that changed (old and new bounds), and the dynamic casters where they
     // are now and where they were last frame: their pages are drawn again with everything
     // in them (static casters included), which keeps cached and uncached frames equal.
-    std::vector<Aabb> boxes(inputs.static_changes.begin(), inputs.static_changes.end());
+    std::vector<core::Aabb> boxes(inputs.static_changes.begin(), inputs.static_changes.end());
     boxes.insert(boxes.end(), dynamic_bounds_.begin(), dynamic_bounds_.end());
     for (const passes::CasterDraw& draw : inputs.scene->draws) {
         if (draw.dynamic) boxes.push_back(draw.world_bounds);
@@ -86,7 +86,7 @@ std::vector<shader::VirtualInvalidation> VirtualShadowMap::invalidations(const V
     const size_t per_level_limit = pages_.desc().max_invalidations / std::max<size_t>(clipmap_.levels.size(), 1);
     for (int level = 0; level < static_cast<int>(clipmap_.levels.size()); ++level) {
         std::vector<PageRect> level_rects;
-        for (const Aabb& box : boxes) {
+        for (const core::Aabb& box : boxes) {
             const PageRect rect = world_pages_of_box(clipmap_, level, box);
             if (!rect.empty()) level_rects.push_back(rect);
         }

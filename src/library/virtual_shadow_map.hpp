@@ -42,8 +42,8 @@ struct VirtualFrameInputs {
     float sun_angular_diameter_degrees = 0.0f;
     bool casts = false;  // the sun casts shadows this frame
     const passes::CasterScene* scene = nullptr;
-    std::span<const Aabb> static_changes;  // world bounds of static casters changed since the last frame drawn
-    Aabb depth_range_bounds;               // the static instances' (Geometry::depth_range_bounds)
+    std::span<const core::Aabb> static_changes;  // world bounds of static casters changed since the last frame drawn
+    core::Aabb depth_range_bounds;               // the static instances' (Geometry::depth_range_bounds)
 };
 
 class VirtualShadowMap {
@@ -89,7 +89,7 @@ private:
     passes::VirtualShadowPass pass_;
     std::optional<VirtualClipmap> previous_;  // the last prepared frame's clipmap
     VirtualClipmap clipmap_;
-    std::vector<Aabb> dynamic_bounds_;  // the dynamic casters' bounds last frame (their pages are stale now)
+    std::vector<core::Aabb> dynamic_bounds_;  // the dynamic casters' bounds last frame (their pages are stale now)
     bool invalidate_all_ = true;
     bool casts_ = false;
     uint32_t invalidation_count_ = 0;

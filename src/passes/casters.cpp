@@ -121,8 +121,8 @@ void CasterPipelines::prepare(const VertexFormats& formats) {
 VkPipeline CasterPipelines::get(const VertexFormats& formats) const {
     const auto found = pipelines_.find(formats);
     if (found == pipelines_.end()) {
-        throw VulkanError("caster pipeline for vertex format " + std::to_string(formats.position) + "/" +
-                              std::to_string(formats.uv) + " was not prepared",
+        throw VulkanError("caster pipeline for vertex formats " + gpu::format_name(formats.position) + "/" +
+                              gpu::format_name(formats.uv) + " was not prepared",
                           VK_ERROR_UNKNOWN);
     }
     return found->second;

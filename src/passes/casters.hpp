@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
+#include "core/shadow_inputs.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "penumbra/gpu/resources.hpp"
-#include "penumbra/scene/scene.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::passes {
@@ -46,7 +46,7 @@ struct CasterMesh {
 struct CasterDraw {
     uint32_t mesh = 0;  // index into CasterScene::meshes
     glm::mat4 model{1.0f};
-    Aabb world_bounds;
+    core::Aabb world_bounds;
     bool masked = false;        // alpha-tested with its mesh's mask
     bool double_sided = false;  // never face-culled
     bool mirrored = false;      // the model matrix flips the winding (negative determinant)

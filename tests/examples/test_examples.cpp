@@ -36,7 +36,7 @@ constexpr uint32_t kHeight = 360;
 // face (the +Z face, lit at 75 degrees, darkens by up to 6% within 5 cm of its top edge).
 constexpr float kEdgeBand = 0.25f;
 
-Aabb box_at(const glm::vec3& centre) { return {centre - glm::vec3(1.0f), centre + glm::vec3(1.0f)}; }
+Box box_at(const glm::vec3& centre) { return {centre - glm::vec3(1.0f), centre + glm::vec3(1.0f)}; }
 
 // scripts/build_examples.sh builds penumbra_<name> in WORK/<name>.
 fs::path binary_path(const std::string& binary) { return kWorkDir / binary.substr(binary.find('_') + 1) / binary; }
@@ -70,8 +70,8 @@ struct PixelTruth {
     glm::vec3 point{0.0f};
 };
 
-PixelTruth classify(const Aabb& box, uint32_t x, uint32_t y) {
-    const PixelRay ray = pixel_ray(Camera{}, kWidth, kHeight, x, y);
+PixelTruth classify(const Box& box, uint32_t x, uint32_t y) {
+    const PixelRay ray = pixel_ray(PinholeCamera{}, kWidth, kHeight, x, y);
     const auto ground = intersect_ground(ray, kPlaneHalfSize);
     const auto box_hit = intersect_box(ray, box);
     if (box_hit && (!ground || *box_hit < *ground)) {
@@ -88,7 +88,7 @@ PixelTruth classify(const Aabb& box, uint32_t x, uint32_t y) {
 }
 
 // Distance from a point on the box's surface to the nearest edge of the face it lies on.
-float distance_to_face_edge(const Aabb& box, const glm::vec3& point) {
+float distance_to_face_edge(const Box& box, const glm::vec3& point) {
     const glm::vec3 to_min = point - box.min;
     const glm::vec3 to_max = box.max - point;
     // On its face one axis is at 0; the edges are where another axis reaches 0.
@@ -128,7 +128,7 @@ struct ImageCheck {
 // Compares a visibility image (16-bit, 65535 lit) with the analytic answer for the box at
 // `centre`. Pixels whose 4-neighbours see another surface (silhouettes) are not judged.
 ImageCheck check_image(const PngImage& image, const glm::vec3& centre) {
-    const Aabb box = box_at(centre);
+    const Box box = box_at(centre);
     const auto polygon = shadow_polygon(box, kSunDirection);
     ImageCheck check;
     size_t intersection = 0, union_count = 0;

@@ -1,10 +1,22 @@
 #include "analytic_shadow.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
 namespace penumbra::testing {
+namespace {
+
+std::array<glm::vec3, 8> corners(const Box& box) {
+    std::array<glm::vec3, 8> result{};
+    for (int i = 0; i < 8; ++i) {
+        result[i] = {(i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y, (i & 4) ? box.max.z : box.min.z};
+    }
+    return result;
+}
+
+}  // namespace
 
 std::string ground_scene_toml(const glm::vec3& light_direction, const std::string& objects) {
     char header[512];
@@ -28,7 +40,7 @@ size = [30.0, 30.0]
     return header + objects;
 }
 
-PixelRay pixel_ray(const Camera& camera, uint32_t width, uint32_t height, uint32_t x, uint32_t y) {
+PixelRay pixel_ray(const PinholeCamera& camera, uint32_t width, uint32_t height, uint32_t x, uint32_t y) {
     const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
     const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
     const glm::vec3 up = glm::cross(right, forward);
@@ -40,7 +52,7 @@ PixelRay pixel_ray(const Camera& camera, uint32_t width, uint32_t height, uint32
     return {camera.eye, glm::normalize(direction)};
 }
 
-std::optional<float> intersect_box(const PixelRay& ray, const Aabb& box) {
+std::optional<float> intersect_box(const PixelRay& ray, const Box& box) {
     float t_near = 0.0f;
     float t_far = 1e30f;
     for (int axis = 0; axis < 3; ++axis) {
@@ -87,9 +99,9 @@ std::vector<glm::vec2> convex_hull(std::vector<glm::vec2> points) {
     return hull;
 }
 
-std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_direction) {
+std::vector<glm::vec2> shadow_polygon(const Box& box, const glm::vec3& light_direction) {
     std::vector<glm::vec2> points;
-    for (const glm::vec3& corner : box.corners()) {
+    for (const glm::vec3& corner : corners(box)) {
         const float t = -corner.y / light_direction.y;  // travel along the light down to y = 0
         const glm::vec3 ground = corner + light_direction * t;
         points.emplace_back(ground.x, ground.z);
@@ -97,9 +109,9 @@ std::vector<glm::vec2> shadow_polygon(const Aabb& box, const glm::vec3& light_di
     return convex_hull(points);
 }
 
-std::vector<glm::vec2> point_light_shadow_polygon(const Aabb& box, const glm::vec3& light_position) {
+std::vector<glm::vec2> point_light_shadow_polygon(const Box& box, const glm::vec3& light_position) {
     std::vector<glm::vec2> points;
-    for (const glm::vec3& corner : box.corners()) {
+    for (const glm::vec3& corner : corners(box)) {
         // Along the ray from the light through the corner, down to y = 0.
         const glm::vec3 ground =
             light_position + (corner - light_position) * (light_position.y / (light_position.y - corner.y));

@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 
+#include "../unit/scene_to_core.hpp"
 #include "analytic_shadow.hpp"
 #include "core/camera_math.hpp"
 #include "penumbra/scene/loader.hpp"

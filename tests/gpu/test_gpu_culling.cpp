@@ -54,7 +54,7 @@ passes::CasterScene random_scene(std::mt19937& random, uint32_t draws, uint64_t 
         draw.world_bounds = {centre - half, centre + half};
         const int k = kind(random);
         if (k < 3) draw.world_bounds = {centre - half * 20.0f, centre + half * 20.0f};  // large
-        if (k == 3) draw.world_bounds = Aabb{};                                         // empty
+        if (k == 3) draw.world_bounds = core::Aabb{};                                   // empty
         if (k == 4) draw.world_bounds = {glm::vec3(-3e38f), glm::vec3(3e38f)};          // inf once projected
         draw.model = glm::translate(glm::mat4(1.0f), centre);
         scene.draws.push_back(draw);
@@ -74,7 +74,7 @@ CascadeSet random_cascades(std::mt19937& random, FitMode fit) {
     settings.fit = fit;
     settings.max_distance = 100.0f;
     return compute_cascades(camera, sun, settings,
-                            Aabb{glm::vec3(-120.0f, -1.0f, -120.0f), glm::vec3(120.0f, 30.0f, 120.0f)});
+                            core::Aabb{glm::vec3(-120.0f, -1.0f, -120.0f), glm::vec3(120.0f, 30.0f, 120.0f)});
 }
 
 // Per cascade, the draws the CPU's culling selects (every draw without culling).
@@ -199,9 +199,9 @@ TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerLocalLayer) {
         const passes::CasterScene scene = random_scene(random, 500, static_cast<uint64_t>(trial));
         shader::PenumbraLocalShadows local{};
         std::vector<glm::mat4> layers;
-        std::vector<std::pair<Light, uint32_t>> lights;  // and the first layer
+        std::vector<std::pair<core::Light, uint32_t>> lights;  // and the first layer
         for (uint32_t l = 0; l < 6; ++l) {
-            Light light;
+            core::Light light;
             light.type = l % 2 ? LightType::Point : LightType::Spot;
             light.position = glm::vec3(unit(random) * 60.0f, 3.0f + (unit(random) + 1.0f) * 4.0f, unit(random) * 60.0f);
             light.direction = glm::normalize(glm::vec3(unit(random), -1.0f, unit(random)));
@@ -234,7 +234,7 @@ TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerLocalLayer) {
                     const uint32_t layer = first_layer + face;
                     std::vector<uint32_t> expected;
                     for (uint32_t d = 0; enabled[layer] && d < scene.draws.size(); ++d) {
-                        const Aabb& box = scene.draws[d].world_bounds;
+                        const core::Aabb& box = scene.draws[d].world_bounds;
                         const bool casts = caster_may_shadow_frustum(layers[layer], box) &&
                                            (!cube || caster_may_shadow_sphere(light.position, light.range, box));
                         if (!cull || casts) expected.push_back(d);

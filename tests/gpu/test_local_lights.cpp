@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "../unit/scene_to_core.hpp"
 #include "analytic_shadow.hpp"
 #include "core/shadow_filters.hpp"
 #include "library/frame_setup.hpp"
@@ -383,12 +384,13 @@ TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
     passes::CasterScene data;
     for (const Instance& instance : scene.instances) {
         passes::CasterDraw draw;
-        draw.world_bounds = transform_aabb(scene.meshes[instance.mesh].bounds, instance.world);
+        draw.world_bounds = to_core(transform_aabb(scene.meshes[instance.mesh].bounds, instance.world));
         data.draws.push_back(draw);
     }
-    LocalShadowPlan plan = plan_local_shadows(scene.lights, {});
-    fit_local_shadows(plan, scene.lights, library::caster_bounds(data));
-    const auto culled = library::cull_local_casters(scene.lights, plan, data, true);
+    const std::vector<core::Light> lights = to_core(scene.lights);
+    LocalShadowPlan plan = penumbra::plan_local_shadows(lights, {});
+    penumbra::fit_local_shadows(plan, lights, library::caster_bounds(data));
+    const auto culled = library::cull_local_casters(lights, plan, data, true);
     ASSERT_EQ(culled.size(), 6u);
     for (uint32_t face = 0; face < 6; ++face) {
         EXPECT_EQ(culled[face].layer, face);
@@ -398,7 +400,7 @@ TEST(LocalLights, WideSpotFacesOutsideTheConeGetNoDraws) {
             EXPECT_FALSE(culled[face].draws.empty()) << "face " << face;
         }
     }
-    for (const auto& layer : library::cull_local_casters(scene.lights, plan, data, false)) {
+    for (const auto& layer : library::cull_local_casters(lights, plan, data, false)) {
         EXPECT_EQ(layer.draws.size(), data.draws.size()) << "no culling: face " << layer.layer;
     }
 }

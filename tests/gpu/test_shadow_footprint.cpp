@@ -33,7 +33,7 @@ FootprintResult measure_footprint(const glm::vec3& light_direction) {
     const RenderedFrame frame = render_with_validation(scene, settings);
     EXPECT_TRUE(frame.validation_messages.empty()) << frame.validation_messages.front();
 
-    const Aabb& box = kFloatingBoxBounds;
+    const testing::Box& box = kFloatingBoxBounds;
     const glm::vec3 light = glm::normalize(light_direction);
     const auto polygon = shadow_polygon(box, light);
     size_t intersection = 0, union_count = 0, lit = 0, lit_exact = 0, umbra = 0, umbra_exact = 0;

@@ -31,7 +31,7 @@ constexpr float kFov = 1.0f;
 constexpr float kRadius = 3.0f;  // texels a receiver's filter reads around it
 constexpr float kShadowDistance = 60.0f;
 const glm::vec3 kSun = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.3f));
-const Aabb kScene{glm::vec3(-200.0f, -1.0f, -200.0f), glm::vec3(200.0f, 10.0f, 200.0f)};
+const core::Aabb kScene{glm::vec3(-200.0f, -1.0f, -200.0f), glm::vec3(200.0f, 10.0f, 200.0f)};
 
 VirtualClipmapConfig test_config() {
     VirtualClipmapConfig config;
@@ -385,7 +385,7 @@ TEST_F(VirtualPages, InvalidatedPagesAreDrawnAgainAndUnrequestedOnesAreFreed) {
     run_frame(pages, south, clipmap, clipmap);
     const passes::VirtualPageState first = run_frame(pages, north, clipmap, clipmap);
     // A long box under the camera changed, reaching pages of both views in every level.
-    const Aabb changed{glm::vec3(-1.0f, 0.0f, -9.0f), glm::vec3(1.0f, 2.0f, 9.0f)};
+    const core::Aabb changed{glm::vec3(-1.0f, 0.0f, -9.0f), glm::vec3(1.0f, 2.0f, 9.0f)};
     std::vector<shader::VirtualInvalidation> invalidations;
     std::set<uint32_t> inside;
     const uint32_t per_level = clipmap.pages_per_side * clipmap.pages_per_side;

@@ -380,7 +380,7 @@ std::vector<float> LibraryTest::read_cascade_depths(const ShadowSystem& shadows)
 FootprintCheck LibraryTest::check_footprint(const VisibilityImage2D& image, const glm::vec3& centre,
                                             const glm::vec3& direction, float edge_band,
                                             std::optional<glm::vec3> light_position) {
-    const Aabb box{centre - glm::vec3(1.0f), centre + glm::vec3(1.0f)};
+    const testing::Box box{centre - glm::vec3(1.0f), centre + glm::vec3(1.0f)};
     const std::vector<glm::vec2> polygon = light_position ? testing::point_light_shadow_polygon(box, *light_position)
                                                           : testing::shadow_polygon(box, glm::normalize(direction));
     FootprintCheck check;

@@ -255,7 +255,10 @@ TEST_F(ApiMisuse, InvalidMeshDescIsAnInputError) {
     expect_error<InputError>([&] { shadows.add_mesh(bad); }, "positions");
     bad = desc;
     bad.positions.format = VK_FORMAT_R8G8B8A8_UINT;
-    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "format");
+    expect_error<InputError>([&] { shadows.add_mesh(bad); },  // the format by its name, not its number
+                             "ShadowSystem::add_mesh: positions.format: VK_FORMAT_R8G8B8A8_UINT is not supported");
+    bad.positions.format = static_cast<VkFormat>(1000999999);  // no format of the core API
+    expect_error<InputError>([&] { shadows.add_mesh(bad); }, "positions.format: VkFormat 1000999999 is not supported");
     bad = desc;
     bad.index_count = 35;
     expect_error<InputError>([&] { shadows.add_mesh(bad); }, "index_count");

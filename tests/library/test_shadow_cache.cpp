@@ -303,5 +303,47 @@ INSTANTIATE_TEST_SUITE_P(EveryFilter, LocalShadowCacheTest,
                                            ShadowFilter::Msm),
                          filter_name);
 
+// An engine that uploads every transform every frame, changed or not: setting the matrix an
+// instance already has keeps every cache (no cascade texel or spot layer drawn again), and
+// a real change among them is still seen.
+TEST_F(LibraryTest, SettingAnUnchangedTransformKeepsTheCaches) {
+    Settings settings = with_cache(test_settings());
+    settings.shadow.cascades.resolution = 512;
+    settings.local_shadows.resolution = 256;
+    ShadowSystem shadows(system_desc(settings));
+    BoxesAndMover scene = add_ground_and_box_mesh(shadows);
+    std::vector<std::pair<InstanceId, Mat4>> placed;
+    for (int i = 0; i < 4; ++i) {
+        const Mat4 world = translation({-3.0f + 2.0f * static_cast<float>(i), 1.0f, 0.0f});
+        placed.emplace_back(shadows.add_instance({scene.box_id, world}), world);
+    }
+    const LightDesc sun{LightType::Directional, {kSunDirection.x, kSunDirection.y, kSunDirection.z}};
+    const LightDesc lights[] = {sun, spot_light(-3.0f)};
+    shadows.set_lights(lights);
+    constexpr int kMovedFrame = 4;
+    for (int f = 0; f < 7; ++f) {
+        if (f == kMovedFrame) placed[0].second = translation({-3.0f, 1.5f, 0.0f});  // under the spot and the sun
+        for (const auto& [id, world] : placed) shadows.set_instance_transform(id, world);
+        const FrameInfo& info = shadows.prepare(top_down_view());
+        ASSERT_EQ(info.local_shadows.size(), 1u);
+        uint64_t rendered = 0;
+        for (const CascadeInfo& cascade : info.cascades) {
+            rendered += cascade.texels_rendered;
+            if (f > 0 && f != kMovedFrame) {
+                EXPECT_TRUE(cascade.cache_reused) << "frame " << f;
+                EXPECT_EQ(cascade.texels_rendered, 0u) << "frame " << f;
+            }
+        }
+        if (f > 0 && f != kMovedFrame) {
+            EXPECT_EQ(info.local_shadows[0].layers_kept, 1u) << "frame " << f;
+            EXPECT_EQ(info.local_shadows[0].draws, 0u) << "frame " << f;
+        } else {
+            EXPECT_GT(rendered, 0u) << "frame " << f << ": a moved static caster is drawn again";
+            EXPECT_EQ(info.local_shadows[0].layers_kept, 0u) << "frame " << f;
+        }
+        submit([&](VkCommandBuffer cmd) { shadows.record_shadow_maps(cmd); });
+    }
+}
+
 }  // namespace
 }  // namespace penumbra::library_tests

@@ -4,7 +4,9 @@
 // the same shadow maps; the caller's normals; frames in flight; caster face culling; a
 // point light's slot; timings and memory; the sampling frame that rotates the patterns.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <optional>
 #include <string>
@@ -314,6 +316,76 @@ TEST_F(ShadowSystemFrames, DestroyedWithFramesInFlightWaitsForThem) {
     vkFreeCommandBuffers(device_.device, pool_, kFrames, commands.data());
 }
 
+// Timestamps switched off: no query is recorded (a frame's times are never there), and the
+// same frames with them on do have times, where the queue can time.
+TEST_F(ShadowSystemFrames, TimestampsSwitchedOffRecordNoTimes) {
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, families.data());
+    const bool queue_times = families[device_.queue_family].timestampValidBits != 0;
+    for (const bool timestamps : {false, true}) {
+        ShadowSystemDesc desc = system_desc();
+        desc.timestamps = timestamps;
+        ShadowSystem shadows(desc);
+        add_scene(shadows, box, ground);
+        for (int f = 0; f < 3; ++f) render_visibility(shadows);
+        for (uint64_t frame = 1; frame <= 3; ++frame) {
+            EXPECT_EQ(shadows.gpu_times(frame).has_value(), timestamps && queue_times)
+                << "frame " << frame << (timestamps ? ", timestamps on" : ", timestamps off");
+        }
+    }
+}
+
+// A renderer that keeps more frames in flight than the system was made for reaches a
+// prepare() whose slot the GPU may still use. Made deterministic here with a frame that is
+// recorded but held back: prepare() of the frame that reuses its slot is a UsageError
+// naming frames_in_flight, changes nothing, and succeeds once that frame has completed.
+TEST_F(ShadowSystemFrames, MoreFramesInFlightThanTheSystemAreNamed) {
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, families.data());
+    if (families[device_.queue_family].timestampValidBits == 0) GTEST_SKIP() << "the check needs timestamps";
+    ShadowSystem shadows(system_desc(test_settings(), 2));
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    add_scene(shadows, box, ground);
+    render_visibility(shadows);  // frame 1: uploads, submitted and complete
+    VkCommandBuffer held = VK_NULL_HANDLE;
+    VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocate_info.commandPool = pool_;
+    allocate_info.commandBufferCount = 1;
+    TEST_VK(vkAllocateCommandBuffers(device_.device, &allocate_info, &held));
+    EXPECT_EQ(shadows.prepare(top_down_view()).frame, 2u);
+    const VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    TEST_VK(vkBeginCommandBuffer(held, &begin));
+    shadows.record_shadow_maps(held);  // frame 2: recorded, not submitted yet
+    TEST_VK(vkEndCommandBuffer(held));
+    render_visibility(shadows);  // frame 3 reuses frame 1's slot: complete
+    try {
+        shadows.prepare(top_down_view());  // frame 4 would reuse frame 2's
+        ADD_FAILURE() << "prepare() rewrote the slot of a frame that has not completed";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("frame 2, 2 frame(s) ago, has not completed"), std::string::npos)
+            << error.what();
+        EXPECT_NE(std::string(error.what()).find("ShadowSystemDesc::frames_in_flight is 2"), std::string::npos)
+            << error.what();
+    }
+    VkCommandBufferSubmitInfo command{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    command.commandBuffer = held;
+    VkSubmitInfo2 submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit_info.commandBufferInfoCount = 1;
+    submit_info.pCommandBufferInfos = &command;
+    TEST_VK(vkQueueSubmit2(device_.queue, 1, &submit_info, VK_NULL_HANDLE));
+    TEST_VK(vkQueueWaitIdle(device_.queue));
+    EXPECT_EQ(shadows.prepare(top_down_view()).frame, 4u) << "the failed prepare() changed nothing";
+    EXPECT_TRUE(shadows.gpu_times(2).has_value());
+    vkFreeCommandBuffers(device_.device, pool_, 1, &held);
+}
+
 // Caster face culling, seen from the sun above: a one-sided quad facing up shows its front
 // to the light. BackFaces keeps it, FrontFaces drops it unless it is double-sided; the
 // quad facing down is the other way round; None always draws.
@@ -376,6 +448,88 @@ TEST_F(ShadowSystemFrames, PointLightShadowInItsSlot) {
     EXPECT_GE(check.iou, 0.97);
 }
 
+// Outside a spot's map (beyond its square field of view, twice the outer angle across) its
+// shadow is defined: lit, whatever the map's edge holds. A slab 1 m above the ground covers the map's
+// whole -X edge, so the edge texels are shadowed, and clamping to them (the behaviour
+// before) darkened the ground outside the cone on that side.
+TEST_F(ShadowSystemFrames, SpotShadowIsLitOutsideItsMap) {
+    ShadowSystem shadows(system_desc());
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    shadows.add_instance({shadows.add_mesh(ground.data()), Mat4{}});
+    const glm::mat4 slab = glm::scale(glm::translate(glm::mat4(1.0f), {-5.5f, 1.0f, 0.0f}), {4.5f, 0.05f, 8.0f});
+    shadows.add_instance({shadows.add_mesh(box.data()), to_mat4(slab)});  // x in [-10, -1], y about 1
+    const glm::vec3 position{0.0f, 8.0f, 0.0f};
+    LightDesc spot{LightType::Spot, {0.0f, -1.0f, 0.0f}, {position.x, position.y, position.z}};
+    spot.outer_angle_degrees = 20.0f;
+    spot.inner_angle_degrees = 15.0f;
+    spot.range = 20.0f;
+    shadows.set_lights({&spot, 1});
+    const FrameInfo& info = shadows.prepare(top_down_view());
+    ASSERT_EQ(info.local_shadows.size(), 1u);
+    ASSERT_EQ(info.local_shadows[0].layers, 1u) << "a perspective spot";
+    submit([&](VkCommandBuffer cmd) {
+        shadows.record_shadow_maps(cmd);
+        record_ground_visibility(cmd, shadows, nullptr, NormalEncoding::SignedFloat);
+    });
+    const VisibilityImage2D image = read_visibility(shadows, 1);
+    // The map is square, 2 x outer angle across: its corners reach further from the axis.
+    const float map_corner_angle =
+        glm::degrees(std::atan(std::sqrt(2.0f) * std::tan(glm::radians(spot.outer_angle_degrees))));
+    size_t outside_under_slab = 0, inside_under_slab = 0, outside_lit = 0, outside = 0;
+    for (uint32_t y = 0; y < image.height; ++y) {
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const glm::vec3 point = ground_point(x, y);
+            const float angle =
+                glm::degrees(std::acos(glm::dot(glm::normalize(point - position), glm::vec3(0.0f, -1.0f, 0.0f))));
+            const float value = image.at(x, y);
+            if (angle > map_corner_angle + 1.0f) {  // a degree clear of the map's corners
+                ++outside;
+                outside_lit += value == 1.0f ? 1 : 0;
+                outside_under_slab += point.x < -1.5f ? 1 : 0;
+            } else if (angle < spot.outer_angle_degrees - 1.0f && point.x < -2.0f) {
+                ++inside_under_slab;
+                EXPECT_EQ(value, 0.0f) << "the slab shadows the cone at pixel " << x << ", " << y;
+            }
+        }
+    }
+    EXPECT_GT(inside_under_slab, 200u);
+    EXPECT_GT(outside_under_slab, 2000u) << "the slab's side, where the map's edge is shadowed";
+    EXPECT_EQ(outside_lit, outside) << "pixels outside the spot's map that are not lit";
+}
+
+// A ShaderSpecialization and its info() view storage the system owns: an info taken from a
+// temporary, from an object since destroyed, or from a copy or a moved-to object all read
+// the same, right constants. (The scribble reuses freed memory; under AddressSanitizer,
+// scripts/sanitize.sh, any read of freed memory fails outright.)
+TEST_F(ShadowSystemFrames, ShaderSpecializationInfoOutlivesCopiesAndMoves) {
+    Settings settings = test_settings();
+    settings.shadow.filter.mode = ShadowFilter::Pcss;
+    ShadowSystem shadows(system_desc(settings));
+    const VkSpecializationInfo from_temporary = shadows.shader_specialization(3).info();
+    auto original = std::make_unique<ShaderSpecialization>(shadows.shader_specialization(3));
+    const std::vector<VkSpecializationMapEntry> entries(original->entries.begin(), original->entries.end());
+    const std::vector<uint32_t> data(original->data.begin(), original->data.end());
+    ASSERT_EQ(entries.size(), 8u);
+    ASSERT_EQ(data.size(), entries.size());
+    const VkSpecializationInfo from_original = original->info();
+    ShaderSpecialization copy = *original;
+    ShaderSpecialization moved = std::move(*original);
+    original.reset();
+    std::vector<std::vector<uint32_t>> scribble;
+    for (int i = 0; i < 64; ++i) scribble.emplace_back(data.size() * 4, 0xDEADBEEFu);
+    for (const VkSpecializationInfo& info : {from_temporary, from_original, copy.info(), moved.info()}) {
+        ASSERT_EQ(info.mapEntryCount, entries.size());
+        ASSERT_EQ(info.dataSize, data.size() * sizeof(uint32_t));
+        for (size_t i = 0; i < entries.size(); ++i) {
+            EXPECT_EQ(info.pMapEntries[i].constantID, 3u + i) << "the ids start at first_constant_id";
+            EXPECT_EQ(info.pMapEntries[i].offset, entries[i].offset);
+            EXPECT_EQ(info.pMapEntries[i].size, sizeof(uint32_t));
+            EXPECT_EQ(static_cast<const uint32_t*>(info.pData)[i], data[i]) << "constant " << i;
+        }
+    }
+}
+
 // Over the local shadow budget, the extra lights are listed as unshadowed.
 TEST_F(ShadowSystemFrames, LightsOverTheBudgetAreReported) {
     Settings settings = test_settings();
@@ -435,6 +589,39 @@ TEST_F(ShadowSystemFrames, GpuTimesAndMemory) {
     EXPECT_GE(memory.visibility, uint64_t{kScreen} * kScreen * 4);
     EXPECT_GT(memory.buffers, 0u);
     EXPECT_EQ(memory.total(), memory.cascade_maps + memory.local_maps + memory.visibility + memory.buffers);
+}
+
+// The usual engine loop: wait for a slot's fence, prepare() the frame that reuses the slot,
+// then read the times of the frame just waited for. They are kept until 2 x frames_in_flight
+// frames later, then gone.
+TEST_F(ShadowSystemFrames, GpuTimesAfterThePrepareThatReusesTheSlot) {
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device_.physical_device, &family_count, families.data());
+    if (families[device_.queue_family].timestampValidBits == 0) GTEST_SKIP() << "the queue has no timestamps";
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    const std::vector<std::string> expected{"shadow_cascade_0", "shadow_cascade_1", "shadow_cascade_2",
+                                            "shadow_cascade_3", "visibility"};
+    for (const uint32_t frames_in_flight : {1u, 2u}) {
+        ShadowSystem shadows(system_desc(test_settings(), frames_in_flight));
+        add_scene(shadows, box, ground);
+        for (uint32_t f = 0; f < frames_in_flight; ++f) render_visibility(shadows);  // frames 1 .. frames_in_flight
+        EXPECT_EQ(shadows.prepare(top_down_view()).frame, frames_in_flight + 1u) << "reuses frame 1's slot";
+        const std::optional<GpuTimes> times = shadows.gpu_times(1);
+        ASSERT_TRUE(times.has_value()) << frames_in_flight << " frame(s) in flight";
+        EXPECT_EQ(times->frame, 1u);
+        std::vector<std::string> names;
+        for (const PassTime& pass : times->passes) {
+            names.push_back(pass.name);
+            EXPECT_GE(pass.milliseconds, 0.0) << pass.name;
+        }
+        EXPECT_EQ(names, expected) << frames_in_flight << " frame(s) in flight";
+        for (uint32_t f = 0; f < 2 * frames_in_flight; ++f) render_visibility(shadows);
+        EXPECT_TRUE(shadows.gpu_times(frames_in_flight + 2).has_value()) << "a recent frame's, kept";
+        EXPECT_FALSE(shadows.gpu_times(1).has_value()) << "older than 2 x frames_in_flight";
+    }
 }
 
 // An alpha-masked caster: a 2 x 2 m quad whose texture is transparent on its left half

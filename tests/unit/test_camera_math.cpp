@@ -8,6 +8,8 @@
 namespace penumbra {
 namespace {
 
+using core::Camera;
+
 glm::vec3 project(const glm::mat4& view_projection, const glm::vec3& world) {
     const glm::vec4 clip = view_projection * glm::vec4(world, 1.0f);
     return glm::vec3(clip) / clip.w;

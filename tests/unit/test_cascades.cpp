@@ -12,6 +12,9 @@
 namespace penumbra {
 namespace {
 
+using core::Aabb;
+using core::Camera;
+
 constexpr int kRandomCases = 500;
 
 glm::vec3 project(const glm::mat4& view_projection, const glm::vec3& world) {

@@ -10,9 +10,12 @@
 #include "penumbra/scene/render_settings.hpp"
 #include "scene/forest_scene.hpp"
 #include "scene_test_support.hpp"
+#include "scene_to_core.hpp"
 
 namespace penumbra {
 namespace {
+
+using namespace testing;  // the core functions over the scene's types (scene_to_core.hpp)
 
 using testing::input_error_message;
 

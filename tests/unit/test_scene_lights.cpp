@@ -6,9 +6,12 @@
 #include "core/local_lights.hpp"
 #include "penumbra/scene/render_settings.hpp"
 #include "scene_test_support.hpp"
+#include "scene_to_core.hpp"
 
 namespace penumbra {
 namespace {
+
+using namespace testing;  // the core functions over the scene's types (scene_to_core.hpp)
 
 using ::testing::HasSubstr;
 using testing::scene_error;

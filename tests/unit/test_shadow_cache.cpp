@@ -15,6 +15,9 @@
 namespace penumbra {
 namespace {
 
+using core::Aabb;
+using core::Camera;
+
 float uniform(std::mt19937& rng, float low, float high) {
     return std::uniform_real_distribution<float>(low, high)(rng);
 }

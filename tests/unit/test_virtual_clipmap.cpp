@@ -16,7 +16,7 @@ namespace penumbra {
 namespace {
 
 const glm::vec3 kSun = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.3f));
-const Aabb kScene{glm::vec3(-500.0f, -5.0f, -500.0f), glm::vec3(500.0f, 40.0f, 500.0f)};
+const core::Aabb kScene{glm::vec3(-500.0f, -5.0f, -500.0f), glm::vec3(500.0f, 40.0f, 500.0f)};
 
 VirtualClipmapConfig small_config() {
     VirtualClipmapConfig config;

@@ -112,12 +112,24 @@ PenumbraShadowView penumbra_local_view(PenumbraLocalShadow light, PenumbraLocalC
     return view;
 }
 
+// Whether a receiver lies outside a perspective spot's map: behind the light, or beyond the
+// map's field of view (twice the outer angle: outside the cone, where the spot's own
+// lighting is 0). A cube covers every direction.
+bool penumbra_outside_spot_map(PenumbraLocalShadow light, PenumbraLocalCoord coord) {
+    if (light.cube != 0u) return false;
+    return coord.distance <= 0.0 || any(lessThan(coord.uv, vec2(0.0))) ||
+           any(greaterThan(coord.uv, vec2(light.uv_scale)));
+}
+
 // Shadow visibility of a local light at a receiver (1 when unshadowed). `plane_normal` is
-// the receiver's geometric normal (its plane, for receiver-plane bias).
+// the receiver's geometric normal (its plane, for receiver-plane bias). Defined everywhere:
+// 1 (lit) beyond the light's range and outside a spot's map (behind the spot or outside its
+// cone: the cone is the caller's lighting), never the clamped edge of the map.
 float penumbra_local_shadow(PenumbraLocalShadow light, vec3 world_position, vec3 normal, vec3 plane_normal, vec2 pixel) {
     if (light.first_layer < 0) return 1.0;
     const PenumbraLocalCoord coord = penumbra_project_to_local_shadow(light, world_position, normal, plane_normal);
     if (coord.depth <= 0.0) return 1.0;  // beyond the range
+    if (penumbra_outside_spot_map(light, coord)) return 1.0;
     return penumbra_filter_shadow(penumbra_local_map, penumbra_local_depth, penumbra_local_moments,
                                   penumbra_local_view(light, coord), pixel);
 }

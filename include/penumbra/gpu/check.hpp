@@ -4,11 +4,16 @@
 // results are expected (timeouts, VK_INCOMPLETE) are handled at the call site instead.
 #include <vulkan/vulkan.h>
 
+#include <string>
+
 #include "penumbra/errors.hpp"
 
 namespace penumbra::gpu {
 
 const char* result_name(VkResult result);
+// The name of a core format ("VK_FORMAT_R8G8B8A8_UINT"), or "VkFormat <number>" for any
+// other value: for messages.
+std::string format_name(VkFormat format);
 
 [[noreturn]] void throw_vk_failure(const char* expression, VkResult result, const char* file, int line);
 
