@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <span>
 
-#include "penumbra/math.hpp"
 #include "core/shadow_inputs.hpp"
+#include "penumbra/math.hpp"
 
 namespace penumbra::library {
 
