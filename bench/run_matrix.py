@@ -43,6 +43,13 @@ FILTERS = [
 def matrix(scenes_dir):
     runs = [("baseline", "forest 1M, 1080p, 4x2048", None, [])]
     runs += [("strategy", s, None, ["--shadow-strategy", s]) for s in ("per-cascade", "multiview", "layered")]
+    # The sun's technique, cached (the virtual map is made to be): orbiting and with a
+    # turning sun (every page stale every frame).
+    runs += [("technique", f"{t}, cached, {path}", None,
+              ["--shadow-technique", t, "--shadow-cache"] + path_args)
+             for t in ("cascades", "virtual")
+             for path, path_args in (("orbit", ["--camera-path", "orbit"]),
+                                     ("rotating sun", ["--camera-path", "still", "--light-path", "rotate"]))]
     runs += [("culling", "on", None, []), ("culling", "off", None, ["--no-cull"])]
     runs += [("filter", name, None, args) for name, args in FILTERS]
     runs += [("cascades", str(c), None, ["--cascades", str(c)]) for c in (1, 2, 4, 8)]
