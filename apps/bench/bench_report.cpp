@@ -92,23 +92,37 @@ std::string format_row(const char* kind, const std::string& name, const Summary&
     return line;
 }
 
+// The sun's technique as the header names it: the cascades' count, resolution and strategy,
+// or the virtual shadow map's levels, resolution and pool.
+std::string format_technique(const RenderSettings& s) {
+    char text[160];
+    if (s.shadow.technique == ShadowTechnique::Virtual) {
+        const VirtualShadowSettings& v = s.shadow.virtual_maps;
+        std::snprintf(text, sizeof(text), "virtual shadow map %d levels x %u, %u MiB pool", v.levels, v.resolution,
+                      v.pool_mib);
+    } else {
+        std::snprintf(text, sizeof(text), "%d cascades x %u, %s", s.shadow.cascades.count, s.shadow.cascades.resolution,
+                      choice_name(kShadowStrategyChoices, s.shadow.strategy));
+    }
+    return text;
+}
+
 std::string format_header(const BenchResult& result) {
     const RenderSettings& s = result.settings;
     char line[512];
     std::snprintf(line, sizeof(line),
                   "penumbra bench: %s (%llu triangles, %zu instances) on %s (%s)\n"
-                  "%ux%u, %d cascades x %u, %s, culling %s, face culling %s; %u frames after %u warm-up, camera %s, "
-                  "light %s\n",
+                  "%ux%u, %s, culling %s, face culling %s; %u frames after %u warm-up, camera %s, light %s\n",
                   result.scene.spec.c_str(), static_cast<unsigned long long>(result.scene.triangles),
                   result.scene.instances, result.device.name.c_str(), result.device.driver.c_str(), s.width, s.height,
-                  s.shadow.cascades.count, s.shadow.cascades.resolution,
-                  choice_name(kShadowStrategyChoices, s.shadow.strategy), s.shadow.cull_casters ? "on" : "off",
+                  format_technique(s).c_str(), s.shadow.cull_casters ? "on" : "off",
                   choice_name(kCasterCullingChoices, s.shadow.caster_culling), result.job.frames, result.job.warmup,
                   camera_path_name(result.job.camera_path), light_path_name(result.job.light_path));
     return line;
 }
 
 std::string format_cascades(const BenchResult& result) {
+    if (result.cascades.empty()) return "";
     std::string text = "cascade  draws/frame  triangles/frame (mean)\n";
     char line[128];
     for (size_t c = 0; c < result.cascades.size(); ++c) {
