@@ -283,7 +283,11 @@ TEST_F(Cli, EverySettingsDocRowAgreesWithItsDeclaration) {
     const auto mentions = [](const std::string& row, double value) {
         const std::regex number(R"([0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?)");
         for (auto it = std::sregex_iterator(row.begin(), row.end(), number); it != std::sregex_iterator(); ++it) {
-            if (std::abs(std::stod(it->str()) - value) <= 1e-6 * std::abs(value)) return true;
+            const double found = std::stod(it->str());
+            if (std::abs(found - value) <= 1e-6 * std::abs(value)) return true;
+            // A negative bound ("-4..4"): the number after a minus sign.
+            const bool negative = it->position() > 0 && row[static_cast<size_t>(it->position()) - 1] == '-';
+            if (negative && std::abs(-found - value) <= 1e-6 * std::abs(value)) return true;
         }
         return false;
     };
