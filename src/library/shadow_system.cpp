@@ -242,6 +242,19 @@ struct ShadowSystem::Impl {
         return nullptr;
     }
 
+    // What both techniques set of the sun's frame: the casters' face culling as the light
+    // sees them (the virtual map's pages share the cascades' orientation), its direction and
+    // where its shadow ends.
+    void set_sun_frame_info(const CascadeSet& set, const glm::vec3& direction) {
+        cascade_culling = {settings.shadow.caster_culling,
+                           light_facing_is_counter_clockwise(set.cascades.front().view_projection)
+                               ? VK_FRONT_FACE_COUNTER_CLOCKWISE
+                               : VK_FRONT_FACE_CLOCKWISE};
+        info.sun_direction = library::to_public(direction);
+        info.shadow_distance = set.shadow_distance;
+        info.cascades.clear();
+    }
+
     // The virtual shadow map's frame: the clipmap around the camera and what invalidates its
     // pages; the cascades' uniforms keep the camera and filter values, with no cascade.
     void prepare_virtual_sun(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
@@ -268,13 +281,7 @@ struct ShadowSystem::Impl {
         inputs.depth_range_bounds = geometry.depth_range_bounds();
         virtual_map->prepare(inputs, settings.shadow);
         info.cpu_fit_ms += milliseconds_since(start);
-        cascade_culling = {settings.shadow.caster_culling,
-                           light_facing_is_counter_clockwise(set.cascades.front().view_projection)
-                               ? VK_FRONT_FACE_COUNTER_CLOCKWISE
-                               : VK_FRONT_FACE_CLOCKWISE};
-        info.sun_direction = library::to_public(direction);
-        info.shadow_distance = set.shadow_distance;
-        info.cascades.clear();
+        set_sun_frame_info(set, direction);
         info.virtual_map = virtual_map->info(frame > frames_in_flight ? frame - frames_in_flight : 0);
         shader::PenumbraShadowUniforms uniforms =
             library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
@@ -307,13 +314,7 @@ struct ShadowSystem::Impl {
         sun_casts = casts;
         planned_cascades = set;
         info.cpu_cull_ms += milliseconds_since(start);
-        cascade_culling = {settings.shadow.caster_culling,
-                           light_facing_is_counter_clockwise(set.cascades.front().view_projection)
-                               ? VK_FRONT_FACE_COUNTER_CLOCKWISE
-                               : VK_FRONT_FACE_CLOCKWISE};
-        info.sun_direction = library::to_public(direction);
-        info.shadow_distance = set.shadow_distance;
-        info.cascades.clear();
+        set_sun_frame_info(set, direction);
         for (size_t c = 0; c < set.cascades.size(); ++c) {
             const Cascade& cascade = set.cascades[c];
             CascadeInfo out{library::to_public(cascade.view_projection),

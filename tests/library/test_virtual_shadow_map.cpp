@@ -25,6 +25,16 @@ void add_sun(ShadowSystem& shadows) {
 
 class VirtualShadowMapTest : public LibraryTest {
 protected:
+    // A prepared frame's marking and shadow maps from the ground's depth under `view`, with
+    // no resolve (a frame whose FrameInfo was read, recorded so that the next one may start).
+    void record_frame_without_resolve(ShadowSystem& shadows, const ViewDesc& view) {
+        submit([&](VkCommandBuffer cmd) {
+            const ScreenInputs screen = record_ground_depth(cmd, view, nullptr, NormalEncoding::SignedFloat, nullptr);
+            shadows.record_page_marking(cmd, screen);
+            shadows.record_shadow_maps(cmd);
+        });
+    }
+
     static Settings virtual_settings(ShadowFilter filter = ShadowFilter::Hard) {
         Settings settings = test_settings();
         settings.shadow.technique = ShadowTechnique::Virtual;
@@ -54,12 +64,7 @@ TEST_P(VirtualFilterTest, TheBoxShadowMatchesItsAnalyticFootprint) {
     EXPECT_GE(check.iou, 0.97);
     EXPECT_EQ(check.wrong, 0u) << "of " << check.judged << " pixels away from the edge";
     EXPECT_GT(check.shadowed, 700u);
-    submit([&](VkCommandBuffer cmd) {
-        const ScreenInputs screen =
-            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
-        shadows.record_page_marking(cmd, screen);
-        shadows.record_shadow_maps(cmd);
-    });
+    record_frame_without_resolve(shadows, top_down_view());
 }
 
 INSTANTIATE_TEST_SUITE_P(ComparisonFilters, VirtualFilterTest,
@@ -145,12 +150,7 @@ TEST_F(VirtualShadowMapTest, CachedPagesAreBitIdenticalToPagesDrawnEveryFrame) {
                     EXPECT_TRUE(info.virtual_map->invalidated_all);
                 }
             }
-            submit([&](VkCommandBuffer cmd) {
-                const ScreenInputs screen =
-                    record_ground_depth(cmd, view, nullptr, NormalEncoding::SignedFloat, nullptr);
-                system->record_page_marking(cmd, screen);
-                system->record_shadow_maps(cmd);
-            });
+            record_frame_without_resolve(*system, view);
         }
     }
     EXPECT_GT(cached_pages, 0u);
@@ -177,12 +177,7 @@ TEST_F(VirtualShadowMapTest, APoolTooSmallServesACoarserLevelAndSaysSo) {
     const FootprintCheck check = check_footprint(image, kBoxCentre, kSunDirection, 0.3f);
     EXPECT_GE(check.iou, 0.95);
     EXPECT_EQ(check.wrong, 0u) << "of " << check.judged;
-    submit([&](VkCommandBuffer cmd) {
-        const ScreenInputs screen =
-            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
-        shadows.record_page_marking(cmd, screen);
-        shadows.record_shadow_maps(cmd);
-    });
+    record_frame_without_resolve(shadows, top_down_view());
 }
 
 TEST_F(VirtualShadowMapTest, ReportsItsLevelsAndMemory) {
@@ -202,12 +197,7 @@ TEST_F(VirtualShadowMapTest, ReportsItsLevelsAndMemory) {
     EXPECT_TRUE(info.virtual_map->invalidated_all) << "the first frame draws every page it needs";
     EXPECT_GE(shadows.memory().virtual_pool, uint64_t{32} << 20);
     EXPECT_EQ(shadows.shadow_maps().virtual_pool.format, VK_FORMAT_D32_SFLOAT);
-    submit([&](VkCommandBuffer cmd) {
-        const ScreenInputs screen =
-            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
-        shadows.record_page_marking(cmd, screen);
-        shadows.record_shadow_maps(cmd);
-    });
+    record_frame_without_resolve(shadows, top_down_view());
     // The cascades report no virtual map.
     ShadowSystem cascades(system_desc(test_settings()));
     EXPECT_FALSE(cascades.prepare(top_down_view()).virtual_map.has_value());
@@ -230,12 +220,7 @@ TEST_F(VirtualShadowMapTest, WorksBesideTheLayeredStrategy) {
     const FootprintCheck check = check_footprint(image, kBoxCentre, kSunDirection, 0.15f);
     EXPECT_GE(check.iou, 0.97);
     EXPECT_TRUE(shadows.prepare(top_down_view()).cascades.empty());
-    submit([&](VkCommandBuffer cmd) {
-        const ScreenInputs screen =
-            record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
-        shadows.record_page_marking(cmd, screen);
-        shadows.record_shadow_maps(cmd);
-    });
+    record_frame_without_resolve(shadows, top_down_view());
 }
 
 std::string error_of(const std::function<void()>& call) {
