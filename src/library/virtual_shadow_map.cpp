@@ -68,8 +68,7 @@ float virtual_mark_radius_texels(const ShadowSettings& settings) {
 VirtualShadowMap::VirtualShadowMap(const gpu::Device& device, VkDescriptorSetLayout caster_frame_layout,
                                    VkDescriptorSetLayout alpha_mask_layout, const ShadowSettings& settings,
                                    uint32_t frames_in_flight)
-    : device_(device),
-      config_(virtual_clipmap_config(settings.virtual_maps)),
+    : config_(virtual_clipmap_config(settings.virtual_maps)),
       pages_(device, pages_desc(settings.virtual_maps, frames_in_flight)),
       pass_(device, caster_frame_layout, alpha_mask_layout, pages_, frames_in_flight) {}
 

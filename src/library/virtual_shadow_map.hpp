@@ -83,7 +83,6 @@ public:
 private:
     std::vector<shader::VirtualInvalidation> invalidations(const VirtualFrameInputs& inputs) const;
 
-    const gpu::Device& device_;
     VirtualClipmapConfig config_;
     passes::VirtualPages pages_;
     passes::VirtualShadowPass pass_;
