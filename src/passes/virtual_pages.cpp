@@ -187,7 +187,10 @@ void VirtualPages::prepare(uint64_t frame, shader::PenumbraVirtualClipmap clipma
         clipmap.invalidation_count = 0u;
     } else {
         clipmap.invalidation_count = static_cast<uint32_t>(invalidations.size());
-        std::memcpy(slot.invalidations.mapped, invalidations.data(), invalidations.size_bytes());
+        // An empty span may hold a null pointer, which memcpy may not be given.
+        if (!invalidations.empty()) {
+            std::memcpy(slot.invalidations.mapped, invalidations.data(), invalidations.size_bytes());
+        }
     }
     std::memcpy(slot.clipmap.mapped, &clipmap, sizeof(clipmap));
 }
