@@ -130,29 +130,29 @@ void penumbra_set_receiver_plane(inout PenumbraSunReceiver receiver, vec3 coord_
     }
 }
 
-// A cascade as the filters see it (penumbra/glsl/filters.glsl). Its projection is
-// orthographic, so reverse-Z depth is linear in the distance from the light: 1 - depth
-// serves as distance for the moments and for PCSS, whose light radius per unit of depth
-// (light_radius_uv_per_depth = depth range * tan(theta / 2) / (width, height), for a sun of
-// angular diameter theta) turns the distance from the near plane into the blocker search
-// radius and the receiver-blocker distance into the penumbra radius. Taps are clamped to
-// the cascade's texels (half a texel inside its edges, as clamp-to-edge addressing would
-// read them): where the cascade wraps around its layer (layer_origin), the texels beyond
-// an edge are the opposite edge's.
-// A level of the virtual shadow map as the filters see it: as a cascade, but every texel
-// read goes through the page table (virtual_level), and the window has no wrap.
-PenumbraShadowView penumbra_virtual_level_view(int level, PenumbraShadowCoord coord) {
-    const vec2 light_radius_per_depth = penumbra_virtual_light_radius_uv_per_depth(level);
+// An orthographic map of the sun as the filters see it (penumbra/glsl/filters.glsl): a
+// cascade, or a level of the virtual shadow map. Its projection is orthographic, so reverse-Z depth is linear in the
+// distance from the light: 1 - depth serves as distance for the moments and for PCSS,
+// whose light radius per unit of depth (depth range * tan(theta / 2) / (width, height),
+// for a sun of angular diameter theta) turns the distance from the near plane into the
+// blocker search radius and the receiver-blocker distance into the penumbra radius. Taps
+// are clamped to the map's texels (half a texel inside its edges, as clamp-to-edge
+// addressing would read them). The map's depth range is the static instances' along the
+// light: a receiver beyond it (a caller's surface that is no instance, a dynamic instance
+// above or below every static one) compares as lying on the far side (lit unless a caster
+// covers it) or on the near side (lit).
+PenumbraShadowView penumbra_sun_map_view(PenumbraShadowCoord coord, float layer, float texel_uv, vec2 uv_offset,
+                                         vec2 light_radius_per_depth, int virtual_level) {
     const float depth = clamp(coord.depth, 0.0, 1.0);
     PenumbraShadowView view;
     view.uv = coord.uv;
-    view.layer = 0.0;
+    view.layer = layer;
     view.depth = depth;
     view.depth_gradient = coord.depth_gradient;
-    view.texel_uv = 1.0 / float(penumbra_virtual_side());
-    const float half_texel = 0.5 * view.texel_uv;
+    view.texel_uv = texel_uv;
+    const float half_texel = 0.5 * texel_uv;
     view.uv_bounds = vec4(vec2(half_texel), vec2(1.0 - half_texel));
-    view.uv_offset = vec2(0.0);
+    view.uv_offset = uv_offset;
     view.pcss_search_radius = (1.0 - depth) * light_radius_per_depth;
     view.pcss_penumbra_scale = light_radius_per_depth;
     view.pcss_perspective = false;
@@ -161,37 +161,21 @@ PenumbraShadowView penumbra_virtual_level_view(int level, PenumbraShadowCoord co
     view.moments_distance = 1.0 - depth;
     view.caster_slope_bias = penumbra_shadow.caster_slope_bias;
     view.caster_bias_clamp = penumbra_shadow.caster_bias_clamp;
-    view.virtual_level = level;
+    view.virtual_level = virtual_level;
     return view;
 }
 
+// A cascade, or with the virtual shadow map a level (every texel read then goes through
+// the page table, and the window has no wrap). Where a cascade wraps around its layer
+// (layer_origin), the texels beyond an edge are the opposite edge's.
 PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord) {
-    if (penumbra_sun_is_virtual()) return penumbra_virtual_level_view(cascade, coord);
-    const vec2 light_radius_per_depth = penumbra_shadow.cascades[cascade].light_radius_uv_per_depth;
-    // The cascade's depth range is the static instances' along the light: a receiver beyond
-    // it (a caller's surface that is no instance, a dynamic instance above or below every
-    // static one) compares as lying on the far side (lit unless a caster covers it) or on
-    // the near side (lit).
-    const float depth = clamp(coord.depth, 0.0, 1.0);
-    PenumbraShadowView view;
-    view.uv = coord.uv;
-    view.layer = float(cascade);
-    view.depth = depth;
-    view.depth_gradient = coord.depth_gradient;
-    view.texel_uv = penumbra_shadow.texel_uv;
-    const float half_texel = 0.5 * penumbra_shadow.texel_uv;
-    view.uv_bounds = vec4(vec2(half_texel), vec2(1.0 - half_texel));
-    view.uv_offset = penumbra_shadow.cascades[cascade].layer_origin * penumbra_shadow.texel_uv;
-    view.pcss_search_radius = (1.0 - depth) * light_radius_per_depth;
-    view.pcss_penumbra_scale = light_radius_per_depth;
-    view.pcss_perspective = false;
-    view.pcss_receiver_distance = 1.0 - depth;
-    view.pcss_depth_to_distance = vec4(1.0, -1.0, 1.0, 0.0);  // 1 - depth
-    view.moments_distance = 1.0 - depth;
-    view.caster_slope_bias = penumbra_shadow.caster_slope_bias;
-    view.caster_bias_clamp = penumbra_shadow.caster_bias_clamp;
-    view.virtual_level = -1;
-    return view;
+    if (penumbra_sun_is_virtual()) {
+        return penumbra_sun_map_view(coord, 0.0, 1.0 / float(penumbra_virtual_side()), vec2(0.0),
+                                     penumbra_virtual_light_radius_uv_per_depth(cascade), cascade);
+    }
+    return penumbra_sun_map_view(coord, float(cascade), penumbra_shadow.texel_uv,
+                                 penumbra_shadow.cascades[cascade].layer_origin * penumbra_shadow.texel_uv,
+                                 penumbra_shadow.cascades[cascade].light_radius_uv_per_depth, -1);
 }
 
 // Visibility through one cascade with the configured filter; lookups outside the map are lit.
