@@ -97,8 +97,15 @@ TEST_F(VirtualShadowMapTest, CastsTheSameShadowsAsTheCascades) {
 }
 
 // Static boxes, one that moves every frame, a camera that slides sideways (the windows move
-// by whole pages); frames 4, 7 and 9 move, add and remove static boxes.
-TEST_F(VirtualShadowMapTest, CachedPagesAreBitIdenticalToPagesDrawnEveryFrame) {
+// by whole pages); frames 4, 7 and 9 move, add and remove static boxes. A page's texels are
+// the same wherever it lies in the pool except at one rounding: the allocation's order (GPU
+// atomics, so it differs between any two runs, cached or not) picks the physical page, and
+// the page's place in the pool enters the clip-space arithmetic of the casters clipped to
+// its edges. Two systems drawing every page every frame differ the same way (measured: one
+// pixel of this test, in some runs, by one PCF tap's texel). So a frame may differ in a few
+// pixels by at most one tap of the 3 x 3 PCF; a page not drawn again after a change would
+// differ over a whole box's shadow edge.
+TEST_F(VirtualShadowMapTest, CachedPagesEqualPagesDrawnEveryFrame) {
     Settings settings = virtual_settings(ShadowFilter::Pcf);
     settings.shadow.cache_static_casters = true;
     ShadowSystem cached(system_desc(settings));
@@ -130,9 +137,14 @@ TEST_F(VirtualShadowMapTest, CachedPagesAreBitIdenticalToPagesDrawnEveryFrame) {
         const VisibilityImage2D expected = render_visibility_from(uncached, view);
         const VisibilityImage2D actual = render_visibility_from(cached, view);
         ASSERT_EQ(expected.values.size(), actual.values.size());
+        size_t differ = 0;
         for (size_t i = 0; i < expected.values.size(); ++i) {
-            ASSERT_EQ(expected.values[i], actual.values[i]) << "frame " << f << " pixel " << i;
+            if (expected.values[i] == actual.values[i]) continue;
+            ++differ;
+            EXPECT_LE(std::abs(expected.values[i] - actual.values[i]), 1.0f / 9.0f + 1e-3f)
+                << "frame " << f << " pixel " << i;
         }
+        EXPECT_LE(differ, expected.values.size() / 5000) << "frame " << f;
     }
     // After the frames in flight, the GPU's counts: the cache drew a fraction of the pages.
     for (int f = 0; f < 4; ++f) {
