@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Builds Penumbra the way an application gets it, then the examples against that:
 #   1. the library alone (PENUMBRA_BUILD_TOOLS=OFF: no scene component, no tools), into
-#      WORK/library, installed into WORK/prefix;
+#      WORK/library, installed into WORK/prefix; or, when PENUMBRA_INSTALLED_PREFIX names
+#      one, the library already installed there that way (scripts/test.sh passes the one
+#      scripts/check_library_build.sh installed from docs/library.md's commands, so CI
+#      compiles the library alone once);
 #   2. checks the installed headers: exactly the public headers of include/penumbra/ (less
 #      the scene component's) and the generated version.hpp, each compiling on its own;
 #   3. configures and builds examples/minimal and examples/deferred from clean folders
@@ -22,10 +25,19 @@ mkdir -p "$work"
 work="$(cd "$work" && pwd)"
 prefix="$work/prefix"
 
-cmake -S "$source_dir" -B "$work/library" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DPENUMBRA_BUILD_TOOLS=OFF -DPENUMBRA_TESTS=OFF >/dev/null
-cmake --build "$work/library"
-cmake --install "$work/library" --prefix "$prefix" >/dev/null
+if [[ -n "${PENUMBRA_INSTALLED_PREFIX:-}" ]]; then
+  [[ -f "$PENUMBRA_INSTALLED_PREFIX/lib/cmake/Penumbra/PenumbraConfig.cmake" ]] || {
+    echo "build_examples: PENUMBRA_INSTALLED_PREFIX=$PENUMBRA_INSTALLED_PREFIX holds no installed Penumbra" >&2
+    exit 1
+  }
+  prefix="$(cd "$PENUMBRA_INSTALLED_PREFIX" && pwd)"
+  echo "build_examples: the library installed in $prefix"
+else
+  cmake -S "$source_dir" -B "$work/library" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DPENUMBRA_BUILD_TOOLS=OFF -DPENUMBRA_TESTS=OFF >/dev/null
+  cmake --build "$work/library"
+  cmake --install "$work/library" --prefix "$prefix" >/dev/null
+fi
 
 expected="$( (cd "$source_dir/include" && find penumbra -path penumbra/scene -prune -o -type f \
   \( -name '*.hpp' -o -name '*.h' -o -name '*.glsl' \) -print; echo penumbra/version.hpp) | sort)"

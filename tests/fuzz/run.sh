@@ -1,21 +1,20 @@
 #!/usr/bin/env bash
 # Builds Penumbra's libFuzzer harnesses (clang, AddressSanitizer + UndefinedBehaviorSanitizer)
-# into build-fuzz/ and runs each for SECONDS (default 30) from its seed corpus: the repros
+# in the sanitizer build (scripts/sanitizer_build.sh, build-sanitize/) and runs each for
+# SECONDS (default 30) from its seed corpus: the repros
 # of tests/fuzz/corpus/ plus the project's own scenes and glTF fixtures. Fails on the first
 # crash, sanitizer report, leak, timeout (an input over 10 s) or out-of-memory (2 GiB), and
 # says where the input that did it was written. README.md beside this script has the longer
-# run. CI runs `bash tests/fuzz/run.sh 30` (scripts/test.sh).
+# run. CI runs `bash tests/fuzz/run.sh 15` (scripts/test.sh).
 #   tests/fuzz/run.sh [SECONDS [HARNESS...]]   (default: every harness)
 set -euo pipefail
 seconds="${1:-30}"
 cd "$(dirname "$0")/../.."
-build=build-fuzz
+build=build-sanitize
 harnesses=(fuzz_scene_toml fuzz_settings_toml fuzz_gltf fuzz_glb fuzz_shadow_system)
 if [ $# -gt 1 ]; then harnesses=("${@:2}"); fi
 
-cmake -S . -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=Release -DPENUMBRA_FUZZ=ON -DPENUMBRA_TESTS=OFF >/dev/null
-cmake --build "$build" --target "${harnesses[@]}"
+bash scripts/sanitizer_build.sh "${harnesses[@]}"
 
 # Seeds: committed repros, then the project's own inputs of each kind.
 seeds="$build/seeds"
