@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <tiny_gltf.h>
+#include <nlohmann/json_fwd.hpp>
 
 #include "penumbra/scene/scene.hpp"
 
@@ -49,6 +50,10 @@ size_t json_nesting_depth(std::string_view text, size_t stop_beyond);
 // tinygltf would skip or misread silently, and checks every buffer and image uri with
 // check_gltf_uri (gltf_json_checks.cpp); JSON it cannot parse is left for tinygltf to report.
 // `folder` is the model's folder, absolute.
+// The values' JSON types and the specification's ranges (gltf_json_values.cpp): a node's
+// transform, a material's factors and modes, a punctual light, a sampler, an accessor's
+// type, a camera, the asset's version. InputError naming the JSON path.
+void check_gltf_json_values(const nlohmann::json& document, const std::string& origin);
 void check_gltf_json(std::string_view json, const std::string& origin, const std::filesystem::path& folder);
 
 // A buffer's or an image's uri, where it was written ("buffers[0].uri") and, for a buffer,

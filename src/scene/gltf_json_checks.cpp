@@ -326,6 +326,7 @@ void check_gltf_json(std::string_view json, const std::string& origin, const std
             check_gltf_uri({*uri, where + ".uri", folder, buffer["byteLength"].get<uint64_t>()}, origin);
         }
     });
+    check_gltf_json_values(document, origin);
 }
 
 }  // namespace penumbra

@@ -191,10 +191,10 @@ TEST(GltfConformance, EmissiveFactorStrengthAndTexture) {
 
 TEST(GltfConformance, MalformedEmissionIsNamed) {
     EXPECT_THAT(load_error("emissive_negative.gltf"),
-                HasSubstr("materials[0].emissiveFactor: expected 3 finite numbers >= 0"));
+                HasSubstr("materials[0].emissiveFactor[1]: expected a number in [0.0, 1.0], got -0.5"));
     EXPECT_THAT(load_error("emissive_bad_strength.gltf"),
                 HasSubstr("materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: expected a "
-                          "finite number >= 0"));
+                          "number >= 0.0, got \"bright\""));
 }
 
 }  // namespace

@@ -73,7 +73,8 @@ INSTANTIATE_TEST_SUITE_P(
         GltfErrorCase{"mesh_not_an_index.gltf", "nodes[0].mesh: expected an index (an integer >= 0), got \"zero\""},
         GltfErrorCase{"scene_not_an_index.gltf", ": scene: expected an index (an integer >= 0), got \"hello\""},
         GltfErrorCase{"missing_material.gltf", "material 5 does not exist"},
-        GltfErrorCase{"bad_alpha_mode.gltf", "unknown alphaMode \"CUTOUT\""},
+        GltfErrorCase{"bad_alpha_mode.gltf",
+                      "materials[0].alphaMode: expected one of OPAQUE, MASK, BLEND, got \"CUTOUT\""},
         GltfErrorCase{"partial_triangle.gltf", "5 vertex indices do not form whole triangles"},
         GltfErrorCase{"missing_image.gltf", "images[0]: image \"missing.png\" could not be read or decoded"}),
     [](const auto& test_info) {
