@@ -52,7 +52,8 @@ Neighbour neighbour_along(ivec2 pixel, ivec2 axis, float view_depth) {
     float best_difference = 1e30;
     for (int step = 1; step >= -1; step -= 2) {
         const ivec2 other = pixel + step * axis;
-        if (any(lessThan(other, ivec2(0))) || any(greaterThanEqual(other, ivec2(resolve.width, resolve.height)))) continue;
+        if (any(lessThan(other, ivec2(0))) || any(greaterThanEqual(other, ivec2(resolve.width, resolve.height))))
+            continue;
         const float depth = depth_at(other);
         if (!has_geometry(depth)) continue;
         const vec3 position = world_position(other, depth);
@@ -188,10 +189,28 @@ void main() {
         const bool seam = quad_spans_cascades(pixel, depth, position, face_normal, on_face, receiver.cascade);
         penumbra_set_receiver_plane(receiver, coord_dx, coord_dy, seam);
     }
-    write_slot(pixel, 0u, penumbra_sun_visibility(receiver, normal), texel);
+    // Contact shadows (Settings::contact) trace this depth buffer from the visible side of
+    // the surface; the visibility is the darker of the map's and the trace's.
+    const bool contact = penumbra_shadow.contact_lights != 0u;
+    PenumbraContactScreen screen;
+    vec3 contact_normal = plane_normal;
+    if (contact) {
+        screen = PenumbraContactScreen(inverse(resolve.inverse_view_projection), resolve.inverse_view_projection,
+                                       vec2(resolve.width, resolve.height), resolve.background_depth);
+        if (dot(contact_normal, to_camera) < 0.0) contact_normal = -contact_normal;
+    }
+    float sun = penumbra_sun_visibility(receiver, normal);
+    if (contact && sun > 0.0)
+        sun = min(sun, penumbra_sun_contact(screen_depth, screen, position, contact_normal, centre));
+    write_slot(pixel, 0u, sun, texel);
     for (uint slot = 1u; slot < resolve.slot_count; ++slot) {
         const uint shadowed = slot - 1u;
         const uint light = penumbra_local.shadowed_lights[shadowed / 4u][shadowed % 4u];
-        write_slot(pixel, slot, penumbra_light_visibility(light, position, normal, plane_normal, centre), texel);
+        float visibility = penumbra_light_visibility(light, position, normal, plane_normal, centre);
+        if (contact && visibility > 0.0) {
+            visibility =
+                min(visibility, penumbra_light_contact(light, screen_depth, screen, position, contact_normal, centre));
+        }
+        write_slot(pixel, slot, visibility, texel);
     }
 }

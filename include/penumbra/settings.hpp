@@ -139,10 +139,32 @@ struct LocalShadowSettings {
     LocalShadowSizing sizing = LocalShadowSizing::Coverage;
 };
 
+// Screen-space contact shadows (docs/techniques.md, "Contact shadows"): from each pixel of
+// the caller's depth, a short ray toward the light marched through that depth buffer, for
+// the shadows smaller than a shadow map's texels and biases (a plank on the ground, the
+// crease where a box meets the floor). The visibility is the shadow map's times nothing
+// more than the trace's: min(map, contact). A change is a uniform update (no new system).
+struct ContactShadowSettings {
+    bool enabled = false;      // trace at all (the lights below choose which)
+    bool sun = true;           // toward the sun
+    bool local_lights = true;  // toward shadowed spot and point lights
+    // Metres of ray from the surface toward the light (a local light's ray stops at it).
+    float length = 0.25f;
+    int steps = 16;  // depth-buffer samples along the ray, 4..64
+    // Metres a surface in the depth buffer is taken to extend behind itself: a sample
+    // farther behind it than this passes (behind a thin pole, the ray is not blocked).
+    float thickness = 0.05f;
+    // Metres the ray starts off the surface along its normal: no surface shadows itself
+    // through the depth buffer's own steps.
+    float bias = 0.005f;
+    float max_distance = 50.0f;  // view depth (metres) beyond which there are none; faded over its last fifth
+};
+
 // Everything a ShadowSystem is configured with.
 struct Settings {
     ShadowSettings shadow;              // the sun's cascades, biases and the filter (every light's)
     LocalShadowSettings local_shadows;  // spot and point light shadow maps
+    ContactShadowSettings contact;      // screen-space contact shadows
 };
 
 // The name a user writes for each value of a choice (--filter, [shadow] filter, ...): one
@@ -207,6 +229,7 @@ inline bool practical_splits(const Settings& s) { return s.shadow.cascades.schem
 inline bool manual_splits(const Settings& s) { return s.shadow.cascades.scheme == SplitScheme::Manual; }
 inline bool tight_fit(const Settings& s) { return s.shadow.cascades.fit == FitMode::Tight; }
 inline bool virtual_maps(const Settings& s) { return s.shadow.technique == ShadowTechnique::Virtual; }
+inline bool contact_shadows(const Settings& s) { return s.contact.enabled; }
 // The Poisson radius serves the poisson filter and the moment filters' Poisson taps.
 inline bool poisson_disk(const Settings& s) {
     return s.shadow.filter.mode == ShadowFilter::Poisson || s.shadow.filter.moments_poisson;
@@ -534,6 +557,63 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .label = "shadow sizing",
          .help = "How a light without its own shadow_resolution gets its map's size",
          .recreates = true}),
+    // Screen-space contact shadows (docs/techniques.md): uniforms only.
+    declare<&Settings::contact, &ContactShadowSettings::enabled>(
+        {.name = "contact_shadows",
+         .group = "contact",
+         .label = "contact shadows",
+         .help = "Screen-space contact shadows: a short ray toward each light through the depth buffer"}),
+    declare<&Settings::contact, &ContactShadowSettings::sun>({.name = "contact_sun",
+                                                              .group = "contact",
+                                                              .label = "sun",
+                                                              .help = "Contact shadows toward the sun",
+                                                              .applies_when = setting_conditions::contact_shadows}),
+    declare<&Settings::contact, &ContactShadowSettings::local_lights>(
+        {.name = "contact_local_lights",
+         .group = "contact",
+         .label = "spot and point lights",
+         .help = "Contact shadows toward shadowed spot and point lights",
+         .applies_when = setting_conditions::contact_shadows}),
+    declare<&Settings::contact, &ContactShadowSettings::length>(
+        {.name = "contact_length",
+         .group = "contact",
+         .label = "length (m)",
+         .help = "Contact shadows: metres of ray toward the light",
+         .minimum = 0.001,
+         .maximum = 100,
+         .applies_when = setting_conditions::contact_shadows}),
+    declare<&Settings::contact, &ContactShadowSettings::steps>({.name = "contact_steps",
+                                                                .group = "contact",
+                                                                .label = "steps",
+                                                                .help = "Contact shadows: depth samples per ray",
+                                                                .minimum = 4,
+                                                                .maximum = 64,
+                                                                .applies_when = setting_conditions::contact_shadows}),
+    declare<&Settings::contact, &ContactShadowSettings::thickness>(
+        {.name = "contact_thickness",
+         .group = "contact",
+         .label = "thickness (m)",
+         .help = "Contact shadows: metres a depth-buffer surface extends behind itself",
+         .minimum = 0.0001,
+         .maximum = 100,
+         .applies_when = setting_conditions::contact_shadows}),
+    declare<&Settings::contact, &ContactShadowSettings::bias>(
+        {.name = "contact_bias",
+         .group = "contact",
+         .label = "bias (m)",
+         .help = "Contact shadows: metres the ray starts off the surface along its normal",
+         .minimum = 0,
+         .maximum = 10,
+         .applies_when = setting_conditions::contact_shadows}),
+    declare<&Settings::contact, &ContactShadowSettings::max_distance>(
+        {.name = "contact_distance",
+         .group = "contact",
+         .label = "max distance (m)",
+         .help = "Contact shadows: view depth in metres where they end (faded over the last fifth)",
+         .minimum = 0,
+         .maximum = 1.0e6,
+         .minimum_exclusive = true,
+         .applies_when = setting_conditions::contact_shadows}),
 };
 
 // The tables above as name -> value maps.

@@ -23,6 +23,9 @@
 //   float penumbra_light_visibility(index, world_position, normal, plane_normal, pixel)
 //   int penumbra_select_cascade(penumbra_view_depth(world_position))   // debug views
 //   int penumbra_sun_map_of(world_position)  // the cascade, or with virtual shadow maps the level
+//   float penumbra_sun_contact(depth, screen, world_position, geometric_normal, pixel)    // contact shadows
+//   float penumbra_light_contact(index, depth, screen, world_position, geometric_normal, pixel)
+//     (Settings::contact: a ray through the caller's depth buffer, penumbra/glsl/contact.glsl)
 //
 // With Settings::shadow.technique = virtual (penumbra_sun_is_virtual()), the sun's functions
 // read the virtual shadow map instead of the cascades: PenumbraSunReceiver::cascade is then
@@ -72,5 +75,6 @@ layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH)
 #include "penumbra/glsl/filters.glsl"
 #include "penumbra/glsl/sun.glsl"
 #include "penumbra/glsl/local.glsl"
+#include "penumbra/glsl/contact.glsl"
 
 #endif

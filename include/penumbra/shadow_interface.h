@@ -115,6 +115,15 @@ struct PenumbraShadowUniforms {
     // receiver-plane bias adds only what it does not cover (penumbra/glsl/filters.glsl).
     float caster_slope_bias;
     float caster_bias_clamp;
+    // Screen-space contact shadows (Settings::contact; penumbra/glsl/contact.glsl).
+    PENUMBRA_UINT contact_lights;  // bit 0: the sun, bit 1: spot and point lights; 0: none
+    PENUMBRA_UINT contact_steps;   // depth samples per ray
+    float contact_length;          // metres of ray toward the light
+    float contact_thickness;       // metres a depth-buffer surface extends behind itself
+    float contact_bias;            // metres the ray starts off the surface along its normal
+    float contact_max_distance;    // view depth where they end (faded over the last fifth)
+    float padding_contact0;
+    float padding_contact1;
 };
 
 // Shadow of one light of the set_lights() list (spot and point lights; others unshadowed).

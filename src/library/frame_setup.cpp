@@ -106,6 +106,17 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
     return uniforms;
 }
 
+void set_contact_uniforms(shader::PenumbraShadowUniforms& uniforms, const ContactShadowSettings& contact) {
+    uniforms.contact_lights = 0u;
+    if (contact.enabled && contact.sun) uniforms.contact_lights |= 1u;
+    if (contact.enabled && contact.local_lights) uniforms.contact_lights |= 2u;
+    uniforms.contact_steps = static_cast<uint32_t>(contact.steps);
+    uniforms.contact_length = contact.length;
+    uniforms.contact_thickness = contact.thickness;
+    uniforms.contact_bias = contact.bias;
+    uniforms.contact_max_distance = contact.max_distance;
+}
+
 shader::PenumbraLocalShadows build_local_shadows(std::span<const core::Light> lights, const LocalShadowPlan& plan,
                                                  const ShadowSettings& settings,
                                                  const passes::CasterDepthBias& caster_bias) {

@@ -40,6 +40,10 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
                                                      const ShadowSettings& settings,
                                                      const passes::CasterDepthBias& caster_bias, uint32_t frame_index);
 
+// Settings::contact into the uniforms' contact fields (the lights it traces toward: none
+// when it is off).
+void set_contact_uniforms(shader::PenumbraShadowUniforms& uniforms, const ContactShadowSettings& contact);
+
 shader::PenumbraLocalShadows build_local_shadows(std::span<const core::Light> lights, const LocalShadowPlan& plan,
                                                  const ShadowSettings& settings,
                                                  const passes::CasterDepthBias& caster_bias);

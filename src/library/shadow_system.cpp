@@ -287,6 +287,7 @@ struct ShadowSystem::Impl {
             library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
                                            passes::caster_depth_bias(device, settings.shadow.bias), sampling_frame);
         uniforms.cascade_count = 0;  // the sun's shadow is the virtual map's (penumbra_sun_is_virtual)
+        library::set_contact_uniforms(uniforms, settings.contact);
         std::memcpy(slots.at(frame).shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
     }
 
@@ -345,9 +346,10 @@ struct ShadowSystem::Impl {
             info.cascades.push_back(out);
         }
         library::FrameSlot& slot = slots.at(frame);
-        const shader::PenumbraShadowUniforms uniforms =
+        shader::PenumbraShadowUniforms uniforms =
             library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
                                            passes::caster_depth_bias(device, settings.shadow.bias), sampling_frame);
+        library::set_contact_uniforms(uniforms, settings.contact);
         std::memcpy(slot.shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
     }
 

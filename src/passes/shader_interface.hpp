@@ -73,7 +73,11 @@ static_assert(offsetof(PenumbraShadowUniforms, frame_index) ==
               offsetof(PenumbraShadowUniforms, light_bleeding_reduction) + 16);
 static_assert(offsetof(PenumbraShadowUniforms, caster_slope_bias) == offsetof(PenumbraShadowUniforms, frame_index) + 4);
 static_assert(offsetof(PenumbraShadowUniforms, caster_bias_clamp) == offsetof(PenumbraShadowUniforms, frame_index) + 8);
-static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms, frame_index) + 12);
+static_assert(offsetof(PenumbraShadowUniforms, contact_lights) == offsetof(PenumbraShadowUniforms, frame_index) + 12);
+static_assert(offsetof(PenumbraShadowUniforms, contact_length) == offsetof(PenumbraShadowUniforms, contact_lights) + 8);
+static_assert(offsetof(PenumbraShadowUniforms, contact_max_distance) ==
+              offsetof(PenumbraShadowUniforms, contact_lights) + 20);
+static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms, contact_lights) + 32);
 static_assert(sizeof(PenumbraShadowUniforms) % 16 == 0);
 static_assert(sizeof(PenumbraShadowUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
 

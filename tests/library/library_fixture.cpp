@@ -290,6 +290,30 @@ ScreenInputs LibraryTest::record_ground_depth(VkCommandBuffer cmd, const ViewDes
     return screen;
 }
 
+ScreenInputs LibraryTest::record_depth_image(VkCommandBuffer cmd, const ViewDesc& view,
+                                             const std::vector<float>& depths, const HostBuffer& staging) {
+    EXPECT_EQ(depths.size(), size_t{kScreen} * kScreen);
+    std::memcpy(staging.mapped, depths.data(), depths.size() * sizeof(float));
+    image_barrier(cmd, depth_->image, VK_IMAGE_ASPECT_DEPTH_BIT, 1, VK_IMAGE_LAYOUT_UNDEFINED,
+                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    region.imageExtent = {kScreen, kScreen, 1};
+    vkCmdCopyBufferToImage(cmd, staging.buffer, depth_->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    image_barrier(cmd, depth_->image, VK_IMAGE_ASPECT_DEPTH_BIT, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    ScreenInputs screen;
+    screen.depth = depth_->view;
+    screen.width = kScreen;
+    screen.height = kScreen;
+    screen.view_projection = to_mat4(to_glm(reverse_z_projection(view)) * to_glm(view.view));
+    screen.background_depth = 0.0f;
+    return screen;
+}
+
 VisibilityImage2D LibraryTest::render_visibility(ShadowSystem& shadows, uint32_t slot, const TestImage* normals,
                                                  NormalEncoding encoding, const TestImage* face_normals) {
     shadows.prepare(top_down_view());

@@ -121,6 +121,10 @@ protected:
     // screen inputs, ready for compute reads.
     ScreenInputs record_ground_depth(VkCommandBuffer cmd, const ViewDesc& view, const TestImage* normals,
                                      NormalEncoding encoding, const TestImage* face_normals);
+    // Copies `depths` (kScreen x kScreen reverse-Z values, row 0 first) from `staging` into
+    // depth_ and returns it as the screen inputs of `view`, ready for compute reads.
+    ScreenInputs record_depth_image(VkCommandBuffer cmd, const ViewDesc& view, const std::vector<float>& depths,
+                                    const HostBuffer& staging);
     // Records the ground depth (cleared) into depth_ and hands it to record_visibility.
     void record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& shadows, const TestImage* normals,
                                   NormalEncoding encoding, const TestImage* face_normals = nullptr);

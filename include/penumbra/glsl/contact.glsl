@@ -1,0 +1,97 @@
+// Screen-space contact shadows (Settings::contact; docs/techniques.md, "Contact shadows"):
+// from a surface point, a short ray toward the light is marched through the caller's depth
+// buffer, and a sample that lies behind the surface the depth buffer holds there (by less
+// than Settings::contact.thickness) is occluded. This finds the shadows smaller than a
+// shadow map's texels and biases: where a caster touches or nearly touches its receiver.
+// The design of UE's contact shadows and of Bend Studio's screen-space shadows (Days Gone):
+// samples spread along the ray with a per-pixel offset (interleaved gradient noise, Jimenez
+// 2014) so that the steps do not band, a thickness so that thin objects do not shadow all
+// behind them, and a fade with view distance.
+//
+// The compute resolve (ShadowSystem::record_visibility) calls these with the depth it is
+// given; a forward shader calls them with a depth pre-pass of the same frame:
+//   PenumbraContactScreen screen = PenumbraContactScreen(view_projection, inverse_view_projection,
+//                                                        vec2(width, height), background_depth);
+//   float contact = penumbra_sun_contact(depth, screen, world_position, geometric_normal, gl_FragCoord.xy);
+//   float visibility = min(penumbra_sun_visibility(receiver, normal), contact);
+// Cost: Settings::contact.steps depth reads and two 4 x 4 matrix products per sample.
+#ifndef PENUMBRA_GLSL_CONTACT
+#define PENUMBRA_GLSL_CONTACT
+
+// What the trace reads of the caller's depth buffer.
+struct PenumbraContactScreen {
+    mat4 view_projection;          // world -> the depth buffer's clip space
+    mat4 inverse_view_projection;  // clip -> world
+    vec2 size;                     // the depth buffer's pixels
+    float background_depth;        // where nothing was drawn (never occludes)
+};
+
+const uint kPenumbraContactSun = 1u;
+const uint kPenumbraContactLocal = 2u;
+
+// A per-pixel offset in [0, 1) that moves with the frame (interleaved gradient noise).
+float penumbra_contact_jitter(vec2 pixel) {
+    const vec2 moved = floor(pixel) + 5.588238 * float(penumbra_shadow.frame_index % 64u);
+    return fract(52.9829189 * fract(dot(moved, vec2(0.06711056, 0.00583715))));
+}
+
+// How strongly a hit darkens at this view depth: 1, fading to 0 over the last fifth of
+// Settings::contact.max_distance.
+float penumbra_contact_strength(vec3 world_position) {
+    const float far_end = penumbra_shadow.contact_max_distance;
+    return 1.0 - smoothstep(0.8 * far_end, far_end, penumbra_view_depth(world_position));
+}
+
+// 0 where a sample of the ray from `start` along `ray` (its whole length) lies behind the
+// depth buffer's surface by less than the thickness, else 1.
+float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 start, vec3 ray, float jitter) {
+    const uint steps = penumbra_shadow.contact_steps;
+    for (uint i = 0u; i < steps; ++i) {
+        const vec3 point = start + ray * ((float(i) + jitter) / float(steps));
+        const vec4 clip = screen.view_projection * vec4(point, 1.0);
+        if (clip.w <= 0.0) break;  // behind the camera: the depth buffer knows nothing there
+        const vec2 ndc = clip.xy / clip.w;
+        if (any(greaterThan(abs(ndc), vec2(1.0)))) break;  // off the screen, likewise
+        const ivec2 texel = min(ivec2((ndc * 0.5 + 0.5) * screen.size), ivec2(screen.size) - 1);
+        const float stored = texelFetch(depth_buffer, texel, 0).r;
+        if (stored == screen.background_depth) continue;
+        // The surface the depth buffer holds on this sample's own line of sight.
+        const vec4 surface = screen.inverse_view_projection * vec4(ndc, stored, 1.0);
+        const float behind = penumbra_view_depth(point) - penumbra_view_depth(surface.xyz / surface.w);
+        if (behind > 0.0 && behind < penumbra_shadow.contact_thickness) return 0.0;
+    }
+    return 1.0;
+}
+
+// The contact visibility toward a light, over `ray_length` metres along `to_light` (unit): 1
+// lit, down to 0 where the trace finds an occluder.
+float penumbra_contact_toward(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
+                              vec3 geometric_normal, vec3 to_light, float ray_length, vec2 pixel) {
+    const vec3 start = world_position + geometric_normal * penumbra_shadow.contact_bias;
+    const float lit =
+        penumbra_contact_trace(depth_buffer, screen, start, to_light * ray_length, penumbra_contact_jitter(pixel));
+    return 1.0 - (1.0 - lit) * penumbra_contact_strength(world_position);
+}
+
+// The sun's contact visibility (1 when Settings::contact leaves the sun out or there is
+// no sun). `geometric_normal`: the surface's face normal, toward the camera.
+float penumbra_sun_contact(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
+                           vec3 geometric_normal, vec2 pixel) {
+    if ((penumbra_shadow.contact_lights & kPenumbraContactSun) == 0u || penumbra_shadow.to_sun.w == 0.0) return 1.0;
+    return penumbra_contact_toward(depth_buffer, screen, world_position, geometric_normal, penumbra_shadow.to_sun.xyz,
+                                   penumbra_shadow.contact_length, pixel);
+}
+
+// Spot or point light `index`'s contact visibility; the ray stops at the light.
+float penumbra_light_contact(uint index, sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
+                             vec3 geometric_normal, vec2 pixel) {
+    if ((penumbra_shadow.contact_lights & kPenumbraContactLocal) == 0u || index >= penumbra_local.light_count)
+        return 1.0;
+    const vec3 to_light = penumbra_local.lights[index].position - world_position;
+    const float distance = length(to_light);
+    if (distance <= 0.0) return 1.0;
+    return penumbra_contact_toward(depth_buffer, screen, world_position, geometric_normal, to_light / distance,
+                                   min(penumbra_shadow.contact_length, distance), pixel);
+}
+
+#endif
