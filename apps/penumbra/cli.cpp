@@ -108,6 +108,16 @@ void add_render_job_options(CLI::App& command, RenderJob& job, RawRenderOptions&
     command.add_flag("--validate", job.device.validation,
                      "Enable the Khronos validation layer (with synchronization validation); any message fails");
     command.add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");
+    command
+        .add_option("--max-scene-triangles", job.load_budget.max_triangles,
+                    "Refuse a scene whose glTF models would make more triangles, counting each placement (default " +
+                        std::to_string(job.load_budget.max_triangles) + ")")
+        ->check(CLI::PositiveNumber);
+    command
+        .add_option("--max-scene-bytes", job.load_budget.max_bytes,
+                    "Refuse a scene whose meshes and decoded textures would take more bytes (default " +
+                        std::to_string(job.load_budget.max_bytes) + ")")
+        ->check(CLI::PositiveNumber);
     add_settings_options(command, job.overrides, raw);
 }
 

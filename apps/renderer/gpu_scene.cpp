@@ -182,10 +182,23 @@ gpu::SamplerDesc sampler_desc(const Texture& texture) {
     return desc;
 }
 
+// The loader bounds a texture's pixels (LoadBudget), not its sides: one wider or taller
+// than the device's maxImageDimension2D (4096 on some devices, 16384 on most) would be
+// invalid usage of vkCreateImage. It is refused, not downscaled: the user decides how to
+// shrink it.
+void check_texture_fits_device(const Texture& texture, size_t index, uint32_t max_dimension) {
+    if (texture.width <= max_dimension && texture.height <= max_dimension) return;
+    const std::string name = texture.origin.empty() ? "scene texture " + std::to_string(index) : texture.origin;
+    throw InputError(name + ": " + std::to_string(texture.width) + " x " + std::to_string(texture.height) +
+                     " texels exceed this device's maxImageDimension2D of " + std::to_string(max_dimension) +
+                     " (refused, not downscaled)");
+}
+
 }  // namespace
 
 void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
     for (const Texture& texture : scene.textures) {
+        check_texture_fits_device(texture, textures_.size(), context.properties().limits.maxImageDimension2D);
         textures_.push_back(
             gpu::create_texture_rgba8(context.one_time(), texture.width, texture.height, texture.rgba8));
         texture_samplers_.push_back(gpu::create_sampler(context, sampler_desc(texture)));

@@ -54,7 +54,7 @@ int32_t aov_light_index(const RenderJob& job, const Scene& scene) {
 // Scene file < config file < command line; each source is validated under its own name.
 PreparedJob prepare_render_job(const RenderJob& job) {
     const std::string scene_spec = job.scene.empty() ? std::string(kDefaultSceneName) : job.scene;
-    PreparedJob prepared{load_scene(scene_spec), RenderSettings{}};
+    PreparedJob prepared{load_scene(scene_spec, job.load_budget), RenderSettings{}};
     if (!scene_spec.starts_with(kBuiltinPrefix)) {
         const SettingsOverrides from_scene = load_settings_from_scene_file(scene_spec);
         apply_overrides(from_scene, prepared.settings);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "penumbra/device.hpp"
+#include "penumbra/scene/loader.hpp"
 #include "penumbra/scene/render_settings.hpp"
 #include "penumbra/scene/scene.hpp"
 #include "penumbra/scene/settings_overrides.hpp"
@@ -21,6 +22,14 @@ enum class Aov {
     Cascade,  // the cascade index, 8-bit gray: 0 nearest, 255 none
 };
 
+// The default LoadBudget, its messages naming the flags that raise it.
+inline LoadBudget tools_load_budget() {
+    LoadBudget budget;
+    budget.max_triangles_name = "--max-scene-triangles";
+    budget.max_bytes_name = "--max-scene-bytes";
+    return budget;
+}
+
 struct RenderJob {
     std::string scene;  // a .toml path or "builtin:NAME"; empty = the default scene
     std::filesystem::path output = "penumbra.png";
@@ -32,6 +41,8 @@ struct RenderJob {
     // -1 for the sun. A spot or point light, or the first directional light.
     int32_t aov_light = -1;
     VulkanContextOptions device;
+    // What loading the scene may make (--max-scene-triangles, --max-scene-bytes).
+    LoadBudget load_budget = tools_load_budget();
 };
 
 class ValidationFailure : public std::runtime_error {

@@ -32,22 +32,58 @@ std::string one_line(const std::string& text) {
     return result.empty() ? "unknown error" : result;
 }
 
-// tinygltf hands an image's buffer view to the decoder without checking that the view lies
-// inside its buffer; check first, then decode with tinygltf's stb_image loader (as RGBA8).
+// What the image callback needs: the model whose buffer views it checks, and the bytes its
+// decoded images may still take.
+struct ImageLoading {
+    const tinygltf::Model* model = nullptr;
+    GltfImageAllowance allowance;
+    uint64_t decoded_bytes = 0;  // RGBA8 bytes of the images accepted so far
+};
+
+// tinygltf has checked an image's view and buffer indices, not its byte range.
+bool view_inside_buffer(const tinygltf::Model& model, const tinygltf::Image& image, const std::string& where,
+                        std::string& err) {
+    if (image.bufferView < 0) return true;
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(image.bufferView)];
+    const size_t buffer_size = model.buffers[static_cast<size_t>(view.buffer)].data.size();
+    if (view.byteOffset <= buffer_size && view.byteLength <= buffer_size - view.byteOffset) return true;
+    err += where + ": bufferView " + std::to_string(image.bufferView) + " lies outside its buffer of " +
+           std::to_string(buffer_size) + " bytes\n";
+    return false;
+}
+
+// The header decides before the pixels are decoded: a PNG or JPEG (glTF 2.0, 3.9.4), whose
+// width x height RGBA8 texels, with the images before it, fit the load budget. A 0.5 MB PNG
+// may declare 16384 x 32767 pixels; it is refused, not decoded nor downscaled.
+bool image_fits_budget(ImageLoading& loading, std::span<const unsigned char> bytes, const std::string& where,
+                       std::string& err) {
+    const std::optional<ImageHeader> header = read_image_header(bytes);
+    if (!header) {
+        err += where + ": not a PNG or JPEG image, or its header is cut short (glTF images are PNG or JPEG)\n";
+        return false;
+    }
+    const uint64_t image_bytes = uint64_t{header->width} * header->height * 4;
+    const uint64_t total = saturating_add(loading.decoded_bytes, image_bytes);
+    if (total > loading.allowance.bytes) {
+        err += where + ": " + std::to_string(header->width) + " x " + std::to_string(header->height) + " pixels (" +
+               std::to_string(image_bytes) + " bytes as RGBA8) would take the scene past the load budget of " +
+               std::to_string(loading.allowance.max_bytes) + " bytes (" + loading.allowance.budget_name +
+               " raises it); refused before decoding\n";
+        return false;
+    }
+    loading.decoded_bytes = total;
+    return true;
+}
+
+// Checks the image's bytes and budget first, then decodes with tinygltf's stb_image loader.
 bool load_image_checked(tinygltf::Image* image, const int image_index, std::string* err, std::string* warn,
                         int required_width, int required_height, const unsigned char* bytes, int size,
-                        void* model_being_loaded) {
-    const auto* model = static_cast<const tinygltf::Model*>(model_being_loaded);
-    if (image->bufferView >= 0) {
-        // tinygltf has checked the view and buffer indices, not the byte range.
-        const tinygltf::BufferView& view = model->bufferViews[static_cast<size_t>(image->bufferView)];
-        const size_t buffer_size = model->buffers[static_cast<size_t>(view.buffer)].data.size();
-        if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
-            *err += "images[" + std::to_string(image_index) + "]: bufferView " + std::to_string(image->bufferView) +
-                    " lies outside its buffer of " + std::to_string(buffer_size) + " bytes\n";
-            return false;
-        }
-    }
+                        void* user_data) {
+    auto& loading = *static_cast<ImageLoading*>(user_data);
+    const std::string where = "images[" + std::to_string(image_index) + "]";
+    if (!view_inside_buffer(*loading.model, *image, where, *err)) return false;
+    const std::span<const unsigned char> encoded(bytes, size > 0 ? static_cast<size_t>(size) : 0);
+    if (!image_fits_budget(loading, encoded, where, *err)) return false;
     return tinygltf::LoadImageData(image, image_index, err, warn, required_width, required_height, bytes, size,
                                    nullptr);
 }
@@ -132,7 +168,7 @@ size_t json_nesting_depth(std::string_view text, size_t stop_beyond) {
     return deepest;
 }
 
-tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin) {
+tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin, const GltfImageAllowance& images) {
     const std::string extension = lowercase_extension(file);
     if (extension != ".gltf" && extension != ".glb") {
         throw InputError(origin + ": unsupported model extension \"" + extension + "\" (expected .gltf or .glb)");
@@ -167,7 +203,8 @@ tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin)
                                     tinygltf::WriteWholeFile, &base_dir};
     loader.SetFsCallbacks(callbacks);
     tinygltf::Model model;
-    loader.SetImageLoader(load_image_checked, &model);
+    ImageLoading image_loading{&model, images, 0};
+    loader.SetImageLoader(load_image_checked, &image_loading);
     std::string errors;
     std::string warnings;
     const bool loaded =

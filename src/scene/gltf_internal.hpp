@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,7 @@
 #include <tiny_gltf.h>
 #include <nlohmann/json_fwd.hpp>
 
+#include "penumbra/scene/loader.hpp"
 #include "penumbra/scene/scene.hpp"
 
 namespace penumbra {
@@ -37,10 +39,48 @@ inline constexpr size_t kMaxGltfJsonDepth = 256;
 // nodes place): beyond, a file is more likely an attack than a scene.
 inline constexpr size_t kMaxGltfInstances = 1'000'000;
 
+// What decoding a model's images may add to the scene: tinygltf decodes every image while
+// it parses, so the budget is checked from each image's header before its pixels are.
+struct GltfImageAllowance {
+    uint64_t bytes = 0;       // the load budget's bytes less what the scene already holds
+    uint64_t max_bytes = 0;   // the whole budget, and how to raise it, for the message
+    std::string budget_name;  // LoadBudget::max_bytes_name
+};
+
 // Parses a .gltf or .glb file (gltf_file.cpp): InputError for an unknown extension, a
-// missing or non-regular file, JSON nested deeper than kMaxGltfJsonDepth, or whatever
-// tinygltf refuses; uris must name regular files.
-tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::string& origin);
+// missing or non-regular file, JSON nested deeper than kMaxGltfJsonDepth, an image that is
+// not a PNG or JPEG or whose RGBA8 pixels would exceed `images.bytes` (all images
+// together), or whatever tinygltf refuses; uris must name regular files.
+tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::string& origin,
+                                const GltfImageAllowance& images);
+
+// An image's size from its header, read before decoding: a PNG's IHDR or a JPEG's first
+// start-of-frame marker (gltf_budget.cpp). nullopt when the bytes are neither format or the
+// header is cut short.
+struct ImageHeader {
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+std::optional<ImageHeader> read_image_header(std::span<const unsigned char> bytes);
+
+// Triangles drawn and bytes held, for the load budget (LoadBudget), counted before anything
+// is expanded. Sums saturate at the largest uint64_t, so a hostile count cannot wrap.
+struct GltfCost {
+    uint64_t triangles = 0;
+    uint64_t bytes = 0;
+};
+// What converting a primitive makes, from its accessors' counts alone: its triangles (a
+// list's indices / 3, a strip's or fan's indices - 2, none for points and lines) and the
+// bytes of its vertices and 32-bit index list. Accessors that do not exist count nothing:
+// converting the primitive reports them.
+GltfCost primitive_cost(const tinygltf::Model& model, const tinygltf::Primitive& primitive);
+// What a scene already holds: its instances' triangles, its meshes' and textures' bytes.
+GltfCost scene_cost(const Scene& scene);
+uint64_t saturating_add(uint64_t a, uint64_t b);
+uint64_t saturating_multiply(uint64_t a, uint64_t b);
+// Refuses (InputError naming the model, the counts, the limit and how to raise it) a model
+// whose `added` cost takes a scene holding `held` past the budget.
+void check_load_budget(const GltfSource& source, const GltfCost& held, const GltfCost& added, const LoadBudget& budget);
 
 // The deepest nesting of arrays and objects in JSON text (strings skipped); the scan stops
 // once it exceeds stop_beyond.

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <glm/gtc/quaternion.hpp>
@@ -40,9 +41,10 @@ class GltfImporter {
 public:
     GltfImporter(Scene& scene, const GltfSource& source) : scene_(scene), source_(source) {}
 
-    void place_model(const std::vector<glm::mat4>& placements, const GltfImportOptions& options) {
+    void place_model(const std::vector<glm::mat4>& placements, const GltfImportOptions& options, const GltfCost& held) {
         collect_nodes(checked_root_nodes(source_));
         refuse_too_many_instances(placements.size());
+        refuse_over_budget(placements, held, options.budget);
         check_exclusion_patterns(options.exclude_casters);
         const size_t model_first = scene_.instances.size();
         for (size_t p = 0; p < placements.size(); ++p) {
@@ -98,6 +100,39 @@ private:
                                       " placed primitive(s) exceed " + std::to_string(kMaxGltfInstances) +
                                       " instances");
         }
+    }
+
+    // What placing the model will add to the scene, counted as place_mesh and convert_mesh
+    // will convert it (a primitive once per mirroring and morph pose, drawn once per
+    // placement) but from accessor counts only: placements times placed primitives is
+    // bounded by kMaxGltfInstances, so this costs no more than the instances themselves.
+    void refuse_over_budget(const std::vector<glm::mat4>& placements, const GltfCost& held,
+                            const LoadBudget& budget) const {
+        GltfCost added;
+        for (const tinygltf::Image& image : model().images) {
+            const uint64_t pixels = uint64_t(std::max(image.width, 0)) * uint64_t(std::max(image.height, 0));
+            added.bytes = saturating_add(added.bytes, saturating_multiply(pixels, 4));
+        }
+        std::set<std::tuple<int, int, bool, std::vector<double>>> converted;
+        for (const glm::mat4& placement : placements) {
+            for (const PlacedMesh& placed : placed_meshes_) {
+                if (placed.mesh < 0 || static_cast<size_t>(placed.mesh) >= model().meshes.size()) continue;
+                const tinygltf::Mesh& mesh = model().meshes[static_cast<size_t>(placed.mesh)];
+                const tinygltf::Node& node = model().nodes[static_cast<size_t>(placed.node)];
+                const bool mirrored = glm::determinant(glm::mat3{placement * placed.transform}) < 0.0f;
+                for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+                    const GltfCost cost = primitive_cost(model(), mesh.primitives[p]);
+                    added.triangles = saturating_add(added.triangles, cost.triangles);
+                    const std::vector<double> pose = mesh.primitives[p].targets.empty() ? std::vector<double>{}
+                                                     : node.weights.empty()             ? mesh.weights
+                                                                                        : node.weights;
+                    if (cost.bytes > 0 && converted.emplace(placed.mesh, static_cast<int>(p), mirrored, pose).second) {
+                        added.bytes = saturating_add(added.bytes, cost.bytes);
+                    }
+                }
+            }
+        }
+        check_load_budget(source_, held, added, budget);
     }
 
     // glTF: a column-major matrix, or translation * rotation * scale.
@@ -368,6 +403,7 @@ private:
         converted.wrap_u = sampling.wrap_u;
         converted.wrap_v = sampling.wrap_v;
         converted.nearest = sampling.nearest;
+        converted.origin = source_.origin + ": images[" + std::to_string(image) + "]";
         scene_.textures.push_back(std::move(converted));
         converted_images_.emplace(key, scene_index);
         return scene_index;
@@ -450,7 +486,11 @@ std::string ignored_extensions(const tinygltf::Model& model, const GltfImportOpt
 void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
                  const GltfImportOptions& options) {
     const std::string origin = file.string();
-    const tinygltf::Model model = read_gltf_model(file, origin);
+    const GltfCost held = scene_cost(scene);
+    const LoadBudget& budget = options.budget;
+    const GltfImageAllowance images{budget.max_bytes > held.bytes ? budget.max_bytes - held.bytes : 0, budget.max_bytes,
+                                    budget.max_bytes_name};
+    const tinygltf::Model model = read_gltf_model(file, origin, images);
     const GltfSource source{model, origin};
     // On error, leave the scene as it was rather than half-appended.
     const size_t texture_count = scene.textures.size();
@@ -459,7 +499,7 @@ void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vec
     const size_t instance_count = scene.instances.size();
     const size_t light_count = scene.lights.size();
     try {
-        GltfImporter(scene, source).place_model(placements, options);
+        GltfImporter(scene, source).place_model(placements, options, held);
         if (const std::string ignored = ignored_extensions(model, options); !ignored.empty()) {
             scene.warnings.push_back(origin + ": ignores the glTF extension(s) " + ignored);
         }

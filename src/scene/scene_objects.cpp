@@ -88,8 +88,8 @@ Mesh read_primitive_shape(TomlTableReader& reader, const std::string& type) {
 
 class ObjectBuilder {
 public:
-    ObjectBuilder(Scene& scene, const std::filesystem::path& base_directory)
-        : scene_(scene), base_directory_(base_directory) {}
+    ObjectBuilder(Scene& scene, const std::filesystem::path& base_directory, const LoadBudget& budget)
+        : scene_(scene), base_directory_(base_directory), budget_(budget) {}
 
     void add_object(TomlTableReader& reader) {
         const std::string type = reader.required_string("type");
@@ -189,6 +189,7 @@ private:
             options.placement_dynamic.push_back(dynamic);
         }
         options.import_lights = reader.boolean_or("import_lights", false);
+        options.budget = budget_;
         reader.reject_unknown_keys();
         try {
             append_gltf(scene_, file, placements, options);
@@ -199,13 +200,15 @@ private:
 
     Scene& scene_;
     std::filesystem::path base_directory_;
+    const LoadBudget& budget_;
     std::map<ProceduralPattern, int32_t> procedural_textures_;
 };
 
 }  // namespace
 
-void append_scene_objects(TomlTableReader& root, Scene& scene, const std::filesystem::path& base_directory) {
-    ObjectBuilder builder(scene, base_directory);
+void append_scene_objects(TomlTableReader& root, Scene& scene, const std::filesystem::path& base_directory,
+                          const LoadBudget& budget) {
+    ObjectBuilder builder(scene, base_directory, budget);
     const std::vector<const toml::table*> objects = root.table_array("objects");
     for (size_t i = 0; i < objects.size(); ++i) {
         TomlTableReader reader(*objects[i], root.origin(), root.key_path("objects") + "[" + std::to_string(i) + "]");

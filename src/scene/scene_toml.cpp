@@ -136,7 +136,8 @@ void check_light_count(const std::string& origin, const Scene& scene, size_t fro
 
 }  // namespace
 
-Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory) {
+Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory,
+                       const LoadBudget& budget) {
     const toml::table root = parse_toml_text(text, origin);
     TomlTableReader reader(root, origin, "");
     // [shadow] and [output] are render settings, parsed by the layer that owns them.
@@ -157,18 +158,18 @@ Scene parse_scene_toml(std::string_view text, const std::string& origin, const s
     reader.accept("objects");  // read last, by append_scene_objects()
     // Unknown top-level tables are reported before the (possibly slow) model loading.
     reader.reject_unknown_keys();
-    append_scene_objects(reader, scene, base_directory);
+    append_scene_objects(reader, scene, base_directory, budget);
     check_light_count(origin, scene, lights.size());
     return scene;
 }
 
-Scene load_scene(const std::string& path_or_builtin) {
+Scene load_scene(const std::string& path_or_builtin, const LoadBudget& budget) {
     if (path_or_builtin.starts_with(kBuiltinPrefix)) {
         return builtin_scene(path_or_builtin.substr(kBuiltinPrefix.size()));
     }
     const std::filesystem::path file(path_or_builtin);
     const std::string text = read_text_file(file, path_or_builtin, "scene file");
-    return parse_scene_toml(text, path_or_builtin, file.parent_path());
+    return parse_scene_toml(text, path_or_builtin, file.parent_path(), budget);
 }
 
 }  // namespace penumbra

@@ -14,12 +14,35 @@ namespace penumbra {
 constexpr std::string_view kBuiltinPrefix = "builtin:";
 constexpr std::string_view kDefaultSceneName = "builtin:default";
 
+// What loading one scene may produce (issue 32): a few hundred bytes of glTF can describe
+// billions of triangles (accessors without data, one mesh placed by many nodes) and a small
+// PNG can declare gigapixels. Before anything is decoded or expanded, a load counts what
+// its glTF models would make, from their accessor counts, node hierarchy, placements and
+// image headers, and refuses (InputError, one line) a model that would take the scene past
+// either limit; users with really big scenes raise them (`penumbra --max-scene-triangles`,
+// `--max-scene-bytes`). Built-in and primitive objects count too, as they stand when a
+// model is added.
+struct LoadBudget {
+    // Triangles drawn when every instance is drawn once (Scene::triangle_count()): a mesh
+    // placed 64 times counts 64 times, since each placement costs its draw.
+    uint64_t max_triangles = uint64_t{1} << 25;  // 33,554,432
+    // Bytes of the meshes (vertices and 32-bit indices, each converted mesh once) and of the
+    // decoded RGBA8 textures the scene holds. Loading needs a few times one primitive's or
+    // one image's share on top while it converts it (its accessors read as doubles, a
+    // 16-bit image decoded at 8 bytes a pixel).
+    uint64_t max_bytes = uint64_t{1} << 30;  // 1 GiB
+    // How the messages tell the user to raise each limit (the tools name their flags).
+    std::string max_triangles_name = "LoadBudget::max_triangles";
+    std::string max_bytes_name = "LoadBudget::max_bytes";
+};
+
 // A path to a .toml scene file, or "builtin:NAME".
-Scene load_scene(const std::string& path_or_builtin);
+Scene load_scene(const std::string& path_or_builtin, const LoadBudget& budget = {});
 
 // Parses scene-file text. `origin` names the source in error messages; relative glTF
 // paths are resolved against `base_directory`.
-Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory);
+Scene parse_scene_toml(std::string_view text, const std::string& origin, const std::filesystem::path& base_directory,
+                       const LoadBudget& budget = {});
 
 // Names accepted after "builtin:".
 std::vector<std::string> builtin_scene_names();
@@ -46,6 +69,9 @@ struct GltfImportOptions {
     std::vector<bool> placement_casts;
     std::vector<bool> placement_receives;
     std::vector<bool> placement_dynamic;  // likewise each placement's Instance::dynamic
+    // Counted with what `scene` already holds; a model that would exceed it is refused
+    // before its images are decoded (image headers) and before its meshes are converted.
+    LoadBudget budget;
 };
 void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vector<glm::mat4>& placements,
                  const GltfImportOptions& options = {});

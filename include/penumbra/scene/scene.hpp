@@ -106,6 +106,8 @@ struct Texture {
     TextureWrap wrap_u = TextureWrap::Repeat;
     TextureWrap wrap_v = TextureWrap::Repeat;
     bool nearest = false;
+    // Where it came from, for messages ("model.gltf: images[0]"); empty for procedural ones.
+    std::string origin;
 };
 
 struct Material {
