@@ -209,7 +209,7 @@ FrameInfo shadow_plan(const renderer::AppContext& context, const PreparedJob& pr
 // it, whatever the fit in use, so that runs that differ only in fitting move the camera
 // identically.
 float motion_texel_size(const renderer::AppContext& context, const PreparedJob& prepared) {
-    Settings settings{prepared.settings.shadow, prepared.settings.local_shadows};
+    Settings settings = static_cast<const Settings&>(prepared.settings);
     settings.shadow.cascades.fit = FitMode::Stable;
     const FrameInfo frame = shadow_plan(context, prepared, settings);
     return frame.cascades.empty() ? 0.01f : frame.cascades.front().texel_world_size;
@@ -218,7 +218,7 @@ float motion_texel_size(const renderer::AppContext& context, const PreparedJob& 
 // Rejects a spot or point light that the budget leaves unshadowed, before anything renders.
 void require_local_shadow(const renderer::AppContext& context, const PreparedJob& prepared, const Light& light,
                           int32_t index) {
-    const FrameInfo frame = shadow_plan(context, prepared, {prepared.settings.shadow, prepared.settings.local_shadows});
+    const FrameInfo frame = shadow_plan(context, prepared, static_cast<const Settings&>(prepared.settings));
     const bool shadowed = std::any_of(frame.local_shadows.begin(), frame.local_shadows.end(),
                                       [&](const LocalShadowInfo& info) { return info.light == uint32_t(index); });
     if (!shadowed) {

@@ -88,7 +88,7 @@ std::vector<T> read_buffer(const gpu::Buffer& buffer, size_t count) {
 ShadowSystemDesc shadow_system_desc(const AppContext& context, const RenderSettings& settings) {
     ShadowSystemDesc desc;
     desc.device = context.device_desc();
-    desc.settings = {settings.shadow, settings.local_shadows};
+    desc.settings = static_cast<const Settings&>(settings);
     desc.frames_in_flight = 1;  // render() waits for every frame
     return desc;
 }
@@ -147,7 +147,7 @@ struct Renderer::Resources {
           lights(gpu::create_buffer(context, sizeof(shader::LocalLights), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                     gpu::MemoryKind::HostUpload)),
           resolve(effective_resolve(settings.resolve, settings.shadow.filter.mode, casts_local_shadows(scene),
-                                    uint64_t{settings.width} * settings.height)),
+                                    uint64_t{settings.width} * settings.height, settings.contact.enabled)),
           prepass(resolve == ShadowResolve::Deferred || settings.shadow.technique == ShadowTechnique::Virtual
                       ? std::make_unique<ScreenPrepass>(context, frame_set_layout,
                                                         gpu_scene.draw_data().material_set_layout, settings.width,
@@ -197,8 +197,11 @@ const gpu::Image& Renderer::color_target() const { return resources_->lighting_p
 
 bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next) {
     const auto is_shadow_map = [](DebugView view) { return view == DebugView::ShadowMap; };
+    // Contact shadows make the automatic resolve deferred (effective_resolve()).
+    const bool auto_resolve_changes =
+        next.resolve == ShadowResolve::Auto && current.contact.enabled != next.contact.enabled;
     return current.width != next.width || current.height != next.height || current.resolve != next.resolve ||
-           requires_recreation({current.shadow, current.local_shadows}, {next.shadow, next.local_shadows}) ||
+           auto_resolve_changes || requires_recreation(current, next) ||
            is_shadow_map(current.debug) != is_shadow_map(next.debug);
 }
 
@@ -206,7 +209,7 @@ void Renderer::update_settings(const RenderSettings& settings) {
     if (requires_new_renderer(settings_, settings)) {
         throw std::invalid_argument("Renderer::update_settings: the new settings need a new Renderer");
     }
-    resources_->shadows.update_settings({settings.shadow, settings.local_shadows});
+    resources_->shadows.update_settings(static_cast<const Settings&>(settings));
     settings_ = settings;
 }
 

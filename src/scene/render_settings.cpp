@@ -13,9 +13,10 @@ const SettingDeclaration* find_output_setting(std::string_view name) {
 
 const std::map<std::string, ShadowResolve>& shadow_resolve_names() { return choice_map(kShadowResolveChoices); }
 
-ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters,
-                                uint64_t pixels) {
+ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters, uint64_t pixels,
+                                bool contact_shadows) {
     if (resolve != ShadowResolve::Auto) return resolve;
+    if (contact_shadows) return ShadowResolve::Deferred;  // traced by the compute resolve
     const bool many_taps =
         filter == ShadowFilter::Pcf || filter == ShadowFilter::Poisson || filter == ShadowFilter::Pcss;
     return many_taps && (pixels >= kDeferredMinPixels || local_shadow_casters) ? ShadowResolve::Deferred
@@ -28,6 +29,13 @@ void validate_render_settings(const RenderSettings& settings, const std::string&
         if (!problem.empty()) throw InputError(origin + ": " + setting.name + ": " + problem);
     }
     validate_settings(settings, origin);
+    // The tools trace contact shadows in the compute resolve only: with forward shading they
+    // would be silently absent.
+    if (settings.contact.enabled && settings.resolve == ShadowResolve::Forward) {
+        throw InputError(origin +
+                         ": contact_shadows: traced by the deferred resolve only; use resolve deferred "
+                         "or auto (forward shading does not trace them yet)");
+    }
 }
 
 }  // namespace penumbra

@@ -65,6 +65,30 @@ TEST_F(Cli, RendersTheDefaultSceneValidationClean) {
     EXPECT_EQ(image.channels, 4u);
 }
 
+// Contact shadows darken the shadow AOV where they find an occluder and nowhere brighten
+// it; the tools trace them in the deferred resolve, so forward shading with them is refused.
+TEST_F(Cli, ContactShadowsOnlyDarkenAndNeedTheDeferredResolve) {
+    const std::string base = "render builtin:box-on-plane --validate --aov shadow --width 96 --height 54 ";
+    const RunResult without = run(base + "-o off.png");
+    ASSERT_EQ(without.exit_code, 0) << without.err;
+    const RunResult with = run(base + "--contact-shadows --contact-length 1 -o on.png");
+    ASSERT_EQ(with.exit_code, 0) << with.err;
+    EXPECT_TRUE(with.err.empty()) << with.err;
+    const penumbra::PngImage off = penumbra::read_png(dir_ / "off.png");
+    const penumbra::PngImage on = penumbra::read_png(dir_ / "on.png");
+    ASSERT_EQ(off.samples.size(), on.samples.size());
+    size_t darker = 0, brighter = 0;
+    for (size_t i = 0; i < off.samples.size(); ++i) {
+        darker += on.samples[i] < off.samples[i] ? 1 : 0;
+        brighter += on.samples[i] > off.samples[i] ? 1 : 0;
+    }
+    EXPECT_GT(darker, 0u) << "the box's contact with the plane";
+    EXPECT_EQ(brighter, 0u);
+    expect_failure(run(base + "--contact-shadows --resolve forward -o forward.png"), 2,
+                   "contact_shadows: traced by the deferred resolve only");
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "forward.png"));
+}
+
 TEST_F(Cli, ShadowAovIsSixteenBitGray) {
     write_file("scene.toml", kValidScene);
     const RunResult result = run("render scene.toml --validate --aov shadow --width 64 --height 48 -o out.png");

@@ -36,8 +36,9 @@ TEST(SettingDeclarations, EveryFieldOfSettingsHasOneDeclaration) {
     // Four of ShadowSettings' fields are the nested virtual map, cascade, bias and filter structs.
     const size_t leaves = field_count<VirtualShadowSettings>() + field_count<CascadeSettings>() +
                           field_count<BiasSettings>() + field_count<FilterSettings>() +
-                          (field_count<ShadowSettings>() - 4) + field_count<LocalShadowSettings>();
-    EXPECT_EQ(field_count<Settings>(), 2u);
+                          (field_count<ShadowSettings>() - 4) + field_count<LocalShadowSettings>() +
+                          field_count<ContactShadowSettings>();
+    EXPECT_EQ(field_count<Settings>(), 3u);
     EXPECT_EQ(std::size(kSettingDeclarations), leaves);
 }
 

@@ -44,7 +44,8 @@ const std::map<std::string, ShadowResolve>& shadow_resolve_names();
 // 0.4 ms with pcf R=2 and 0.5 ms with poisson and, with 16 shadowed local lights, saves
 // 1.1-1.3 ms with pcf and pcss and costs 0.5 ms with hard.
 inline constexpr uint64_t kDeferredMinPixels = 4'000'000;
-ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters, uint64_t pixels);
+ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters, uint64_t pixels,
+                                bool contact_shadows = false);
 
 constexpr uint32_t kMaxImageSize = 16384;
 // Spot and point lights the tools' renderer lights (the first ones of a scene's list).
