@@ -91,6 +91,10 @@ struct PenumbraCascade {
     float padding_cascade1;
 };
 
+// PenumbraShadowUniforms::contact_lights: the lights contact shadows trace toward.
+#define PENUMBRA_CONTACT_SUN 1u
+#define PENUMBRA_CONTACT_LOCAL 2u
+
 struct PenumbraShadowUniforms {
     mat4 camera_view;  // world -> view of the prepared camera (cascade selection by view depth)
     mat4 light_view;   // world -> the sun's light view (a rotation), every cascade's
@@ -116,7 +120,7 @@ struct PenumbraShadowUniforms {
     float caster_slope_bias;
     float caster_bias_clamp;
     // Screen-space contact shadows (Settings::contact; penumbra/glsl/contact.glsl).
-    PENUMBRA_UINT contact_lights;  // bit 0: the sun, bit 1: spot and point lights; 0: none
+    PENUMBRA_UINT contact_lights;  // PENUMBRA_CONTACT_SUN | PENUMBRA_CONTACT_LOCAL; 0: none
     PENUMBRA_UINT contact_steps;   // depth samples per ray
     float contact_length;          // metres of ray toward the light
     float contact_thickness;       // metres a depth-buffer surface extends behind itself

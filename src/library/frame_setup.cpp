@@ -108,8 +108,8 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
 
 void set_contact_uniforms(shader::PenumbraShadowUniforms& uniforms, const ContactShadowSettings& contact) {
     uniforms.contact_lights = 0u;
-    if (contact.enabled && contact.sun) uniforms.contact_lights |= 1u;
-    if (contact.enabled && contact.local_lights) uniforms.contact_lights |= 2u;
+    if (contact.enabled && contact.sun) uniforms.contact_lights |= PENUMBRA_CONTACT_SUN;
+    if (contact.enabled && contact.local_lights) uniforms.contact_lights |= PENUMBRA_CONTACT_LOCAL;
     uniforms.contact_steps = static_cast<uint32_t>(contact.steps);
     uniforms.contact_length = contact.length;
     uniforms.contact_thickness = contact.thickness;

@@ -261,6 +261,16 @@ void LibraryTest::record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& sh
     shadows.record_visibility(cmd, record_ground_depth(cmd, top_down_view(), normals, encoding, face_normals));
 }
 
+ScreenInputs LibraryTest::depth_screen(const glm::mat4& view_projection) const {
+    ScreenInputs screen;
+    screen.depth = depth_->view;
+    screen.width = kScreen;
+    screen.height = kScreen;
+    screen.view_projection = to_mat4(view_projection);
+    screen.background_depth = 0.0f;
+    return screen;
+}
+
 ScreenInputs LibraryTest::record_ground_depth(VkCommandBuffer cmd, const ViewDesc& view, const TestImage* normals,
                                               NormalEncoding encoding, const TestImage* face_normals) {
     const glm::mat4 view_projection = to_glm(reverse_z_projection(view)) * to_glm(view.view);
@@ -276,12 +286,7 @@ ScreenInputs LibraryTest::record_ground_depth(VkCommandBuffer cmd, const ViewDes
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_CLEAR_BIT,
                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    ScreenInputs screen;
-    screen.depth = depth_->view;
-    screen.width = kScreen;
-    screen.height = kScreen;
-    screen.view_projection = to_mat4(view_projection);
-    screen.background_depth = 0.0f;
+    ScreenInputs screen = depth_screen(view_projection);
     if (normals) {
         screen.normals = normals->view;
         screen.normal_encoding = encoding;
@@ -305,13 +310,7 @@ ScreenInputs LibraryTest::record_depth_image(VkCommandBuffer cmd, const ViewDesc
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    ScreenInputs screen;
-    screen.depth = depth_->view;
-    screen.width = kScreen;
-    screen.height = kScreen;
-    screen.view_projection = to_mat4(to_glm(reverse_z_projection(view)) * to_glm(view.view));
-    screen.background_depth = 0.0f;
-    return screen;
+    return depth_screen(to_glm(reverse_z_projection(view)) * to_glm(view.view));
 }
 
 VisibilityImage2D LibraryTest::render_visibility(ShadowSystem& shadows, uint32_t slot, const TestImage* normals,

@@ -121,6 +121,8 @@ protected:
     // screen inputs, ready for compute reads.
     ScreenInputs record_ground_depth(VkCommandBuffer cmd, const ViewDesc& view, const TestImage* normals,
                                      NormalEncoding encoding, const TestImage* face_normals);
+    // depth_ as the screen inputs of a view with `view_projection` (no normals).
+    ScreenInputs depth_screen(const glm::mat4& view_projection) const;
     // Copies `depths` (kScreen x kScreen reverse-Z values, row 0 first) from `staging` into
     // depth_ and returns it as the screen inputs of `view`, ready for compute reads.
     ScreenInputs record_depth_image(VkCommandBuffer cmd, const ViewDesc& view, const std::vector<float>& depths,

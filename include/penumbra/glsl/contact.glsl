@@ -26,9 +26,6 @@ struct PenumbraContactScreen {
     float background_depth;        // where nothing was drawn (never occludes)
 };
 
-const uint kPenumbraContactSun = 1u;
-const uint kPenumbraContactLocal = 2u;
-
 // A per-pixel offset in [0, 1) that moves with the frame (interleaved gradient noise).
 float penumbra_contact_jitter(vec2 pixel) {
     const vec2 moved = floor(pixel) + 5.588238 * float(penumbra_shadow.frame_index % 64u);
@@ -77,7 +74,7 @@ float penumbra_contact_toward(sampler2D depth_buffer, PenumbraContactScreen scre
 // no sun). `geometric_normal`: the surface's face normal, toward the camera.
 float penumbra_sun_contact(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
                            vec3 geometric_normal, vec2 pixel) {
-    if ((penumbra_shadow.contact_lights & kPenumbraContactSun) == 0u || penumbra_shadow.to_sun.w == 0.0) return 1.0;
+    if ((penumbra_shadow.contact_lights & PENUMBRA_CONTACT_SUN) == 0u || penumbra_shadow.to_sun.w == 0.0) return 1.0;
     return penumbra_contact_toward(depth_buffer, screen, world_position, geometric_normal, penumbra_shadow.to_sun.xyz,
                                    penumbra_shadow.contact_length, pixel);
 }
@@ -85,7 +82,7 @@ float penumbra_sun_contact(sampler2D depth_buffer, PenumbraContactScreen screen,
 // Spot or point light `index`'s contact visibility; the ray stops at the light.
 float penumbra_light_contact(uint index, sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
                              vec3 geometric_normal, vec2 pixel) {
-    if ((penumbra_shadow.contact_lights & kPenumbraContactLocal) == 0u || index >= penumbra_local.light_count)
+    if ((penumbra_shadow.contact_lights & PENUMBRA_CONTACT_LOCAL) == 0u || index >= penumbra_local.light_count)
         return 1.0;
     const vec3 to_light = penumbra_local.lights[index].position - world_position;
     const float distance = length(to_light);
