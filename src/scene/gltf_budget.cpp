@@ -101,9 +101,17 @@ uint64_t saturating_multiply(uint64_t a, uint64_t b) {
     return a * b;
 }
 
+bool positions_all_at_origin(const tinygltf::Model& model, const tinygltf::Primitive& primitive) {
+    const auto position = primitive.attributes.find("POSITION");
+    if (position == primitive.attributes.end() || !primitive.targets.empty()) return false;
+    if (position->second < 0 || static_cast<size_t>(position->second) >= model.accessors.size()) return false;
+    const tinygltf::Accessor& accessor = model.accessors[static_cast<size_t>(position->second)];
+    return accessor.bufferView < 0 && !accessor.sparse.isSparse;
+}
+
 GltfCost primitive_cost(const tinygltf::Model& model, const tinygltf::Primitive& primitive) {
     const auto position = primitive.attributes.find("POSITION");
-    if (position == primitive.attributes.end()) return {};
+    if (position == primitive.attributes.end() || positions_all_at_origin(model, primitive)) return {};
     const uint64_t vertices = plausible_count(model, position->second);
     const uint64_t index_count = primitive.indices >= 0 ? plausible_count(model, primitive.indices) : vertices;
     GltfCost cost;

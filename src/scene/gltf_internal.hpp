@@ -69,6 +69,11 @@ struct GltfCost {
     uint64_t triangles = 0;
     uint64_t bytes = 0;
 };
+// Whether every vertex of the primitive lies at the origin: its POSITION accessor has neither
+// a bufferView nor sparse values (glTF 2.0, 3.6.2.3: such an accessor is all zeros) and no
+// morph target moves it. Its triangles have no area, so converting it makes nothing and
+// nothing is read or expanded.
+bool positions_all_at_origin(const tinygltf::Model& model, const tinygltf::Primitive& primitive);
 // What converting a primitive makes, from its accessors' counts alone: its triangles (a
 // list's indices / 3, a strip's or fan's indices - 2, none for points and lines) and the
 // bytes of its vertices and 32-bit index list. Accessors that do not exist count nothing:

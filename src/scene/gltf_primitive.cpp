@@ -109,6 +109,8 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
 
     const int position_accessor = find_attribute(primitive, "POSITION");
     if (position_accessor < 0) source.fail(where + ".attributes", "no POSITION attribute");
+    // Checked before reading: such an accessor's count is not bounded by the file's size.
+    if (positions_all_at_origin(source.model, primitive)) return std::nullopt;
     std::vector<glm::vec3> positions =
         read_vec3_accessor(source, position_accessor, GltfAttribute::Position, where + ".attributes.POSITION");
     std::optional<std::vector<glm::vec3>> normals;
@@ -119,13 +121,16 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
     apply_morph_targets(source, primitive, options.morph_weights, positions, normals, where);
 
     Mesh mesh;
-    mesh.vertices.resize(positions.size());
-    for (size_t i = 0; i < positions.size(); ++i) mesh.vertices[i].position = positions[i];
     mesh.indices = read_triangle_list(source, primitive, positions.size(), where);
+    const std::optional<std::vector<uint32_t>> kept = drop_degenerate_triangles(positions, mesh.indices);
     if (mesh.indices.empty()) return std::nullopt;  // nothing to draw; spare the renderer empty buffers
+    // The accessor element each vertex of the mesh comes from.
+    const auto element = [&](size_t vertex) { return kept ? size_t{(*kept)[vertex]} : vertex; };
+    mesh.vertices.resize(kept ? kept->size() : positions.size());
+    for (size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i].position = positions[element(i)];
 
     if (normals) {
-        for (size_t i = 0; i < normals->size(); ++i) mesh.vertices[i].normal = (*normals)[i];
+        for (size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i].normal = (*normals)[element(i)];
     } else {
         // glTF says flat normals when NORMAL is absent; smooth ones look better on the
         // organic models we load and make no difference to shadows.
@@ -138,8 +143,8 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
         const std::vector<glm::vec2> uvs =
             read_texcoord_accessor(source, uv_accessor, where + ".attributes." + uv_name);
         require_same_count(source, uvs.size(), positions.size(), where + ".attributes." + uv_name);
-        for (size_t i = 0; i < uvs.size(); ++i) {
-            mesh.vertices[i].uv = glm::vec2{options.uv_transform * glm::vec3{uvs[i], 1.0f}};
+        for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+            mesh.vertices[i].uv = glm::vec2{options.uv_transform * glm::vec3{uvs[element(i)], 1.0f}};
         }
     } else if (options.uv_set != 0) {
         source.fail(where + ".attributes",

@@ -1,5 +1,6 @@
 #include "scene/mesh_tools.hpp"
 
+#include <glm/geometric.hpp>
 #include <utility>
 
 namespace penumbra {
@@ -8,6 +9,32 @@ Aabb compute_mesh_bounds(const std::vector<Vertex>& vertices) {
     Aabb bounds;
     for (const Vertex& vertex : vertices) bounds.expand(vertex.position);
     return bounds;
+}
+
+std::optional<std::vector<uint32_t>> drop_degenerate_triangles(const std::vector<glm::vec3>& positions,
+                                                               std::vector<uint32_t>& indices) {
+    const auto has_area = [&](size_t first) {
+        const glm::vec3& a = positions[indices[first]];
+        return glm::cross(positions[indices[first + 1]] - a, positions[indices[first + 2]] - a) != glm::vec3{0.0f};
+    };
+    size_t kept_corners = 0;
+    for (size_t first = 0; first + 2 < indices.size(); first += 3) {
+        if (!has_area(first)) continue;
+        for (size_t corner = 0; corner < 3; ++corner) indices[kept_corners++] = indices[first + corner];
+    }
+    if (kept_corners == indices.size()) return std::nullopt;
+    indices.resize(kept_corners);
+    constexpr uint32_t kUnused = ~uint32_t{0};
+    std::vector<uint32_t> new_index(positions.size(), kUnused);
+    std::vector<uint32_t> old_index;
+    for (uint32_t& index : indices) {
+        if (new_index[index] == kUnused) {
+            new_index[index] = static_cast<uint32_t>(old_index.size());
+            old_index.push_back(index);
+        }
+        index = new_index[index];
+    }
+    return old_index;
 }
 
 void compute_smooth_normals(std::vector<Vertex>& vertices, const std::vector<uint32_t>& indices) {

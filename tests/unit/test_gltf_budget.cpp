@@ -145,37 +145,75 @@ TEST_F(GltfBudget, DecompressionBombsAreRefusedFromTheirHeaders) {
                 HasSubstr("images[0]: not a PNG or JPEG image, or its header is cut short"));
 }
 
-// A model of zeros: `primitives` primitives, each reading one accessor of `count` VEC3s
-// without a buffer view (all zeros, so 267 bytes describe 5.6 M triangles), placed by
-// `nodes` nodes.
-std::string zeros_model(int primitives, int nodes, size_t count) {
+// A model whose `primitives` primitives read one accessor of `count` VEC3s without a buffer
+// view, placed by `nodes` nodes. Without `sparse` the accessor is all zeros (about 250
+// bytes describing 5.6 M triangles); with it, its first three elements are a triangle's
+// corners read from sparse.bin (48 bytes: the indices 0, 1, 2 and three points), so the
+// count's triangles are real to the counting and one of them has area.
+std::string zeros_model(int primitives, int nodes, size_t count, bool sparse = false) {
     std::string text = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)";
     for (int n = 0; n < nodes; ++n) text += (n ? "," : "") + std::to_string(n);
     text += "]}],\"nodes\":[";
     for (int n = 0; n < nodes; ++n) text += std::string(n ? "," : "") + R"({"mesh":0})";
     text += R"(],"meshes":[{"primitives":[)";
     for (int p = 0; p < primitives; ++p) text += std::string(p ? "," : "") + R"({"attributes":{"POSITION":0}})";
-    return text + R"(]}],"accessors":[{"componentType":5126,"count":)" + std::to_string(count) + R"(,"type":"VEC3"}]})";
+    text += R"(]}],"accessors":[{"componentType":5126,"count":)" + std::to_string(count) + R"(,"type":"VEC3")";
+    if (!sparse) return text + "}]}";
+    return text +
+           R"(,"sparse":{"count":3,"indices":{"bufferView":0,"componentType":5125},"values":{"bufferView":1}}}],)"
+           R"("buffers":[{"uri":"sparse.bin","byteLength":48}],"bufferViews":[)"
+           R"({"buffer":0,"byteLength":12},{"buffer":0,"byteOffset":12,"byteLength":36}]})";
+}
+
+std::string sparse_triangle_bytes() {
+    const std::array<uint32_t, 3> indices = {0, 1, 2};
+    const std::array<float, 9> corners = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::string bytes(reinterpret_cast<const char*>(indices.data()), sizeof(indices));
+    return bytes + std::string(reinterpret_cast<const char*>(corners.data()), sizeof(corners));
 }
 
 constexpr size_t kZeros = (size_t{1} << 24) - 1;  // whole triangles: 5,592,405
 
-// Issue 32, item 7: 8 such primitives made 9.8 GB; 64 nodes placing one ran past 2 minutes.
-// Both are refused from the counts, in well under a second.
+// Issue 32, item 7: a primitive of 2^24 zeros made 5.6 M triangles and 2.3 GB; 8 made 9.8
+// GB; 64 nodes placing one ran past 2 minutes. An accessor of zeros alone makes triangles
+// without area, which draw nothing: it is skipped unread. With a few sparse points over the
+// zeros the counts are refused before expanding, in well under a second.
 TEST_F(GltfBudget, GeometryBombsAreRefusedBeforeExpanding) {
-    EXPECT_THAT(load_error(write("eight.gltf", zeros_model(8, 1, kZeros))),
+    write("sparse.bin", sparse_triangle_bytes());
+    EXPECT_THAT(load_error(write("eight.gltf", zeros_model(8, 1, kZeros, true))),
                 HasSubstr("meshes: would make 44739240 triangles as placed, over the load budget of 33554432 "
                           "(LoadBudget::max_triangles raises it); refused before converting them"));
     EXPECT_LT(seconds_, 1.0);
-    EXPECT_THAT(load_error(write("nodes.gltf", zeros_model(1, 64, kZeros))),
+    EXPECT_THAT(load_error(write("nodes.gltf", zeros_model(1, 64, kZeros, true))),
                 HasSubstr("would make 357913920 triangles as placed"));
     EXPECT_LT(seconds_, 1.0);
     // Two primitives stay under the triangles but not the bytes: 2 x (2^24 - 1) vertices of
     // 32 bytes and 2 x 16,777,215 indices of 4.
-    EXPECT_THAT(load_error(write("two.gltf", zeros_model(2, 1, kZeros))),
+    EXPECT_THAT(load_error(write("two.gltf", zeros_model(2, 1, kZeros, true))),
                 HasSubstr("meshes: images and meshes would take 1207959480 bytes, over the load budget of "
                           "1073741824 bytes (LoadBudget::max_bytes raises it)"));
     EXPECT_LT(seconds_, 1.0);
+}
+
+// Triangles without area rasterise nothing: the loader keeps only those with area and the
+// vertices they use, so the sparse bomb within the budget holds one triangle, and the zeros
+// alone, however often placed, hold nothing and are not read.
+TEST_F(GltfBudget, TrianglesWithoutAreaAreNotKept) {
+    write("sparse.bin", sparse_triangle_bytes());
+    Scene scene;
+    append_gltf(scene, write("one.gltf", zeros_model(1, 1, kZeros, true)), {glm::mat4{1.0f}});
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2}));
+    ASSERT_EQ(scene.meshes[0].vertices.size(), 3u);
+    EXPECT_EQ(scene.meshes[0].vertices[2].position, glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(scene.triangle_count(), 1u);
+
+    const auto start = std::chrono::steady_clock::now();
+    Scene zeros;
+    append_gltf(zeros, write("zeros.gltf", zeros_model(8, 64, kZeros)), {glm::mat4{1.0f}});
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+    EXPECT_TRUE(zeros.meshes.empty());
+    EXPECT_EQ(zeros.triangle_count(), 0u);
 }
 
 // The budget counts each placement's triangles, and what the scene held before the model.

@@ -148,5 +148,20 @@ TEST(MeshTools, ReverseWindingSwapsTheLastTwoCorners) {
     EXPECT_EQ(indices, (std::vector<uint32_t>{0, 2, 1, 3, 5, 4}));
 }
 
+// A repeated corner, three corners on a line and a real triangle: only the last is kept,
+// numbered from its first corner, and the vertices only the others used go.
+TEST(MeshTools, DegenerateTrianglesAndTheirVerticesAreDropped) {
+    const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {5, 5, 5}};
+    std::vector<uint32_t> indices{0, 1, 1, 0, 1, 2, 3, 1, 0};
+    const std::optional<std::vector<uint32_t>> kept = drop_degenerate_triangles(positions, indices);
+    ASSERT_TRUE(kept);
+    EXPECT_EQ(*kept, (std::vector<uint32_t>{3, 1, 0}));
+    EXPECT_EQ(indices, (std::vector<uint32_t>{0, 1, 2}));
+
+    std::vector<uint32_t> whole{0, 1, 3};
+    EXPECT_FALSE(drop_degenerate_triangles(positions, whole)) << "nothing dropped, nothing renumbered";
+    EXPECT_EQ(whole, (std::vector<uint32_t>{0, 1, 3}));
+}
+
 }  // namespace
 }  // namespace penumbra
