@@ -142,7 +142,16 @@ bool quad_spans_cascades(ivec2 pixel, float depth, vec3 position, vec3 face_norm
     return false;
 }
 
+// The caller's world -> clip for contact shadows, inverted once per workgroup rather than
+// once per pixel.
+shared mat4 contact_view_projection;
+
 void main() {
+    const bool contact = penumbra_shadow.contact_lights != 0u;  // a uniform: the same for every invocation
+    if (contact) {
+        if (gl_LocalInvocationIndex == 0u) contact_view_projection = inverse(resolve.inverse_view_projection);
+        barrier();
+    }
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(resolve.width) || pixel.y >= int(resolve.height)) return;
     const float depth = depth_at(pixel);
@@ -191,11 +200,10 @@ void main() {
     }
     // Contact shadows (Settings::contact) trace this depth buffer from the visible side of
     // the surface; the visibility is the darker of the map's and the trace's.
-    const bool contact = penumbra_shadow.contact_lights != 0u;
     PenumbraContactScreen screen;
     vec3 contact_normal = plane_normal;
     if (contact) {
-        screen = PenumbraContactScreen(inverse(resolve.inverse_view_projection), resolve.inverse_view_projection,
+        screen = PenumbraContactScreen(contact_view_projection, resolve.inverse_view_projection,
                                        vec2(resolve.width, resolve.height), resolve.background_depth);
         if (dot(contact_normal, to_camera) < 0.0) contact_normal = -contact_normal;
     }

@@ -21,6 +21,12 @@ namespace penumbra::compare {
 constexpr uint32_t kMaxRays = 4096;
 constexpr uint32_t kMaxStabilityFrames = 64;
 constexpr uint32_t kMaxEdgeBand = 64;
+// The contact metrics (quality::ContactMetrics, sun only): a shadowed pixel is beside a
+// contact when its occluder lies within kContactReachMetres along the ray to the sun (the
+// scale that shadow maps' biases and texels lose and Settings::contact's default length),
+// and the band counts the pixels within kContactBandPixels of one.
+constexpr float kContactReachMetres = 0.25f;
+constexpr uint32_t kContactBandPixels = 4;
 
 // A spot light's pixels count where its cone factor exceeds this: the render's shadow term
 // is the AOV divided by the cone (docs/QUALITY.md), which the faintest rim would amplify.
@@ -83,6 +89,7 @@ struct CompareResult {
     float nearest_texel_world_size = 0.0f;  // cascade 0 under the stable fit: the unit of the camera motions
     PixelCounts pixels;
     quality::HardShadowMetrics hard;
+    quality::ContactMetrics contact;  // sun only (zero for a spot or point light)
     quality::SoftShadowMetrics soft;
     quality::StabilityMetrics stability;
     quality::SamplingNoise sampling_noise;  // frame 0 rendered again with its pattern rotated

@@ -39,7 +39,11 @@ Json settings_json(const RenderSettings& settings) {
             {"slope_bias", shadow.bias.slope},
             {"bias_clamp", shadow.bias.clamp},
             {"normal_offset", shadow.bias.normal_offset},
-            {"blend_width", shadow.blend_width}};
+            {"blend_width", shadow.blend_width},
+            {"contact_shadows", settings.contact.enabled},
+            {"contact_length", settings.contact.length},
+            {"contact_steps", settings.contact.steps},
+            {"contact_thickness", settings.contact.thickness}};
 }
 
 Json class_json(const quality::ClassError& error) {
@@ -52,6 +56,15 @@ Json hard_json(const quality::HardShadowMetrics& hard) {
             {"false_shadow_outside_edges", class_json(hard.false_shadow_outside_edges)},
             {"false_lit_outside_edges", class_json(hard.false_lit_outside_edges)},
             {"boundary_pixels", hard.boundary_pixels}};
+}
+
+Json contact_json(const quality::ContactMetrics& contact) {
+    return {{"reach_m", kContactReachMetres},
+            {"band_px", kContactBandPixels},
+            {"contact_pixels", contact.contact_pixels},
+            {"band_pixels", contact.band_pixels},
+            {"false_lit", class_json(contact.false_lit)},
+            {"false_shadow", class_json(contact.false_shadow)}};
 }
 
 Json soft_json(const quality::SoftShadowMetrics& soft) {
@@ -139,6 +152,14 @@ std::string format_compare_summary(const CompareResult& result) {
                   hard.false_lit_outside_edges.percent(), soft.mean_abs_error, soft.p95_abs_error,
                   soft.edge_mean_abs_error, soft.penumbra_width_render_px, soft.penumbra_width_reference_px);
     std::string summary = text;
+    if (result.contact.band_pixels > 0) {
+        std::snprintf(text, sizeof(text),
+                      "  near contacts (%u px of %llu pixels shadowed within %.2f m): false lit %.3f%%, false shadow "
+                      "%.3f%%\n",
+                      kContactBandPixels, static_cast<unsigned long long>(result.contact.contact_pixels),
+                      kContactReachMetres, result.contact.false_lit.percent(), result.contact.false_shadow.percent());
+        summary += text;
+    }
     std::snprintf(text, sizeof(text), "  shadowed: %.2f%% of the evaluated pixels in the reference\n",
                   result.pixels.shadowed_percent());
     summary += text;
@@ -180,6 +201,7 @@ std::string compare_json(const CompareResult& result) {
         {"reference", reference_json(result)},
         {"pixels", pixels_json(result.pixels)},
         {"hard", hard_json(result.hard)},
+        {"contact", contact_json(result.contact)},
         {"soft", soft_json(result.soft)},
         {"stability", stability_json(result.stability)},
         {"stability_note", result.stability_note.empty() ? Json(nullptr) : Json(result.stability_note)},

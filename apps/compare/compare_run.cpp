@@ -39,6 +39,7 @@ struct CapturedFrame {
     std::vector<float> rendered;
     std::vector<uint8_t> hard;
     std::vector<uint8_t> evaluated;
+    std::vector<uint8_t> contact;  // quality::ReferenceImages::contact (frame 0, sun only)
     std::vector<glm::vec4> positions;
     FrameCamera camera;
 };
@@ -188,6 +189,7 @@ CapturedFrame capture(renderer::FrameImages& images, const quality::ShadowRayTra
                            : quality::trace_reference(tracer, surfaces, target.sun);
     frame.positions = std::move(surfaces.positions);
     frame.hard = std::move(reference.hard);
+    frame.contact = std::move(reference.contact);
     if (soft) *soft = std::move(reference.soft);
     return frame;
 }
@@ -261,7 +263,7 @@ std::vector<CapturedFrame> render_and_trace(const CompareJob& job, const Prepare
         // Stability measures the shadow map's own changes under camera motion: the Poisson
         // and PCSS patterns, which otherwise rotate every frame, stay as in frame 0.
         renderer.fix_sampling_pattern(0);
-        TraceTarget target{{result.to_sun, result.sun_angular_diameter_degrees, job.rays},
+        TraceTarget target{{result.to_sun, result.sun_angular_diameter_degrees, job.rays, kContactReachMetres},
                            result.local_light ? &*result.local_light : nullptr};
         const uint32_t frame_count = result.local_light ? 1 : job.stability_frames;
         for (uint32_t k = 0; k < frame_count; ++k) {
@@ -291,6 +293,7 @@ std::vector<CapturedFrame> render_and_trace(const CompareJob& job, const Prepare
                 result.sampling_noise = rotated_pattern_noise(renderer, camera, frames.back());
             }
             target.sun.rays = 0;  // later frames: the hard reference only
+            target.sun.contact_reach = 0.0f;
         }
     }
     // Checked after the device and instance are gone, so leak reports count too.
@@ -309,6 +312,7 @@ void measure(std::vector<CapturedFrame>& frames, const CompareJob& job, CompareR
         quality::shadow_boundary(frame.width, frame.height, frame.hard, frame.evaluated);
     const std::vector<uint8_t> band = quality::edge_band(frame.width, frame.height, boundary, job.edge_band);
     result.hard = quality::hard_shadow_metrics(frame, boundary, band);
+    result.contact = quality::contact_metrics(frame, frames[0].contact, kContactBandPixels);
     result.pixels.shadowed = 0;
     for (size_t i = 0; i < frame.hard.size(); ++i) result.pixels.shadowed += frame.evaluated[i] && frame.hard[i] == 0;
     result.soft = quality::soft_shadow_metrics(frame, boundary, band);

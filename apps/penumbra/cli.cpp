@@ -88,7 +88,8 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
         job.aov = Aov::Shadow;
         job.aov_light = parse_light_index(raw.aov.substr(7), "--aov");
     } else if (!raw.aov.empty()) {
-        job.aov = parse_choice<Aov>(raw.aov, "--aov", {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}});
+        job.aov = parse_choice<Aov>(raw.aov, "--aov",
+                                    {{"shadow", Aov::Shadow}, {"cascade", Aov::Cascade}, {"contact", Aov::Contact}});
     }
     if (!raw.debug.empty() && !raw.aov.empty()) {
         throw InputError("--aov and --debug: choose one (an AOV replaces the image that --debug tints)");
@@ -185,7 +186,8 @@ Command parse_command_line(int argc, char** argv) {
     render->add_option("-o,--output", job.output, "Output PNG (default penumbra.png)");
     render->add_option(
         "--aov", raw.aov,
-        "Write an AOV instead of colour: shadow (16-bit sun visibility) | shadow:N (light N of [[lights]]) | cascade");
+        "Write an AOV instead of colour: shadow (16-bit sun visibility) | shadow:N (light N of [[lights]]) | cascade | "
+        "contact (16-bit, the sun's contact shadows alone)");
     render->add_option("--debug", raw.debug,
                        "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side)");
 

@@ -42,6 +42,7 @@ ReferenceImages trace_reference(const ShadowRayTracer& tracer, const SurfaceImag
     ReferenceImages images;
     images.hard.assign(pixels, 1);
     if (options.rays > 0) images.soft.assign(pixels, 1.0f);
+    if (options.contact_reach > 0.0f) images.contact.assign(pixels, 0);
     const SunDisk sun(options.to_sun, options.angular_diameter_degrees);
     parallel_rows(
         surfaces.height,
@@ -58,6 +59,9 @@ ReferenceImages trace_reference(const ShadowRayTracer& tracer, const SurfaceImag
                 }
                 const glm::vec3 origin = shadow_ray_origin(glm::vec3(position), glm::vec3(normal));
                 images.hard[pixel] = tracer.occluded(origin, sun.center()) ? 0 : 1;
+                if (images.hard[pixel] == 0 && options.contact_reach > 0.0f) {
+                    images.contact[pixel] = tracer.occluded(origin, sun.center(), options.contact_reach) ? 1 : 0;
+                }
                 if (options.rays > 0) {
                     images.soft[pixel] =
                         soft_visibility(tracer, sun, origin, options.rays, static_cast<uint32_t>(pixel));

@@ -26,13 +26,19 @@ struct SurfaceImage {
 struct ReferenceOptions {
     glm::vec3 to_sun{0.0f, 1.0f, 0.0f};  // unit direction toward the sun
     float angular_diameter_degrees = 0.53f;
-    uint32_t rays = 64;    // soft reference rays per pixel; 0 = hard reference only
+    uint32_t rays = 64;  // soft reference rays per pixel; 0 = hard reference only
+    // Metres: pixels the hard ray finds shadowed by an occluder nearer than this are also
+    // marked as contact pixels (ReferenceImages::contact); 0 = none.
+    float contact_reach = 0.0f;
     RowProgress progress;  // optional: rows traced so far (on the calling thread)
 };
 
 struct ReferenceImages {
     std::vector<uint8_t> hard;  // 1 lit, 0 shadowed
     std::vector<float> soft;    // [0, 1]; empty with rays = 0
+    // 1 where the occluder of the hard ray lies within ReferenceOptions::contact_reach: the
+    // shadow right beside a contact between caster and receiver. Empty with no reach.
+    std::vector<uint8_t> contact;
 };
 
 // True where the pixel has geometry and its normal faces the sun.

@@ -97,6 +97,23 @@ HardShadowMetrics hard_shadow_metrics(const VisibilityComparison& frame, std::sp
     return metrics;
 }
 
+ContactMetrics contact_metrics(const VisibilityComparison& frame, std::span<const uint8_t> contact, uint32_t band_px) {
+    ContactMetrics metrics;
+    if (contact.empty()) return metrics;
+    const std::vector<uint32_t> distance = chessboard_distance(frame.width, frame.height, contact);
+    for (size_t i = 0; i < frame.evaluated.size(); ++i) {
+        if (!frame.evaluated[i]) continue;
+        metrics.contact_pixels += contact[i];
+        if (distance[i] > band_px) continue;
+        metrics.band_pixels += 1;
+        const bool rendered_lit = frame.rendered[i] >= kShadowedBelow;
+        ClassError& error = frame.hard[i] ? metrics.false_shadow : metrics.false_lit;
+        error.truth_pixels += 1;
+        error.wrong_pixels += frame.hard[i] ? !rendered_lit : rendered_lit;
+    }
+    return metrics;
+}
+
 namespace {
 
 bool in_penumbra(float visibility) { return visibility > kPenumbraLow && visibility < kPenumbraHigh; }

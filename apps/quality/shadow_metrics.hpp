@@ -61,6 +61,19 @@ struct HardShadowMetrics {
 HardShadowMetrics hard_shadow_metrics(const VisibilityComparison& frame, std::span<const uint8_t> boundary,
                                       std::span<const uint8_t> band);
 
+// The shadows beside contacts, which shadow maps' biases and texels lose first and contact
+// shadows are for: "contact pixels" are evaluated pixels the hard reference shadows with an
+// occluder within a short reach (ReferenceImages::contact); the band is every evaluated
+// pixel within `band_px` (chessboard) of one, on both sides of the contact line.
+struct ContactMetrics {
+    uint64_t contact_pixels = 0;
+    uint64_t band_pixels = 0;
+    ClassError false_lit;     // shadowed in truth, lit in the render, in the band
+    ClassError false_shadow;  // lit in truth, shadowed in the render, in the band
+};
+
+ContactMetrics contact_metrics(const VisibilityComparison& frame, std::span<const uint8_t> contact, uint32_t band_px);
+
 struct SoftShadowMetrics {
     double mean_abs_error = 0.0;       // |rendered - soft reference| over evaluated pixels
     double p95_abs_error = 0.0;        // its 95th percentile

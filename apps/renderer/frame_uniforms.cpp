@@ -43,6 +43,9 @@ shader::FrameUniforms build_frame_uniforms(const ViewDesc& view, const Scene& sc
     shader::FrameUniforms frame{};
     const glm::mat4 view_matrix = to_glm(view.view);
     frame.view_projection = to_glm(reverse_z_projection(view)) * view_matrix;
+    frame.inverse_view_projection = glm::inverse(frame.view_projection);
+    frame.screen = glm::vec4(static_cast<float>(settings.width), static_cast<float>(settings.height),
+                             0.0f /* the pre-pass's reverse-Z far */, 0.0f);
     frame.camera_position = glm::vec4(glm::vec3(glm::inverse(view_matrix)[3]), 1.0f);
     if (const Light* sun = first_directional(scene.lights)) {
         frame.to_sun = glm::vec4(-glm::normalize(sun->direction), 1.0f);
@@ -50,7 +53,9 @@ shader::FrameUniforms build_frame_uniforms(const ViewDesc& view, const Scene& sc
     }
     frame.ambient = glm::vec4(scene.ambient, 0.0f);
     frame.debug_view = settings.debug == DebugView::Cascades ? RENDERER_DEBUG_VIEW_CASCADES : RENDERER_DEBUG_VIEW_NONE;
-    frame.visibility_light = visibility_slot(scene.lights, settings.visibility_light);
+    frame.visibility_light = settings.visibility_light == kVisibilityContact
+                                 ? RENDERER_VISIBILITY_CONTACT
+                                 : visibility_slot(scene.lights, settings.visibility_light);
     frame.local_light_count = static_cast<uint32_t>(lit_local_lights(scene.lights).size());
     return frame;
 }

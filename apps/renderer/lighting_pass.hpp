@@ -5,7 +5,9 @@
 // sampled here through Penumbra's descriptor set and GLSL library (set 2), over a
 // reverse-Z depth buffer of its own; with ShadowResolve::Deferred it draws over the
 // ScreenPrepass's depth with an equal test and reads each light's shadow from the
-// ShadowSystem's visibility image (set 3).
+// ShadowSystem's visibility image (set 3). With contact shadows it always draws over the
+// pre-pass's depth, which it also samples (set 3): forward, to trace them per fragment with
+// penumbra_sun_contact() / penumbra_light_contact(); either way, for `--aov contact`.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -24,18 +26,19 @@ struct LightingTargets {
     gpu::Image color;       // R8G8B8A8_SRGB
     gpu::Image visibility;  // R16_UNORM, 1 where no geometry
     gpu::Image cascade;     // R8_UINT, RENDERER_NO_CASCADE where none applies
-    gpu::Image depth;       // D32_SFLOAT, reverse-Z (forward only: deferred tests the pre-pass's)
+    gpu::Image depth;       // D32_SFLOAT, reverse-Z (only without a pre-pass: else the pass tests its depth)
 };
 
 class LightingPass {
 public:
     // Set 0 is `frame_set_layout` (the renderer's frame uniforms and lights), set 1 the
     // materials, set 2 the ShadowSystem's descriptor set (set 3 the visibility image when
-    // deferred); the fragment shader is specialized with the ShadowSystem's filter constants.
-    // Deferred, `prepass_depth` is the ScreenPrepass's depth, which the pass tests against.
+    // deferred or with contact shadows); the fragment shader is specialized with the
+    // ShadowSystem's filter constants. Deferred or with `contact_shadows`, `prepass_depth` is
+    // the ScreenPrepass's depth, which the pass tests against (and samples for contact).
     LightingPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                  VkDescriptorSetLayout material_set_layout, const ShadowSystem& shadows, uint32_t width,
-                 uint32_t height, ShadowResolve resolve, const gpu::Image* prepass_depth);
+                 uint32_t height, ShadowResolve resolve, bool contact_shadows, const gpu::Image* prepass_depth);
 
     const LightingTargets& targets() const { return targets_; }
 
@@ -55,9 +58,9 @@ private:
     uint32_t width_;
     uint32_t height_;
     ShadowResolve resolve_;
-    const gpu::Image* prepass_depth_;
+    const gpu::Image* prepass_depth_;  // null: the pass has a depth buffer of its own
     LightingTargets targets_;
-    gpu::UniqueDescriptorSetLayout screen_set_layout_;  // deferred: set 3
+    gpu::UniqueDescriptorSetLayout screen_set_layout_;  // deferred or contact: set 3
     gpu::UniqueDescriptorPool screen_pool_;
     VkDescriptorSet screen_set_ = VK_NULL_HANDLE;
     VkImageView visibility_view_ = VK_NULL_HANDLE;  // what screen_set_ points at

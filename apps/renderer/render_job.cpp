@@ -24,6 +24,7 @@ std::pair<uint32_t, uint32_t> write_output(const RenderJob& job, const renderer:
             write_png_rgba8(job.output, images.width, images.height, images.color_rgba8);
             break;
         case Aov::Shadow:
+        case Aov::Contact:
             write_png_gray16(job.output, images.width, images.height, images.visibility);
             break;
         case Aov::Cascade:
@@ -33,8 +34,10 @@ std::pair<uint32_t, uint32_t> write_output(const RenderJob& job, const renderer:
     return {images.width, images.height};
 }
 
-// The light whose visibility `--aov shadow:N` writes, checked against the scene: -1 for the sun.
+// The light whose visibility `--aov shadow:N` writes, checked against the scene: -1 for the
+// sun; with `--aov contact`, kVisibilityContact.
 int32_t aov_light_index(const RenderJob& job, const Scene& scene) {
+    if (job.aov == Aov::Contact) return kVisibilityContact;
     if (job.aov_light < 0) return -1;
     const std::string flag = "--aov shadow:" + std::to_string(job.aov_light);
     if (static_cast<size_t>(job.aov_light) >= scene.lights.size()) {
@@ -72,6 +75,9 @@ PreparedJob prepare_render_job(const RenderJob& job) {
     prepared.settings.debug = job.debug;
     prepared.settings.visibility_light = aov_light_index(job, prepared.scene);
     validate_render_settings(prepared.settings, "command line");
+    if (job.aov == Aov::Contact && !(prepared.settings.contact.enabled && prepared.settings.contact.sun)) {
+        throw InputError("--aov contact: the sun's contact shadows are off (--contact-shadows turns them on)");
+    }
     validate_camera_and_sun(prepared.scene, "command line");
     return prepared;
 }

@@ -20,6 +20,7 @@ enum class Aov {
     None,     // the tone-mapped colour image (8-bit sRGB RGBA)
     Shadow,   // the sun's visibility, 16-bit gray: 65535 lit, 0 shadowed or facing away
     Cascade,  // the cascade index, 8-bit gray: 0 nearest, 255 none
+    Contact,  // the sun's contact-shadow term alone, as Shadow (needs contact shadows on)
 };
 
 // The default LoadBudget, its messages naming the flags that raise it.

@@ -126,8 +126,9 @@ struct Renderer::Resources {
     gpu::UniqueDescriptorPool descriptor_pool;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
     ShadowResolve resolve;  // Forward or Deferred: settings.resolve made effective
-    // With ShadowResolve::Deferred, and with the virtual shadow map (its pages are marked
-    // from the frame's depth before the shadow maps are drawn).
+    // With ShadowResolve::Deferred, with the virtual shadow map (its pages are marked from
+    // the frame's depth before the shadow maps are drawn) and with contact shadows (traced
+    // through its depth, by the resolve or by the lighting pass).
     std::unique_ptr<ScreenPrepass> prepass;
     bool marks_pages = false;  // Settings::shadow.technique = virtual
     LightingPass lighting_pass;
@@ -148,14 +149,16 @@ struct Renderer::Resources {
                                     gpu::MemoryKind::HostUpload)),
           resolve(effective_resolve(settings.resolve, settings.shadow.filter.mode, casts_local_shadows(scene),
                                     uint64_t{settings.width} * settings.height, settings.contact.enabled)),
-          prepass(resolve == ShadowResolve::Deferred || settings.shadow.technique == ShadowTechnique::Virtual
+          prepass(resolve == ShadowResolve::Deferred || settings.shadow.technique == ShadowTechnique::Virtual ||
+                          settings.contact.enabled
                       ? std::make_unique<ScreenPrepass>(context, frame_set_layout,
                                                         gpu_scene.draw_data().material_set_layout, settings.width,
                                                         settings.height)
                       : nullptr),
-          lighting_pass(context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
-                        settings.height, resolve,
-                        resolve == ShadowResolve::Deferred ? &prepass->targets().depth : nullptr),
+          lighting_pass(
+              context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
+              settings.height, resolve, settings.contact.enabled,
+              resolve == ShadowResolve::Deferred || settings.contact.enabled ? &prepass->targets().depth : nullptr),
           readback(create_readback(context, settings)),
           commands(context),
           timer(context, kMaxTimedScopes) {
@@ -197,11 +200,10 @@ const gpu::Image& Renderer::color_target() const { return resources_->lighting_p
 
 bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next) {
     const auto is_shadow_map = [](DebugView view) { return view == DebugView::ShadowMap; };
-    // Contact shadows make the automatic resolve deferred (effective_resolve()).
-    const bool auto_resolve_changes =
-        next.resolve == ShadowResolve::Auto && current.contact.enabled != next.contact.enabled;
+    // Contact shadows need the depth pre-pass and the lighting pass's variant that reads it
+    // (and make the automatic resolve deferred).
     return current.width != next.width || current.height != next.height || current.resolve != next.resolve ||
-           auto_resolve_changes || requires_recreation(current, next) ||
+           current.contact.enabled != next.contact.enabled || requires_recreation(current, next) ||
            is_shadow_map(current.debug) != is_shadow_map(next.debug);
 }
 

@@ -16,7 +16,8 @@ const std::map<std::string, ShadowResolve>& shadow_resolve_names() { return choi
 ShadowResolve effective_resolve(ShadowResolve resolve, ShadowFilter filter, bool local_shadow_casters, uint64_t pixels,
                                 bool contact_shadows) {
     if (resolve != ShadowResolve::Auto) return resolve;
-    if (contact_shadows) return ShadowResolve::Deferred;  // traced by the compute resolve
+    // Both paths then need the depth pre-pass; compute traces it faster than fragments do.
+    if (contact_shadows) return ShadowResolve::Deferred;
     const bool many_taps =
         filter == ShadowFilter::Pcf || filter == ShadowFilter::Poisson || filter == ShadowFilter::Pcss;
     return many_taps && (pixels >= kDeferredMinPixels || local_shadow_casters) ? ShadowResolve::Deferred
@@ -29,13 +30,6 @@ void validate_render_settings(const RenderSettings& settings, const std::string&
         if (!problem.empty()) throw InputError(origin + ": " + setting.name + ": " + problem);
     }
     validate_settings(settings, origin);
-    // The tools trace contact shadows in the compute resolve only: with forward shading they
-    // would be silently absent.
-    if (settings.contact.enabled && settings.resolve == ShadowResolve::Forward) {
-        throw InputError(origin +
-                         ": contact_shadows: traced by the deferred resolve only; use resolve deferred "
-                         "or auto (forward shading does not trace them yet)");
-    }
 }
 
 }  // namespace penumbra

@@ -108,6 +108,35 @@ TEST(QualityMetrics, LeakCountsAsFalseLit) {
     EXPECT_NEAR(hard.false_lit.percent(), 100.0 / 80.0, 1e-9);
 }
 
+// Columns 0-7 shadowed in truth; column 0 is the contact (its occluder within reach). The
+// band of 2 px covers columns 0-2; a render that loses the shadow in columns 0-1 (and in
+// column 6, outside the band) is wrong in 2 of the band's 3 columns.
+TEST(QualityMetrics, ContactBandCountsOnlyThePixelsNearAContact) {
+    VisibilityComparison frame = split_frame(20, 10, 8);
+    std::vector<uint8_t> contact(frame.hard.size(), 0);
+    for (uint32_t y = 0; y < frame.height; ++y) {
+        contact[size_t{y} * frame.width] = 1;
+        frame.rendered[size_t{y} * frame.width] = 1.0f;      // lost at the contact
+        frame.rendered[size_t{y} * frame.width + 1] = 1.0f;  // and beside it
+        frame.rendered[size_t{y} * frame.width + 6] = 1.0f;  // far from it: not in the band
+    }
+    const ContactMetrics metrics = contact_metrics(frame, contact, 2);
+    EXPECT_EQ(metrics.contact_pixels, 10u);
+    EXPECT_EQ(metrics.band_pixels, 30u);
+    EXPECT_EQ(metrics.false_lit.truth_pixels, 30u);
+    EXPECT_EQ(metrics.false_lit.wrong_pixels, 20u);
+    EXPECT_EQ(metrics.false_shadow.truth_pixels, 0u);
+
+    // A contact beside lit ground (column 8 is lit): the band reaches across the line.
+    std::fill(contact.begin(), contact.end(), 0);
+    for (uint32_t y = 0; y < frame.height; ++y) contact[size_t{y} * frame.width + 7] = 1;
+    frame.rendered[9] = 0.0f;  // lit in truth, darkened, 2 px from the contact
+    const ContactMetrics across = contact_metrics(frame, contact, 2);
+    EXPECT_EQ(across.false_shadow.truth_pixels, 20u);
+    EXPECT_EQ(across.false_shadow.wrong_pixels, 1u);
+    EXPECT_TRUE(contact_metrics(frame, {}, 2).band_pixels == 0) << "no contact image (a spot light): nothing";
+}
+
 TEST(QualityMetrics, PenumbraWidthIsAreaOverEdgeLength) {
     VisibilityComparison frame = split_frame(20, 10, 8);
     for (uint32_t y = 0; y < 10; ++y) {

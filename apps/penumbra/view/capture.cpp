@@ -10,6 +10,7 @@ void write_capture(const Capture& capture) {
             write_png_rgba8(capture.file, capture.width, capture.height, capture.rgba);
             break;
         case Aov::Shadow:
+        case Aov::Contact:  // not offered by the viewer; written as render writes it
             write_png_gray16(capture.file, capture.width, capture.height, capture.visibility);
             break;
         case Aov::Cascade:

@@ -10,7 +10,11 @@
 // fragment. With RENDERER_DEFERRED_SHADOWS (`--resolve deferred`): Penumbra's compute
 // resolve has filtered every light's shadow once per pixel of the depth pre-pass
 // (ShadowSystem::record_visibility), and this pass, drawn with an equal depth test over
-// that pre-pass, reads the pixel's slots of the visibility image instead.
+// that pre-pass, reads the pixel's slots of the visibility image instead. With
+// RENDERER_CONTACT_SHADOWS (contact shadows on) the pass draws over the depth pre-pass with
+// an equal test and samples it: forward, it traces every light's contact shadow here
+// (penumbra/glsl/contact.glsl), as the resolve does deferred; either way `--aov contact`
+// writes the sun's contact term alone.
 #extension GL_GOOGLE_include_directive : require
 #include "renderer_shared.h"
 
@@ -36,6 +40,15 @@ layout(set = RENDERER_SET_SCREEN, binding = RENDERER_BINDING_SHADOW_VISIBILITY) 
 // Slot s of this pixel: layer s / 4, channel s % 4 (penumbra::VisibilityImage).
 float resolved_visibility(uint slot) {
     return texelFetch(shadow_visibility, ivec3(ivec2(gl_FragCoord.xy), int(slot / 4u)), 0)[slot % 4u];
+}
+#endif
+
+#ifdef RENDERER_CONTACT_SHADOWS
+layout(set = RENDERER_SET_SCREEN, binding = RENDERER_BINDING_CONTACT_DEPTH) uniform sampler2D contact_depth;
+
+PenumbraContactScreen contact_screen() {
+    return PenumbraContactScreen(frame.view_projection, frame.inverse_view_projection, frame.screen.xy,
+                                 frame.screen.z);
 }
 #endif
 
@@ -67,12 +80,29 @@ void main() {
     // An instance that does not receive shadows (scene files' receive_shadows = false) is
     // lit as if nothing were in the way; the lookups stay in uniform control flow.
     const bool receives = draw.flags.w != 0u;
+    const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
 #ifdef RENDERER_DEFERRED_SHADOWS
     float visibility = receives ? resolved_visibility(0u) : 1.0;
 #else
     float visibility = receives ? penumbra_sun_visibility(receiver, normal) : 1.0;
 #endif
-    const vec3 to_view = normalize(frame.camera_position.xyz - in_world_position);
+#ifdef RENDERER_CONTACT_SHADOWS
+    // Traced from the visible side of the surface, as the resolve does.
+    const vec3 contact_normal = dot(plane_normal, to_view) < 0.0 ? -plane_normal : plane_normal;
+    const bool contact_aov = frame.visibility_light == RENDERER_VISIBILITY_CONTACT;
+#ifdef RENDERER_DEFERRED_SHADOWS
+    const bool trace_sun = contact_aov;  // the resolve has traced them into `visibility` already
+#else
+    const bool trace_sun = contact_aov || (receives && visibility > 0.0);  // as the resolve: where the map is lit
+#endif
+    const float sun_contact =
+        trace_sun ? penumbra_sun_contact(contact_depth, contact_screen(), in_world_position, contact_normal,
+                                         gl_FragCoord.xy)
+                  : 1.0;
+#ifndef RENDERER_DEFERRED_SHADOWS
+    if (receives) visibility = min(visibility, sun_contact);
+#endif
+#endif
     vec3 color = shade_sun(base_color.rgb, normal, to_view, frame.to_sun.xyz, frame.sun_radiance.rgb * visibility,
                            draw.material.y, draw.material.z);
     // Spot and point lights; with `--aov shadow:N` light N's visibility (shadow, cone, range,
@@ -94,9 +124,16 @@ void main() {
 #ifdef RENDERER_DEFERRED_SHADOWS
         const float shadow = receives && light.visibility_slot != 0u ? resolved_visibility(light.visibility_slot) : 1.0;
 #else
-        const float shadow =
+        float shadow =
             receives ? penumbra_light_shadow(light.shadow_index, in_world_position, normal, plane_normal, gl_FragCoord.xy)
                      : 1.0;
+#ifdef RENDERER_CONTACT_SHADOWS
+        // As the resolve: for the lights with a shadow map (a visibility slot), where lit.
+        if (light.visibility_slot != 0u && shadow > 0.0) {
+            shadow = min(shadow, penumbra_light_contact(light.shadow_index, contact_depth, contact_screen(),
+                                                        in_world_position, contact_normal, gl_FragCoord.xy));
+        }
+#endif
 #endif
         if (int(i) == frame.visibility_light) visibility = shadow * cone;
         const float falloff = distance_falloff(distance, light.range);
@@ -114,6 +151,10 @@ void main() {
     const int cascade = receiver.cascade;
 #endif
     if (frame.debug_view == RENDERER_DEBUG_VIEW_CASCADES && cascade >= 0) color *= kCascadeTints[cascade];
+
+#ifdef RENDERER_CONTACT_SHADOWS
+    if (contact_aov) visibility = sun_contact;
+#endif
 
     out_color = vec4(tone_map(color), 1.0);
     out_visibility = visibility;

@@ -14,7 +14,8 @@
 //                                                        vec2(width, height), background_depth);
 //   float contact = penumbra_sun_contact(depth, screen, world_position, geometric_normal, gl_FragCoord.xy);
 //   float visibility = min(penumbra_sun_visibility(receiver, normal), contact);
-// Cost: Settings::contact.steps depth reads and two 4 x 4 matrix products per sample.
+// Cost: Settings::contact.steps depth reads per ray, about ten multiply-adds and two
+// divisions per read, and four 4 x 4 products per ray; none beyond contact_max_distance.
 #ifndef PENUMBRA_GLSL_CONTACT
 #define PENUMBRA_GLSL_CONTACT
 
@@ -39,22 +40,41 @@ float penumbra_contact_strength(vec3 world_position) {
     return 1.0 - smoothstep(0.8 * far_end, far_end, penumbra_view_depth(world_position));
 }
 
+// The camera's view depth (penumbra_view_depth()) as an affine function of the world
+// point: dot(row, vec4(point, 1)).
+vec4 penumbra_view_depth_row() {
+    const mat4 view = penumbra_shadow.camera_view;
+    return -vec4(view[0][2], view[1][2], view[2][2], view[3][2]);
+}
+
 // 0 where a sample of the ray from `start` along `ray` (its whole length) lies behind the
 // depth buffer's surface by less than the thickness, else 1.
 float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 start, vec3 ray, float jitter) {
     const uint steps = penumbra_shadow.contact_steps;
+    // Clip coordinates and view depth are affine in the world point, so along the ray they
+    // advance by constant amounts: the matrix products are per ray, not per sample.
+    const vec4 clip_start = screen.view_projection * vec4(start, 1.0);
+    const vec4 clip_ray = screen.view_projection * vec4(ray, 0.0);
+    const vec4 depth_row = penumbra_view_depth_row();
+    const float depth_start = dot(depth_row, vec4(start, 1.0));
+    const float depth_ray = dot(depth_row.xyz, ray);
+    // The surface a depth-buffer texel holds at q = (ndc, stored, 1) is h.xyz / h.w with
+    // h = inverse_view_projection * q, so its view depth is dot(depth_row, h) / h.w, which
+    // is dot(surface_row, q) / dot(w_row, q).
+    const vec4 surface_row = depth_row * screen.inverse_view_projection;
+    const vec4 w_row = vec4(0.0, 0.0, 0.0, 1.0) * screen.inverse_view_projection;
     for (uint i = 0u; i < steps; ++i) {
-        const vec3 point = start + ray * ((float(i) + jitter) / float(steps));
-        const vec4 clip = screen.view_projection * vec4(point, 1.0);
+        const float along = (float(i) + jitter) / float(steps);
+        const vec4 clip = clip_start + clip_ray * along;
         if (clip.w <= 0.0) break;  // behind the camera: the depth buffer knows nothing there
         const vec2 ndc = clip.xy / clip.w;
         if (any(greaterThan(abs(ndc), vec2(1.0)))) break;  // off the screen, likewise
         const ivec2 texel = min(ivec2((ndc * 0.5 + 0.5) * screen.size), ivec2(screen.size) - 1);
         const float stored = texelFetch(depth_buffer, texel, 0).r;
         if (stored == screen.background_depth) continue;
-        // The surface the depth buffer holds on this sample's own line of sight.
-        const vec4 surface = screen.inverse_view_projection * vec4(ndc, stored, 1.0);
-        const float behind = penumbra_view_depth(point) - penumbra_view_depth(surface.xyz / surface.w);
+        // How far the sample lies behind the surface on its own line of sight.
+        const vec4 q = vec4(ndc, stored, 1.0);
+        const float behind = depth_start + depth_ray * along - dot(surface_row, q) / dot(w_row, q);
         if (behind > 0.0 && behind < penumbra_shadow.contact_thickness) return 0.0;
     }
     return 1.0;
@@ -64,10 +84,12 @@ float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen scree
 // lit, down to 0 where the trace finds an occluder.
 float penumbra_contact_toward(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
                               vec3 geometric_normal, vec3 to_light, float ray_length, vec2 pixel) {
+    const float strength = penumbra_contact_strength(world_position);
+    if (strength <= 0.0) return 1.0;  // beyond contact_max_distance: no samples
     const vec3 start = world_position + geometric_normal * penumbra_shadow.contact_bias;
     const float lit =
         penumbra_contact_trace(depth_buffer, screen, start, to_light * ray_length, penumbra_contact_jitter(pixel));
-    return 1.0 - (1.0 - lit) * penumbra_contact_strength(world_position);
+    return 1.0 - (1.0 - lit) * strength;
 }
 
 // The sun's contact visibility (1 when Settings::contact leaves the sun out or there is

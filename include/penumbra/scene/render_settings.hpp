@@ -51,6 +51,9 @@ constexpr uint32_t kMaxImageSize = 16384;
 // Spot and point lights the tools' renderer lights (the first ones of a scene's list).
 inline constexpr uint32_t kMaxLocalLights = 64;
 
+// RenderSettings::visibility_light: the sun's contact-shadow term alone, without its map.
+inline constexpr int32_t kVisibilityContact = -2;
+
 // The ShadowSystem's settings (shadow, local_shadows) and the tools' own.
 struct RenderSettings : Settings {
     uint32_t width = 1280;
@@ -61,7 +64,8 @@ struct RenderSettings : Settings {
     // world_position / world_normal), for `penumbra compare`. Off: frames pay nothing.
     bool geometry_aovs = false;
     // The light whose visibility goes into FrameImages::visibility: an index into the
-    // scene's [[lights]] list (`--aov shadow:N`), or -1 for the sun (`--aov shadow`).
+    // scene's [[lights]] list (`--aov shadow:N`), -1 for the sun (`--aov shadow`), or
+    // kVisibilityContact for the sun's contact-shadow term alone (`--aov contact`).
     int32_t visibility_light = -1;
 };
 

@@ -28,6 +28,11 @@
 // pass with `--resolve deferred`.
 #define RENDERER_SET_SCREEN 3
 #define RENDERER_BINDING_SHADOW_VISIBILITY 0
+// With contact shadows (Settings::contact), forward or deferred: the depth pre-pass, which
+// penumbra_sun_contact() / penumbra_light_contact() trace (same set).
+#define RENDERER_BINDING_CONTACT_DEPTH 1
+// FrameUniforms::visibility_light for `--aov contact`: the sun's contact term alone.
+#define RENDERER_VISIBILITY_CONTACT (-2)
 
 #define RENDERER_DEBUG_VIEW_NONE 0u
 #define RENDERER_DEBUG_VIEW_CASCADES 1u
@@ -49,6 +54,8 @@ struct FrameUniforms {
     RENDERER_INT visibility_light;    // the local light written to the visibility target (-1: the sun)
     RENDERER_UINT local_light_count;  // entries of LocalLights::lights
     RENDERER_UINT padding;
+    mat4 inverse_view_projection;  // clip -> world (contact shadows trace the pre-pass's depth)
+    vec4 screen;                   // xy: the camera targets' pixels; z: the pre-pass's depth where nothing was drawn
 };
 
 // A spot or point light as the renderer shades it; its shadow comes from Penumbra.
