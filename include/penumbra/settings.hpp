@@ -149,7 +149,9 @@ struct ContactShadowSettings {
     bool sun = true;           // toward the sun
     bool local_lights = true;  // toward shadowed spot and point lights
     // Metres of ray from the surface toward the light (a local light's ray stops at it).
-    float length = 0.25f;
+    // Half a metre reaches the gap that a coarse cascade's texels and normal offset open
+    // beside a caster's base under a high sun (docs/QUALITY.md, "Contact shadows").
+    float length = 0.5f;
     int steps = 16;  // depth-buffer samples along the ray, 4..64
     // Metres a surface in the depth buffer is taken to extend behind itself: a sample
     // farther behind it than this passes (behind a thin pole, the ray is not blocked).

@@ -47,6 +47,44 @@ vec4 penumbra_view_depth_row() {
     return -vec4(view[0][2], view[1][2], view[2][2], view[3][2]);
 }
 
+// View-depth differences across the four texels around a sample, relative to the nearer,
+// up to which the surface is taken to be continuous there (a plane seen at a grazing angle
+// at low resolution changes by a few percent per texel); beyond it, a silhouette.
+const float kPenumbraContactContinuous = 0.01;
+
+// The view depth of the surface the depth buffer holds at q = (ndc, depth, 1): with h =
+// inverse_view_projection * q that surface is h.xyz / h.w, so its view depth is
+// dot(depth_row, h) / h.w = dot(surface_row, q) / dot(w_row, q) (penumbra_contact_trace()).
+float penumbra_contact_view_depth(vec2 ndc, float depth, vec4 surface_row, vec4 w_row) {
+    const vec4 q = vec4(ndc, depth, 1.0);
+    return dot(surface_row, q) / dot(w_row, q);
+}
+
+// The depth buffer's depth at `ndc`, interpolated between the four texel centres around it
+// (Bend Studio's bilinear depth): point sampling puts a sloped surface up to half a texel's
+// depth change in front of the samples just above it, so that the trace finds the surface it
+// starts from (acne of the trace, worst on ground seen at a grazing angle). NDC depth is
+// affine in screen space across a plane, so the interpolation is exact on planes. Across a
+// silhouette (view depths differing by more than kPenumbraContactContinuous) it would make a
+// surface between the two: there the nearest texel's depth is used, as where any is empty.
+float penumbra_contact_depth(sampler2D depth_buffer, PenumbraContactScreen screen, vec2 ndc, vec4 surface_row,
+                             vec4 w_row) {
+    const vec2 position = (ndc * 0.5 + 0.5) * screen.size - 0.5;  // texel centres at integers
+    const vec2 corner = floor(position);
+    const vec2 f = position - corner;
+    // x: (i, j + 1), y: (i + 1, j + 1), z: (i + 1, j), w: (i, j), with (i, j) = corner.
+    const vec4 d = textureGather(depth_buffer, (corner + 1.0) / screen.size, 0);
+    const float low = min(min(d.x, d.y), min(d.z, d.w));
+    const float high = max(max(d.x, d.y), max(d.z, d.w));
+    const bool empty = any(equal(d, vec4(screen.background_depth)));
+    const float a = penumbra_contact_view_depth(ndc, low, surface_row, w_row);
+    const float b = penumbra_contact_view_depth(ndc, high, surface_row, w_row);
+    if (empty || abs(a - b) > kPenumbraContactContinuous * min(abs(a), abs(b))) {
+        return f.y >= 0.5 ? (f.x >= 0.5 ? d.y : d.x) : (f.x >= 0.5 ? d.z : d.w);
+    }
+    return mix(mix(d.w, d.z, f.x), mix(d.x, d.y, f.x), f.y);
+}
+
 // 0 where a sample of the ray from `start` along `ray` (its whole length) lies behind the
 // depth buffer's surface by less than the thickness, else 1.
 float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 start, vec3 ray, float jitter) {
@@ -58,23 +96,25 @@ float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen scree
     const vec4 depth_row = penumbra_view_depth_row();
     const float depth_start = dot(depth_row, vec4(start, 1.0));
     const float depth_ray = dot(depth_row.xyz, ray);
-    // The surface a depth-buffer texel holds at q = (ndc, stored, 1) is h.xyz / h.w with
-    // h = inverse_view_projection * q, so its view depth is dot(depth_row, h) / h.w, which
-    // is dot(surface_row, q) / dot(w_row, q).
+    // For penumbra_contact_view_depth().
     const vec4 surface_row = depth_row * screen.inverse_view_projection;
     const vec4 w_row = vec4(0.0, 0.0, 0.0, 1.0) * screen.inverse_view_projection;
+    // Samples still inside the start's own texel can only find the surface the ray leaves
+    // (at silhouettes, where the depth is not interpolated, it lies up to a texel's depth
+    // change in front of them): they are skipped.
+    const vec2 start_texel = (clip_start.xy / clip_start.w * 0.5 + 0.5) * screen.size;
     for (uint i = 0u; i < steps; ++i) {
         const float along = (float(i) + jitter) / float(steps);
         const vec4 clip = clip_start + clip_ray * along;
         if (clip.w <= 0.0) break;  // behind the camera: the depth buffer knows nothing there
         const vec2 ndc = clip.xy / clip.w;
         if (any(greaterThan(abs(ndc), vec2(1.0)))) break;  // off the screen, likewise
-        const ivec2 texel = min(ivec2((ndc * 0.5 + 0.5) * screen.size), ivec2(screen.size) - 1);
-        const float stored = texelFetch(depth_buffer, texel, 0).r;
+        if (all(lessThan(abs((ndc * 0.5 + 0.5) * screen.size - start_texel), vec2(1.0)))) continue;
+        const float stored = penumbra_contact_depth(depth_buffer, screen, ndc, surface_row, w_row);
         if (stored == screen.background_depth) continue;
         // How far the sample lies behind the surface on its own line of sight.
-        const vec4 q = vec4(ndc, stored, 1.0);
-        const float behind = depth_start + depth_ray * along - dot(surface_row, q) / dot(w_row, q);
+        const float behind =
+            depth_start + depth_ray * along - penumbra_contact_view_depth(ndc, stored, surface_row, w_row);
         if (behind > 0.0 && behind < penumbra_shadow.contact_thickness) return 0.0;
     }
     return 1.0;
