@@ -67,8 +67,11 @@ float penumbra_contact_view_depth(vec2 ndc, float depth, vec4 surface_row, vec4 
 // affine in screen space across a plane, so the interpolation is exact on planes. Across a
 // silhouette (view depths differing by more than kPenumbraContactContinuous) it would make a
 // surface between the two: there the nearest texel's depth is used, as where any is empty.
-float penumbra_contact_depth(sampler2D depth_buffer, PenumbraContactScreen screen, vec2 ndc, vec4 surface_row,
-                             vec4 w_row) {
+// Under a perspective projection a surface's view depth is 1 / h.w with h.w = dot(w_row, q)
+// affine in the depth, so the relative difference of the nearest and farthest of the four is
+// |w_row.z (high - low)| / the larger h.w: no division per sample. (Under an orthographic
+// projection h.w is constant and every four count as continuous.)
+float penumbra_contact_depth(sampler2D depth_buffer, PenumbraContactScreen screen, vec2 ndc, vec4 w_row) {
     const vec2 position = (ndc * 0.5 + 0.5) * screen.size - 0.5;  // texel centres at integers
     const vec2 corner = floor(position);
     const vec2 f = position - corner;
@@ -77,9 +80,9 @@ float penumbra_contact_depth(sampler2D depth_buffer, PenumbraContactScreen scree
     const float low = min(min(d.x, d.y), min(d.z, d.w));
     const float high = max(max(d.x, d.y), max(d.z, d.w));
     const bool empty = any(equal(d, vec4(screen.background_depth)));
-    const float a = penumbra_contact_view_depth(ndc, low, surface_row, w_row);
-    const float b = penumbra_contact_view_depth(ndc, high, surface_row, w_row);
-    if (empty || abs(a - b) > kPenumbraContactContinuous * min(abs(a), abs(b))) {
+    const float w_low = dot(w_row, vec4(ndc, low, 1.0));
+    const float w_high = w_low + w_row.z * (high - low);
+    if (empty || abs(w_high - w_low) > kPenumbraContactContinuous * max(abs(w_low), abs(w_high))) {
         return f.y >= 0.5 ? (f.x >= 0.5 ? d.y : d.x) : (f.x >= 0.5 ? d.z : d.w);
     }
     return mix(mix(d.w, d.z, f.x), mix(d.x, d.y, f.x), f.y);
@@ -110,7 +113,7 @@ float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen scree
         const vec2 ndc = clip.xy / clip.w;
         if (any(greaterThan(abs(ndc), vec2(1.0)))) break;  // off the screen, likewise
         if (all(lessThan(abs((ndc * 0.5 + 0.5) * screen.size - start_texel), vec2(1.0)))) continue;
-        const float stored = penumbra_contact_depth(depth_buffer, screen, ndc, surface_row, w_row);
+        const float stored = penumbra_contact_depth(depth_buffer, screen, ndc, w_row);
         if (stored == screen.background_depth) continue;
         // How far the sample lies behind the surface on its own line of sight.
         const float behind =
