@@ -52,6 +52,9 @@ vec4 penumbra_view_depth_row() {
 // at low resolution changes by a few percent per texel); beyond it, a silhouette.
 const float kPenumbraContactContinuous = 0.01;
 
+// Texels from the start (each way) within which the trace interpolates the depth.
+const float kPenumbraContactInterpolated = 4.0;
+
 // The view depth of the surface the depth buffer holds at q = (ndc, depth, 1): with h =
 // inverse_view_projection * q that surface is h.xyz / h.w, so its view depth is
 // dot(depth_row, h) / h.w = dot(surface_row, q) / dot(w_row, q) (penumbra_contact_trace()).
@@ -112,8 +115,14 @@ float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen scree
         if (clip.w <= 0.0) break;  // behind the camera: the depth buffer knows nothing there
         const vec2 ndc = clip.xy / clip.w;
         if (any(greaterThan(abs(ndc), vec2(1.0)))) break;  // off the screen, likewise
-        if (all(lessThan(abs((ndc * 0.5 + 0.5) * screen.size - start_texel), vec2(1.0)))) continue;
-        const float stored = penumbra_contact_depth(depth_buffer, screen, ndc, w_row);
+        const vec2 texel_position = (ndc * 0.5 + 0.5) * screen.size;
+        const vec2 from_start = abs(texel_position - start_texel);
+        if (all(lessThan(from_start, vec2(1.0)))) continue;
+        // Near the start the samples lie little above the surface they left, within the
+        // error of a point-sampled depth: interpolate there; farther on, one texel is enough.
+        const float stored = all(lessThan(from_start, vec2(kPenumbraContactInterpolated)))
+                                 ? penumbra_contact_depth(depth_buffer, screen, ndc, w_row)
+                                 : texelFetch(depth_buffer, min(ivec2(texel_position), ivec2(screen.size) - 1), 0).r;
         if (stored == screen.background_depth) continue;
         // How far the sample lies behind the surface on its own line of sight.
         const float behind =
