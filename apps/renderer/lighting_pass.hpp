@@ -5,9 +5,9 @@
 // sampled here through Penumbra's descriptor set and GLSL library (set 2), over a
 // reverse-Z depth buffer of its own; with ShadowResolve::Deferred it draws over the
 // ScreenPrepass's depth with an equal test and reads each light's shadow from the
-// ShadowSystem's visibility image (set 3). With contact shadows it always draws over the
-// pre-pass's depth, which it also samples (set 3): forward, to trace them per fragment with
-// penumbra_sun_contact() / penumbra_light_contact(); either way, for `--aov contact`.
+// ShadowSystem's visibility image (set 3). When it traces contact shadows itself (forward,
+// and for `--aov contact`) it draws over the pre-pass's depth and samples it too (set 3),
+// with penumbra_sun_contact() / penumbra_light_contact().
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -33,9 +33,10 @@ class LightingPass {
 public:
     // Set 0 is `frame_set_layout` (the renderer's frame uniforms and lights), set 1 the
     // materials, set 2 the ShadowSystem's descriptor set (set 3 the visibility image when
-    // deferred or with contact shadows); the fragment shader is specialized with the
-    // ShadowSystem's filter constants. Deferred or with `contact_shadows`, `prepass_depth` is
-    // the ScreenPrepass's depth, which the pass tests against (and samples for contact).
+    // deferred or tracing contact shadows); the fragment shader is specialized with the
+    // ShadowSystem's filter constants. Deferred or with `contact_shadows` (the pass traces
+    // them), `prepass_depth` is the ScreenPrepass's depth, which the pass tests against (and
+    // samples for the trace).
     LightingPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                  VkDescriptorSetLayout material_set_layout, const ShadowSystem& shadows, uint32_t width,
                  uint32_t height, ShadowResolve resolve, bool contact_shadows, const gpu::Image* prepass_depth);

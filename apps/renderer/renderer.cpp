@@ -99,6 +99,13 @@ ViewDesc view_of(const Camera& camera, const RenderSettings& settings) {
                         camera.near_plane, camera.far_plane, settings.width, settings.height);
 }
 
+// Whether the lighting pass traces contact shadows itself: forward shading with them, and
+// `--aov contact` (deferred, the resolve has traced them into the visibility it reads).
+bool lighting_traces_contact(ShadowResolve resolve, const RenderSettings& settings) {
+    return settings.contact.enabled &&
+           (resolve == ShadowResolve::Forward || settings.visibility_light == kVisibilityContact);
+}
+
 // Spot or point lights that cast shadows and are lit (lit_local_lights()).
 bool casts_local_shadows(const Scene& scene) {
     for (const uint32_t light : lit_local_lights(scene.lights)) {
@@ -157,7 +164,7 @@ struct Renderer::Resources {
                       : nullptr),
           lighting_pass(
               context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
-              settings.height, resolve, settings.contact.enabled,
+              settings.height, resolve, lighting_traces_contact(resolve, settings),
               resolve == ShadowResolve::Deferred || settings.contact.enabled ? &prepass->targets().depth : nullptr),
           readback(create_readback(context, settings)),
           commands(context),
@@ -201,10 +208,11 @@ const gpu::Image& Renderer::color_target() const { return resources_->lighting_p
 bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next) {
     const auto is_shadow_map = [](DebugView view) { return view == DebugView::ShadowMap; };
     // Contact shadows need the depth pre-pass and the lighting pass's variant that reads it
-    // (and make the automatic resolve deferred).
+    // (and make the automatic resolve deferred), as does `--aov contact`.
+    const auto contact_aov = [](const RenderSettings& s) { return s.visibility_light == kVisibilityContact; };
     return current.width != next.width || current.height != next.height || current.resolve != next.resolve ||
-           current.contact.enabled != next.contact.enabled || requires_recreation(current, next) ||
-           is_shadow_map(current.debug) != is_shadow_map(next.debug);
+           current.contact.enabled != next.contact.enabled || contact_aov(current) != contact_aov(next) ||
+           requires_recreation(current, next) || is_shadow_map(current.debug) != is_shadow_map(next.debug);
 }
 
 void Renderer::update_settings(const RenderSettings& settings) {

@@ -11,10 +11,10 @@
 // resolve has filtered every light's shadow once per pixel of the depth pre-pass
 // (ShadowSystem::record_visibility), and this pass, drawn with an equal depth test over
 // that pre-pass, reads the pixel's slots of the visibility image instead. With
-// RENDERER_CONTACT_SHADOWS (contact shadows on) the pass draws over the depth pre-pass with
-// an equal test and samples it: forward, it traces every light's contact shadow here
-// (penumbra/glsl/contact.glsl), as the resolve does deferred; either way `--aov contact`
-// writes the sun's contact term alone.
+// RENDERER_CONTACT_SHADOWS (forward shading with contact shadows, or `--aov contact`) the
+// pass draws over the depth pre-pass with an equal test and samples it: forward, it traces
+// every light's contact shadow here (penumbra/glsl/contact.glsl), as the resolve does
+// deferred; `--aov contact` writes the sun's contact term alone.
 #extension GL_GOOGLE_include_directive : require
 #include "renderer_shared.h"
 
@@ -91,7 +91,8 @@ void main() {
     const vec3 contact_normal = dot(plane_normal, to_view) < 0.0 ? -plane_normal : plane_normal;
     const bool contact_aov = frame.visibility_light == RENDERER_VISIBILITY_CONTACT;
 #ifdef RENDERER_DEFERRED_SHADOWS
-    const bool trace_sun = contact_aov;  // the resolve has traced them into `visibility` already
+    // The resolve has traced them into `visibility`: this variant serves `--aov contact`.
+    const bool trace_sun = contact_aov;
 #else
     const bool trace_sun = contact_aov || (receives && visibility > 0.0);  // as the resolve: where the map is lit
 #endif

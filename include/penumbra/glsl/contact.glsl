@@ -14,8 +14,9 @@
 //                                                        vec2(width, height), background_depth);
 //   float contact = penumbra_sun_contact(depth, screen, world_position, geometric_normal, gl_FragCoord.xy);
 //   float visibility = min(penumbra_sun_visibility(receiver, normal), contact);
-// Cost: Settings::contact.steps depth reads per ray, about ten multiply-adds and two
-// divisions per read, and four 4 x 4 products per ray; none beyond contact_max_distance.
+// Cost: Settings::contact.steps depth reads per ray (a four-texel gather within 4 texels of
+// its start, one texel beyond), about a dozen multiply-adds and two divisions per read, and
+// four 4 x 4 products per ray; none beyond contact_max_distance.
 #ifndef PENUMBRA_GLSL_CONTACT
 #define PENUMBRA_GLSL_CONTACT
 
