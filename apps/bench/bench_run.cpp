@@ -5,6 +5,8 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string_view>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include "bench/bench_job.hpp"
@@ -225,6 +227,33 @@ void move_dynamic_instances(renderer::Renderer& renderer, const Scene& scene, ui
     }
 }
 
+// A scope's time in one frame's GPU times, if it was timed.
+std::optional<double> scope_ms(const std::vector<gpu::ScopeTime>& times, std::string_view name) {
+    for (const gpu::ScopeTime& time : times) {
+        if (time.name == name) return time.milliseconds;
+    }
+    return std::nullopt;
+}
+
+// Contact shadows are traced inside the compute resolve, sharing its reconstruction of the
+// surface, so no scope of their own times them. With them on (deferred), each measured frame
+// is rendered once more at the same camera and sun with the trace's lights switched off (a
+// live uniform change) and the "contact" sample is the difference of the two `visibility`
+// scopes: their cost over the resolve, frame by frame.
+void record_contact_cost(renderer::Renderer& renderer, const Camera& camera, renderer::ReadbackMode readback,
+                         FrameSamples& samples) {
+    const std::optional<double> with = scope_ms(renderer.last_frame().gpu_times, "visibility");
+    RenderSettings without = renderer.settings();
+    const RenderSettings traced = without;
+    without.contact.sun = false;
+    without.contact.local_lights = false;
+    renderer.update_settings(without);
+    renderer.render(camera, readback);
+    const std::optional<double> without_ms = scope_ms(renderer.last_frame().gpu_times, "visibility");
+    renderer.update_settings(traced);
+    if (with && without_ms) samples.gpu.add("contact", *with - *without_ms);
+}
+
 // The renderer's frames along the camera and light paths. The Renderer keeps a reference
 // to `prepared.scene` and reads its sun every frame, so moving the sun here moves it there.
 FrameSamples run_renderer_frames(const renderer::AppContext& context, const BenchJob& job, PreparedJob& prepared,
@@ -237,16 +266,21 @@ FrameSamples run_renderer_frames(const renderer::AppContext& context, const Benc
     const glm::vec3 start_sun = sun ? sun->direction : glm::vec3{0.0f, -1.0f, 0.0f};
     const auto readback = job.readback ? renderer::ReadbackMode::Images : renderer::ReadbackMode::None;
 
+    const bool time_contact = prepared.settings.contact.enabled &&
+                              (prepared.settings.contact.sun || prepared.settings.contact.local_lights) &&
+                              renderer.resolve() == ShadowResolve::Deferred;
     FrameSamples samples;
     const uint32_t total = job.warmup + job.frames;
     for (uint32_t index = 0; index < total; ++index) {
         const float t = path_parameter(job, index);
         if (sun) sun->direction = glm::normalize(sun_on_path(job.light_path, start_sun, t));
         if (job.animate_dynamic) move_dynamic_instances(renderer, prepared.scene, index);
+        const Camera camera = camera_on_path(job.camera_path, start_camera, t, job.frames);
         const Clock::time_point start = Clock::now();
-        renderer.render(camera_on_path(job.camera_path, start_camera, t, job.frames), readback);
+        renderer.render(camera, readback);
         const double wall_ms = milliseconds_since(start);
         if (index >= job.warmup) record_renderer_frame(renderer.last_frame(), wall_ms, samples);
+        if (index >= job.warmup && time_contact) record_contact_cost(renderer, camera, readback, samples);
         if (job.progress) job.progress(index + 1, total);
     }
     // The maps as the last frame's lights sized them (spot/point maps follow the lights).

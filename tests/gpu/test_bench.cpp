@@ -79,6 +79,20 @@ TEST_F(BenchCli, ReportsEveryPassWithAPositiveTime) {
     EXPECT_TRUE(report["ceiling"].is_null());
 }
 
+// Contact shadows are traced inside the resolve: with them (deferred) every measured frame
+// is rendered again with the trace's lights off and "contact" is the difference of the two
+// `visibility` scopes, one sample per frame; the frames' other scopes are the first render's.
+TEST_F(BenchCli, ReportsTheContactShadowsCostInsideTheResolve) {
+    const json with = run_json(std::string(kForest) + kSmall + " --resolve deferred --contact-shadows");
+    ASSERT_FALSE(with.empty());
+    ASSERT_TRUE(with["gpu_ms"].contains("contact")) << with["gpu_ms"].dump();
+    EXPECT_EQ(with["gpu_ms"]["contact"]["samples"], 3);
+    EXPECT_EQ(with["gpu_ms"]["visibility"]["samples"], 3) << "the second render is not counted";
+    const json without = run_json(std::string(kForest) + kSmall + " --resolve deferred");
+    ASSERT_FALSE(without.empty());
+    EXPECT_FALSE(without["gpu_ms"].contains("contact"));
+}
+
 // --shadow-cache: a still camera reuses every cascade after the first frame and draws
 // nothing more (the forest is static); without it every texel is drawn every frame.
 TEST_F(BenchCli, ShadowCacheReportsTheTexelsItDrawsAndCopies) {
