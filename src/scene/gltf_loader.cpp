@@ -6,6 +6,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <map>
+#include <optional>
+#include <regex>
 #include <set>
 #include <tuple>
 
@@ -27,6 +29,21 @@ bool all_finite(const std::vector<double>& values) {
 // unnamed nodes and meshes match nothing.
 bool name_matches(const std::string& pattern, const std::string& name) {
     return !name.empty() && ::fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+}
+
+// exclude_casters: "nodes[3]" or "meshes[0]" names an element by its index: the name
+// Penumbra gives an unnamed node (Instance::name, the sky-box warning), taken as printed
+// (as a shell pattern, "[3]" would be a character class).
+struct IndexReference {
+    bool node = false;  // else a mesh
+    size_t index = 0;
+};
+
+std::optional<IndexReference> index_reference(const std::string& entry) {
+    static const std::regex form(R"((nodes|meshes)\[([0-9]{1,9})\])");
+    std::smatch match;
+    if (!std::regex_match(entry, match, form)) return std::nullopt;
+    return IndexReference{match[1] == "nodes", std::stoul(match[2].str())};
 }
 
 // A node that places a mesh, with its model-space transform.
@@ -192,7 +209,7 @@ private:
             instance.name = node.name.empty() ? "nodes[" + std::to_string(placed.node) + "]" : node.name;
             instance.cast_shadows = !unlit(gltf_mesh.primitives[primitive].material);
             scene_.instances.push_back(instance);
-            excluded_.push_back(matches_any(node.name) || matches_any(gltf_mesh.name));
+            excluded_.push_back(excludes(placed.node, mesh));
         }
     }
 
@@ -227,23 +244,38 @@ private:
                model().materials[static_cast<size_t>(material)].extensions.count("KHR_materials_unlit") > 0;
     }
 
-    bool matches_any(const std::string& name) const {
-        return std::any_of(exclusions_.begin(), exclusions_.end(),
-                           [&](const std::string& pattern) { return name_matches(pattern, name); });
+    // Whether an exclude_casters entry names node `node` or mesh `mesh` (indices of the model).
+    bool excludes(int node, int mesh) const {
+        const std::string& node_name = model().nodes[static_cast<size_t>(node)].name;
+        const std::string& mesh_name = model().meshes[static_cast<size_t>(mesh)].name;
+        return std::any_of(exclusions_.begin(), exclusions_.end(), [&](const std::string& entry) {
+            if (const std::optional<IndexReference> reference = index_reference(entry)) {
+                return reference->index == static_cast<size_t>(reference->node ? node : mesh);
+            }
+            return name_matches(entry, node_name) || name_matches(entry, mesh_name);
+        });
     }
 
-    // Every pattern must name something: a typo would otherwise leave the sky box casting.
+    // Every entry must name something: a typo would otherwise leave the sky box casting.
     void check_exclusion_patterns(const std::vector<std::string>& patterns) {
         exclusions_ = patterns;
         for (size_t i = 0; i < patterns.size(); ++i) {
+            const std::string where = "exclude_casters[" + std::to_string(i) + "]";
+            if (const std::optional<IndexReference> reference = index_reference(patterns[i])) {
+                const size_t count = reference->node ? model().nodes.size() : model().meshes.size();
+                if (reference->index >= count) {
+                    source_.fail(where, "\"" + patterns[i] + "\" names no " + (reference->node ? "node" : "mesh") +
+                                            " (the model has " + std::to_string(count) + ")");
+                }
+                continue;
+            }
             const auto matches = [&](const std::string& name) { return name_matches(patterns[i], name); };
             const bool found = std::any_of(model().nodes.begin(), model().nodes.end(),
                                            [&](const tinygltf::Node& node) { return matches(node.name); }) ||
                                std::any_of(model().meshes.begin(), model().meshes.end(),
                                            [&](const tinygltf::Mesh& mesh) { return matches(mesh.name); });
             if (!found) {
-                source_.fail("exclude_casters[" + std::to_string(i) + "]",
-                             "\"" + patterns[i] + "\" matches no node or mesh name of the model");
+                source_.fail(where, "\"" + patterns[i] + "\" matches no node or mesh name of the model");
             }
         }
     }
@@ -452,7 +484,7 @@ private:
     Scene& scene_;
     const GltfSource& source_;
     std::vector<PlacedMesh> placed_meshes_;
-    std::vector<std::string> exclusions_;  // exclude_casters patterns
+    std::vector<std::string> exclusions_;  // exclude_casters patterns and index references
     std::vector<bool> excluded_;           // per instance placed: its node or mesh matches a pattern
     std::vector<GltfPlacedLight> placed_lights_;
     // (mesh, primitive, mirrored, morph weights) -> scene mesh

@@ -677,6 +677,32 @@ TEST_F(Cli, SkyBoxIsNamedInAWarningAndCastShadowsTurnsItOff) {
     EXPECT_LT(shadowed_fraction(dir_ / "bare.png"), box_shadow / 4.0) << "the ground still receives the shadow";
 }
 
+// The sky-box warning's advice is accepted as printed: a glTF sky whose node and mesh have
+// no names is called "nodes[0]", and exclude_casters = ["nodes[0]"] turns it off.
+TEST_F(Cli, UnnamedSkyNodeIsExcludedAsTheWarningSays) {
+    // A cube of 2 m (8 corners, 36 16-bit indices), its node and mesh unnamed.
+    write_file("sky.gltf",
+               R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+               R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+               R"("accessors":[{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3",)"
+               R"("min":[-1,-1,-1],"max":[1,1,1]},{"bufferView":1,"componentType":5123,"count":36,"type":"SCALAR"}],)"
+               R"("bufferViews":[{"buffer":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":72}],)"
+               R"("buffers":[{"byteLength":168,"uri":"data:application/octet-stream;base64,)"
+               R"(AACAvwAAgL8AAIC/AACAvwAAgL8AAIA/AACAvwAAgD8AAIC/AACAvwAAgD8AAIA/AACAPwAAgL8AAIC/AACAPwAAgL8AAIA/)"
+               R"(AACAPwAAgD8AAIC/AACAPwAAgD8AAIA/AAABAAMAAAADAAIABAAGAAcABAAHAAUAAAAEAAUAAAAFAAEAAgADAAcAAgAHAAYA)"
+               R"(AAACAAYAAAAGAAQAAQAFAAcAAQAHAAMA"}]})");
+    const std::string sky = "\n[[objects]]\ntype = \"gltf\"\nfile = \"sky.gltf\"\ninstances = [{ scale = 100.0 }]\n";
+    write_file("sky.toml", std::string(kValidScene) + sky);
+    const RunResult warned = run("render sky.toml --validate --width 32 --height 24 -o warned.png");
+    ASSERT_EQ(warned.exit_code, 0) << warned.err;
+    EXPECT_NE(warned.err.find("warning: \"nodes[0]\" encloses the camera"), std::string::npos) << warned.err;
+    EXPECT_NE(warned.err.find("exclude_casters = [\"nodes[0]\"]"), std::string::npos) << warned.err;
+    write_file("excluded.toml", std::string(kValidScene) + sky + "exclude_casters = [\"nodes[0]\"]\n");
+    const RunResult excluded = run("render excluded.toml --validate --width 32 --height 24 -o excluded.png");
+    ASSERT_EQ(excluded.exit_code, 0) << excluded.err;
+    EXPECT_TRUE(excluded.err.empty()) << excluded.err;
+}
+
 // compare reports the share of evaluated pixels in shadow and warns above 95 %.
 TEST_F(Cli, CompareWarnsWhenAlmostEverythingIsShadowed) {
     write_file("sky.toml", std::string(kValidScene) + "\n[[objects]]\ntype = \"box\"\nsize = [200.0, 200.0, 200.0]\n");

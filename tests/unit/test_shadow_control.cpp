@@ -57,6 +57,20 @@ TEST(ShadowControl, GltfExclusionsByNodeOrMeshNameAndUnlitMaterials) {
                 HasSubstr("objects[0].exclude_casters: expected an array of strings"));
 }
 
+// "nodes[i]" and "meshes[j]" name an element by its index, as printed for unnamed nodes
+// (Instance::name, the sky-box warning's advice), not as a shell pattern ("[1]" would be a
+// character class matching nothing here).
+TEST(ShadowControl, GltfExclusionsByIndexAsTheWarningPrintsThem) {
+    EXPECT_THAT(casts(parse_scene_text(named_model("exclude_casters = [\"nodes[1]\"]\n"))),
+                ElementsAre(true, false, false));
+    EXPECT_THAT(casts(parse_scene_text(named_model("exclude_casters = [\"meshes[0]\"]\n"))),
+                ElementsAre(false, true, false));
+    EXPECT_THAT(scene_error(named_model("exclude_casters = [\"nodes[3]\"]\n")),
+                HasSubstr("exclude_casters[0]: \"nodes[3]\" names no node (the model has 3)"));
+    EXPECT_THAT(scene_error(named_model("exclude_casters = [\"floor\", \"meshes[9]\"]\n")),
+                HasSubstr("exclude_casters[1]: \"meshes[9]\" names no mesh (the model has 3)"));
+}
+
 TEST(ShadowControl, GltfObjectAndInstanceFlags) {
     const Scene scene = parse_scene_text(
         named_model("cast_shadows = false\ninstances = [{ translation = [1.0, 0.0, 0.0] },\n"
