@@ -73,13 +73,11 @@ LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout fram
                            VkDescriptorSetLayout material_set_layout, const ShadowSystem& shadows, uint32_t width,
                            uint32_t height, ShadowResolve resolve, bool contact_shadows,
                            const gpu::Image* prepass_depth)
-    : device_(device),
-      width_(width),
-      height_(height),
-      resolve_(resolve),
-      prepass_depth_(resolve == ShadowResolve::Deferred || contact_shadows ? prepass_depth : nullptr) {
+    : device_(device), width_(width), height_(height), resolve_(resolve) {
     const bool deferred = resolve == ShadowResolve::Deferred;
-    if ((deferred || contact_shadows) && prepass_depth == nullptr) {
+    const bool over_prepass = deferred || contact_shadows;
+    prepass_depth_ = over_prepass ? prepass_depth : nullptr;
+    if (over_prepass && prepass_depth == nullptr) {
         throw std::invalid_argument("LightingPass: the deferred resolve and contact shadows need the pre-pass's depth");
     }
     const VkImageUsageFlags color_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -90,7 +88,7 @@ LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout fram
         create_camera_target(device, kCascadeFormat, width, height, color_usage, VK_IMAGE_ASPECT_COLOR_BIT);
     std::vector<VkDescriptorSetLayout> set_layouts{frame_set_layout, material_set_layout,
                                                    shadows.descriptor_set_layout()};
-    if (deferred || contact_shadows) {
+    if (over_prepass) {
         screen_set_layout_ = create_screen_set_layout(device, deferred, contact_shadows);
         const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2};
         screen_pool_ = gpu::create_descriptor_pool(device, 1, {&size, 1});

@@ -34,9 +34,9 @@ public:
     // Set 0 is `frame_set_layout` (the renderer's frame uniforms and lights), set 1 the
     // materials, set 2 the ShadowSystem's descriptor set (set 3 the visibility image when
     // deferred or tracing contact shadows); the fragment shader is specialized with the
-    // ShadowSystem's filter constants. Deferred or with `contact_shadows` (the pass traces
-    // them), `prepass_depth` is the ScreenPrepass's depth, which the pass tests against (and
-    // samples for the trace).
+    // ShadowSystem's filter constants. `prepass_depth` is the ScreenPrepass's depth, null
+    // without a pre-pass; deferred or with `contact_shadows` (the pass traces them) the pass
+    // tests against it (and samples it for the trace), otherwise it draws a depth of its own.
     LightingPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                  VkDescriptorSetLayout material_set_layout, const ShadowSystem& shadows, uint32_t width,
                  uint32_t height, ShadowResolve resolve, bool contact_shadows, const gpu::Image* prepass_depth);
@@ -59,7 +59,7 @@ private:
     uint32_t width_;
     uint32_t height_;
     ShadowResolve resolve_;
-    const gpu::Image* prepass_depth_;  // null: the pass has a depth buffer of its own
+    const gpu::Image* prepass_depth_ = nullptr;  // null: the pass has a depth buffer of its own
     LightingTargets targets_;
     gpu::UniqueDescriptorSetLayout screen_set_layout_;  // deferred or contact: set 3
     gpu::UniqueDescriptorPool screen_pool_;

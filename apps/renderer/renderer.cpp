@@ -162,10 +162,9 @@ struct Renderer::Resources {
                                                         gpu_scene.draw_data().material_set_layout, settings.width,
                                                         settings.height)
                       : nullptr),
-          lighting_pass(
-              context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
-              settings.height, resolve, lighting_traces_contact(resolve, settings),
-              resolve == ShadowResolve::Deferred || settings.contact.enabled ? &prepass->targets().depth : nullptr),
+          lighting_pass(context, frame_set_layout, gpu_scene.draw_data().material_set_layout, shadows, settings.width,
+                        settings.height, resolve, lighting_traces_contact(resolve, settings),
+                        prepass ? &prepass->targets().depth : nullptr),
           readback(create_readback(context, settings)),
           commands(context),
           timer(context, kMaxTimedScopes) {

@@ -248,20 +248,22 @@ private:
     bool excludes(int node, int mesh) const {
         const std::string& node_name = model().nodes[static_cast<size_t>(node)].name;
         const std::string& mesh_name = model().meshes[static_cast<size_t>(mesh)].name;
-        return std::any_of(exclusions_.begin(), exclusions_.end(), [&](const std::string& entry) {
-            if (const std::optional<IndexReference> reference = index_reference(entry)) {
-                return reference->index == static_cast<size_t>(reference->node ? node : mesh);
-            }
-            return name_matches(entry, node_name) || name_matches(entry, mesh_name);
+        return std::any_of(exclusions_.begin(), exclusions_.end(), [&](const Exclusion& entry) {
+            if (entry.reference)
+                return entry.reference->index == static_cast<size_t>(entry.reference->node ? node : mesh);
+            return name_matches(entry.pattern, node_name) || name_matches(entry.pattern, mesh_name);
         });
     }
 
     // Every entry must name something: a typo would otherwise leave the sky box casting.
+    // Index references are parsed here, once, not per placed instance.
     void check_exclusion_patterns(const std::vector<std::string>& patterns) {
-        exclusions_ = patterns;
+        exclusions_.clear();
         for (size_t i = 0; i < patterns.size(); ++i) {
             const std::string where = "exclude_casters[" + std::to_string(i) + "]";
-            if (const std::optional<IndexReference> reference = index_reference(patterns[i])) {
+            const std::optional<IndexReference> reference = index_reference(patterns[i]);
+            exclusions_.push_back({patterns[i], reference});
+            if (reference) {
                 const size_t count = reference->node ? model().nodes.size() : model().meshes.size();
                 if (reference->index >= count) {
                     source_.fail(where, "\"" + patterns[i] + "\" names no " + (reference->node ? "node" : "mesh") +
@@ -484,8 +486,12 @@ private:
     Scene& scene_;
     const GltfSource& source_;
     std::vector<PlacedMesh> placed_meshes_;
-    std::vector<std::string> exclusions_;  // exclude_casters patterns and index references
-    std::vector<bool> excluded_;           // per instance placed: its node or mesh matches a pattern
+    struct Exclusion {
+        std::string pattern;
+        std::optional<IndexReference> reference;  // set for "nodes[i]" / "meshes[j]"
+    };
+    std::vector<Exclusion> exclusions_;  // exclude_casters entries
+    std::vector<bool> excluded_;         // per instance placed: its node or mesh matches a pattern
     std::vector<GltfPlacedLight> placed_lights_;
     // (mesh, primitive, mirrored, morph weights) -> scene mesh
     std::map<std::tuple<int, int, bool, std::vector<double>>, std::optional<uint32_t>> converted_meshes_;

@@ -157,7 +157,8 @@ void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* f
         setting_control(*find_output_setting("resolve"), settings, frame);
         draw_setting_group(settings, "filter", frame);
     }
-    // Traced in the deferred resolve (the automatic resolve picks it when they are on).
+    // Turning them on or off makes a new renderer (they need the depth pre-pass); the
+    // automatic resolve traces them in the deferred resolve.
     if (ImGui::CollapsingHeader("Contact shadows")) draw_setting_group(settings, "contact", frame);
     if (ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) {
         combo("debug view", settings.debug, std::array<const char*, 3>{"none", "cascade colours", "shadow-map layers"});
