@@ -101,24 +101,29 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
 }
 
 // Options shared by `render` and `bench`: the scene, its settings and the device.
-void add_render_job_options(CLI::App& command, RenderJob& job, RawRenderOptions& raw) {
-    command.add_option("scene", job.scene, "Scene file (.toml) or builtin:NAME (default builtin:default)")
+// The scene argument and the load budget: every command that loads a scene.
+void add_scene_options(CLI::App& command, std::string& scene, LoadBudget& budget) {
+    command.add_option("scene", scene, "Scene file (.toml) or builtin:NAME (default builtin:default)")
         ->check(CLI::Validator(
             [](const std::string& path) { return path.empty() ? std::string("the scene path is empty") : ""; }, ""));
+    command
+        .add_option("--max-scene-triangles", budget.max_triangles,
+                    "Refuse a scene whose glTF models would make more triangles, counting each placement (default " +
+                        std::to_string(budget.max_triangles) + ")")
+        ->check(CLI::PositiveNumber);
+    command
+        .add_option("--max-scene-bytes", budget.max_bytes,
+                    "Refuse a scene whose meshes and decoded textures would take more bytes (default " +
+                        std::to_string(budget.max_bytes) + ")")
+        ->check(CLI::PositiveNumber);
+}
+
+void add_render_job_options(CLI::App& command, RenderJob& job, RawRenderOptions& raw) {
+    add_scene_options(command, job.scene, job.load_budget);
     command.add_option("--config", raw.config, "Config file (.toml) with [output], [shadow], [camera], [sun] settings");
     command.add_flag("--validate", job.device.validation,
                      "Enable the Khronos validation layer (with synchronization validation); any message fails");
     command.add_option("--device", job.device.device_selector, "Vulkan device index or name (see `penumbra devices`)");
-    command
-        .add_option("--max-scene-triangles", job.load_budget.max_triangles,
-                    "Refuse a scene whose glTF models would make more triangles, counting each placement (default " +
-                        std::to_string(job.load_budget.max_triangles) + ")")
-        ->check(CLI::PositiveNumber);
-    command
-        .add_option("--max-scene-bytes", job.load_budget.max_bytes,
-                    "Refuse a scene whose meshes and decoded textures would take more bytes (default " +
-                        std::to_string(job.load_budget.max_bytes) + ")")
-        ->check(CLI::PositiveNumber);
     add_settings_options(command, job.overrides, raw);
 }
 
@@ -216,9 +221,18 @@ Command parse_command_line(int argc, char** argv) {
     add_render_job_options(*view, view_job.render, view_render_raw);
     add_view_options(*view, view_job, view_raw);
 
+    InspectJob inspect_job;
+    CLI::App* inspect = app.add_subcommand(
+        "inspect",
+        "List a scene's objects and glTF nodes (with the names exclude_casters takes), triangles, bounds, shadow "
+        "flags, alpha modes and lights (docs/cli.md)");
+    add_scene_options(*inspect, inspect_job.scene, inspect_job.load_budget);
+    inspect->add_flag("--json", inspect_job.json, "Print JSON instead of the text listing");
+
     try {
         app.parse(argc, argv);
         if (devices->parsed()) return DevicesCommand{};
+        if (inspect->parsed()) return InspectCommand{inspect_job};
         if (bench->parsed()) {
             finish_bench_job(bench_render_raw, bench_raw, bench_job);
             return BenchCommand{bench_job};

@@ -7,6 +7,7 @@
 
 #include "bench/bench_job.hpp"
 #include "compare/compare_job.hpp"
+#include "inspect.hpp"
 #include "renderer/render_job.hpp"
 #include "view/view_job.hpp"
 
@@ -25,11 +26,15 @@ struct CompareCommand {
 struct ViewCommand {
     view::ViewJob job;
 };
+struct InspectCommand {
+    InspectJob job;
+};
 struct ExitNow {
     int code = 0;  // --help / --version printed, or a parse error already reported
 };
 
-using Command = std::variant<DevicesCommand, RenderCommand, BenchCommand, CompareCommand, ViewCommand, ExitNow>;
+using Command =
+    std::variant<DevicesCommand, RenderCommand, BenchCommand, CompareCommand, ViewCommand, InspectCommand, ExitNow>;
 
 // N of `shadow:N` (`--aov`, `--screenshot-aov`): a light index, 0 or more. Throws InputError
 // naming `flag`; the scene checks the index later (prepare_render_job).

@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
         const penumbra::cli::Command command = penumbra::cli::parse_command_line(argc, argv);
         if (const auto* exit_now = std::get_if<penumbra::cli::ExitNow>(&command)) return exit_now->code;
         if (std::holds_alternative<penumbra::cli::DevicesCommand>(command)) return list_devices();
+        if (const auto* inspect_command = std::get_if<penumbra::cli::InspectCommand>(&command)) {
+            std::printf("%s", penumbra::cli::inspect_scene(inspect_command->job).c_str());
+            return 0;
+        }
         if (const auto* bench_command = std::get_if<penumbra::cli::BenchCommand>(&command)) {
             return bench(bench_command->job);
         }

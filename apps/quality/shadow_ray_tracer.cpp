@@ -58,8 +58,9 @@ void throw_on_device_error(RTCDevice device, const char* step) {
 struct ShadowRayTracer::Embree {
     RTCDevice device = nullptr;
     RTCScene top = nullptr;
-    std::vector<RTCScene> mesh_scenes;  // one per Scene mesh (null for empty meshes)
-    std::vector<MaskedMesh> masked;     // filter data per mesh; addresses stay fixed
+    std::vector<RTCScene> mesh_scenes;   // one per Scene mesh (null for empty meshes)
+    std::vector<MaskedMesh> masked;      // filter data per mesh; addresses stay fixed
+    std::vector<size_t> scene_instance;  // Scene::instances index of each top-level geometry
 
     ~Embree() {
         if (top) rtcReleaseScene(top);
@@ -127,7 +128,31 @@ MaskedMesh* mask_for(const Scene& scene, const Mesh& mesh, MaskedMesh& slot) {
 
 }  // namespace
 
-ShadowRayTracer::ShadowRayTracer(const Scene& scene) : embree_(std::make_unique<Embree>()) {
+namespace {
+
+bool traced(const Scene& scene, size_t index, TracedInstances selection, std::span<const size_t> only) {
+    if (selection == TracedInstances::Casters && !scene.instances[index].cast_shadows) return false;
+    return only.empty() || std::find(only.begin(), only.end(), index) != only.end();
+}
+
+RTCRay make_ray(const glm::vec3& origin, const glm::vec3& direction, float min_distance, float max_distance) {
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = min_distance;
+    ray.tfar = max_distance;
+    ray.mask = 0xFFFFFFFFu;
+    return ray;
+}
+
+}  // namespace
+
+ShadowRayTracer::ShadowRayTracer(const Scene& scene, TracedInstances selection, std::span<const size_t> only)
+    : embree_(std::make_unique<Embree>()) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("Embree: cannot create a device");
     embree_->masked.resize(scene.meshes.size());
@@ -139,10 +164,12 @@ ShadowRayTracer::ShadowRayTracer(const Scene& scene) : embree_(std::make_unique<
     }
     throw_on_device_error(embree_->device, "building the mesh BVHs");
     embree_->top = embree_->new_scene();
-    for (const Instance& instance : scene.instances) {
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
         if (instance.mesh >= embree_->mesh_scenes.size() || !embree_->mesh_scenes[instance.mesh]) continue;
-        if (!instance.cast_shadows) continue;  // as the shadow maps leave it out
+        if (!traced(scene, i, selection, only)) continue;  // casters only: as the shadow maps leave it out
         embree_->add_instance(embree_->mesh_scenes[instance.mesh], instance.world);
+        embree_->scene_instance.push_back(i);
         triangles_ += scene.meshes[instance.mesh].indices.size() / 3;
     }
     rtcCommitScene(embree_->top);
@@ -158,18 +185,23 @@ bool ShadowRayTracer::occluded(const glm::vec3& origin, const glm::vec3& directi
 bool ShadowRayTracer::occluded(const glm::vec3& origin, const glm::vec3& direction, float max_distance) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray{};
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.tnear = 0.0f;
-    ray.tfar = max_distance;
-    ray.mask = 0xFFFFFFFFu;
+    RTCRay ray = make_ray(origin, direction, 0.0f, max_distance);
     rtcOccluded1(embree_->top, &context, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf when the ray is occluded
+}
+
+std::optional<SurfaceHit> ShadowRayTracer::first_hit(const glm::vec3& origin, const glm::vec3& direction,
+                                                     float min_distance, float max_distance) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit query{};
+    query.ray = make_ray(origin, direction, min_distance, max_distance);
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree_->top, &context, &query);
+    if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    // Every top-level geometry is an instance, attached in order: its ID indexes scene_instance.
+    return SurfaceHit{query.ray.tfar, embree_->scene_instance.at(query.hit.instID[0])};
 }
 
 }  // namespace penumbra::quality

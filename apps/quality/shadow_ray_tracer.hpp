@@ -5,15 +5,30 @@
 // Thread-safe: occluded() may be called from many threads at once.
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 
 #include "penumbra/scene/scene.hpp"
 
 namespace penumbra::quality {
 
+// Which instances a tracer holds: the shadow casters (what the shadow maps draw), or
+// every instance (what the camera sees).
+enum class TracedInstances { Casters, Everything };
+
+// The first surface a ray meets.
+struct SurfaceHit {
+    float distance = 0.0f;  // along the ray's unit direction
+    size_t instance = 0;    // index into Scene::instances
+};
+
 class ShadowRayTracer {
 public:
     // Keeps a reference to `scene` (the filter reads its meshes, materials and textures).
-    explicit ShadowRayTracer(const Scene& scene);
+    // `only`, when not empty, limits the tracer to those instances (indices into
+    // Scene::instances) among the selected ones.
+    explicit ShadowRayTracer(const Scene& scene, TracedInstances selection = TracedInstances::Casters,
+                             std::span<const size_t> only = {});
     ~ShadowRayTracer();
     ShadowRayTracer(const ShadowRayTracer&) = delete;
     ShadowRayTracer& operator=(const ShadowRayTracer&) = delete;
@@ -25,6 +40,11 @@ public:
     // The same for t in (0, max_distance), with `direction` a unit vector: a segment toward
     // a light point (spot and point lights), so that nothing behind the light occludes.
     bool occluded(const glm::vec3& origin, const glm::vec3& direction, float max_distance) const;
+
+    // The nearest surface on origin + t * direction for t in (min_distance, max_distance),
+    // `direction` a unit vector; alpha-tested as occluded() tests.
+    std::optional<SurfaceHit> first_hit(const glm::vec3& origin, const glm::vec3& direction, float min_distance,
+                                        float max_distance) const;
 
     uint64_t triangle_count() const { return triangles_; }
 

@@ -11,6 +11,7 @@
 #include "penumbra/gpu/barriers.hpp"
 #include "penumbra/gpu/frame_commands.hpp"
 #include "penumbra/gpu/pipeline.hpp"
+#include "quality/enclosing_casters.hpp"
 #include "renderer/frame_uniforms.hpp"
 #include "renderer/geometry_aov_pass.hpp"
 #include "renderer/gpu_scene.hpp"
@@ -241,14 +242,9 @@ std::string Renderer::light_warning() const {
     return warning;
 }
 
-std::string Renderer::enclosure_warning() const {
-    const std::vector<std::string> names = scene_.enclosing_casters();
-    if (names.empty()) return {};
-    const std::string name = escape_control_characters(names.front());
-    return "penumbra: warning: \"" + name +
-           "\" encloses the camera and the whole scene and casts shadows, so it may shadow everything "
-           "(a sky box or dome?): give its object cast_shadows = false, or exclude_casters = [\"" +
-           name + "\"]";
+std::string Renderer::enclosure_warning(const Camera& camera) const {
+    const float aspect = static_cast<float>(settings_.width) / static_cast<float>(settings_.height);
+    return quality::enclosing_casters_warning(quality::find_enclosing_casters(scene_, camera, aspect));
 }
 
 FrameImages Renderer::render(const Camera& camera, ReadbackMode readback) {
@@ -258,7 +254,7 @@ FrameImages Renderer::render(const Camera& camera, ReadbackMode readback) {
         for (const std::string& warning : scene_.warnings) {
             std::fprintf(stderr, "penumbra: warning: %s\n", escape_control_characters(warning).c_str());
         }
-        for (const std::string& warning : {light_warning(), enclosure_warning()}) {
+        for (const std::string& warning : {light_warning(), enclosure_warning(camera)}) {
             if (!warning.empty()) std::fprintf(stderr, "%s\n", warning.c_str());
         }
     }

@@ -121,9 +121,9 @@ public:
     void fix_sampling_pattern(std::optional<uint32_t> sampling_frame) { sampling_frame_ = sampling_frame; }
     // The one-line warning for shadow-casting lights left unshadowed or unlit; empty when none.
     std::string light_warning() const;
-    // The one-line warning for a shadow caster that encloses the camera and the whole scene
-    // (Scene::enclosing_casters()); empty when none.
-    std::string enclosure_warning() const;
+    // The one-line warning for shadow casters that enclose the camera and the scene and
+    // shadow what it sees (quality::find_enclosing_casters()); empty when none.
+    std::string enclosure_warning(const Camera& camera) const;
 
 private:
     void prepare_frame(const Camera& camera);

@@ -197,8 +197,17 @@ struct GltfEmissive {
 };
 GltfEmissive read_gltf_emissive(const GltfSource& source, int material);
 
-// Converts a decoded image (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
-// image holds no pixels (it failed to decode) or its size does not match its header.
-Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, const std::string& where);
+// Converts decoded image `index` (1 to 4 channels, 8 or 16 bits) to RGBA8; throws when the
+// image holds no pixels (it failed to load) or its size does not match its header.
+Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, int index);
+
+// What refers to image `image`: "baseColorTexture of materials[0], normalTexture of
+// materials[2]" (the material slots of glTF 2.0), or "no material texture".
+std::string gltf_image_uses(const tinygltf::Model& model, int image);
+// `images[3] "helmet_normal.png"` (the uri, else the name, when there is one).
+std::string gltf_image_name(const tinygltf::Model& model, int image);
+// One warning per image that did not load and that loading the model did not need (those it
+// needs stop the load in convert_gltf_image).
+void warn_unloaded_images(const GltfSource& source, std::vector<std::string>& warnings);
 
 }  // namespace penumbra

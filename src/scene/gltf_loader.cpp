@@ -74,6 +74,7 @@ public:
                                         !excluded_[i - model_first];
                 instance.receive_shadows = options.placement_receives.empty() || options.placement_receives.at(p);
                 instance.dynamic = !options.placement_dynamic.empty() && options.placement_dynamic.at(p);
+                instance.origin.placement = static_cast<int32_t>(p);
             }
         }
         if (options.import_lights) append_gltf_lights(source_, placed_lights_, placements, scene_.lights);
@@ -207,6 +208,12 @@ private:
             if (!scene_mesh) continue;
             Instance instance{*scene_mesh, world};
             instance.name = node.name.empty() ? "nodes[" + std::to_string(placed.node) + "]" : node.name;
+            instance.origin.type = "gltf";
+            instance.origin.node = placed.node;
+            instance.origin.mesh = mesh;
+            instance.origin.primitive = static_cast<int32_t>(primitive);
+            instance.origin.node_name = node.name;
+            instance.origin.mesh_name = gltf_mesh.name;
             instance.cast_shadows = !unlit(gltf_mesh.primitives[primitive].material);
             scene_.instances.push_back(instance);
             excluded_.push_back(excludes(placed.node, mesh));
@@ -432,8 +439,7 @@ private:
         const auto key = std::make_tuple(image, sampling.wrap_u, sampling.wrap_v, sampling.nearest);
         if (const auto found = converted_images_.find(key); found != converted_images_.end()) return found->second;
         const auto scene_index = static_cast<int32_t>(scene_.textures.size());
-        Texture converted = convert_gltf_image(source_, model().images[static_cast<size_t>(image)],
-                                               "images[" + std::to_string(image) + "]");
+        Texture converted = convert_gltf_image(source_, model().images[static_cast<size_t>(image)], image);
         converted.wrap_u = sampling.wrap_u;
         converted.wrap_v = sampling.wrap_v;
         converted.nearest = sampling.nearest;
@@ -538,6 +544,7 @@ void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vec
     const size_t light_count = scene.lights.size();
     try {
         GltfImporter(scene, source).place_model(placements, options, held);
+        warn_unloaded_images(source, scene.warnings);
         if (const std::string ignored = ignored_extensions(model, options); !ignored.empty()) {
             scene.warnings.push_back(origin + ": ignores the glTF extension(s) " + ignored);
         }

@@ -154,15 +154,16 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
     return mesh;
 }
 
-Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, const std::string& where) {
+Texture convert_gltf_image(const GltfSource& source, const tinygltf::Image& image, int index) {
     const bool sane_header = image.width > 0 && image.height > 0 && image.component >= 1 && image.component <= 4 &&
                              (image.bits == 8 || image.bits == 16);
     const size_t texel_count = sane_header ? static_cast<size_t>(image.width) * static_cast<size_t>(image.height) : 0;
     const size_t bytes_per_channel = image.bits == 16 ? 2 : 1;
     const size_t channels = sane_header ? static_cast<size_t>(image.component) : 0;
     if (!sane_header || image.image.size() != texel_count * channels * bytes_per_channel) {
-        source.fail(where,
-                    "image \"" + image.uri + "\" could not be read or decoded (missing file or unsupported format)");
+        source.fail(gltf_image_name(source.model, index),
+                    "could not be read or decoded (missing file or unsupported format); Penumbra reads it (" +
+                        gltf_image_uses(source.model, index) + ")");
     }
     Texture texture;
     texture.width = static_cast<uint32_t>(image.width);

@@ -115,6 +115,7 @@ private:
         instance.dynamic = reader.boolean_or("dynamic", false);
         const std::string path = reader.key_path("type");  // "objects[2].type"
         instance.name = path.substr(0, path.rfind('.')) + " (" + type + ")";
+        instance.origin.type = type;
         reader.reject_unknown_keys();
         for (Vertex& vertex : mesh.vertices) vertex.uv *= uv_scale;
         mesh.material = static_cast<uint32_t>(scene_.materials.size());
@@ -159,7 +160,8 @@ private:
     }
 
     void add_gltf(TomlTableReader& reader) {
-        const std::filesystem::path file = base_directory_ / reader.required_string("file");
+        const std::string written_file = reader.required_string("file");
+        const std::filesystem::path file = base_directory_ / written_file;
         const glm::mat4 object_transform = read_transform(reader);
         GltfImportOptions options;
         const bool casts = reader.boolean_or("cast_shadows", true);
@@ -191,10 +193,14 @@ private:
         options.import_lights = reader.boolean_or("import_lights", false);
         options.budget = budget_;
         reader.reject_unknown_keys();
+        const size_t first = scene_.instances.size();
         try {
             append_gltf(scene_, file, placements, options);
         } catch (const InputError& error) {
             reader.fail("file", error.what());
+        }
+        for (size_t i = first; i < scene_.instances.size(); ++i) {
+            scene_.instances[i].origin.file = written_file;
         }
     }
 
@@ -212,7 +218,10 @@ void append_scene_objects(TomlTableReader& root, Scene& scene, const std::filesy
     const std::vector<const toml::table*> objects = root.table_array("objects");
     for (size_t i = 0; i < objects.size(); ++i) {
         TomlTableReader reader(*objects[i], root.origin(), root.key_path("objects") + "[" + std::to_string(i) + "]");
+        const size_t first = scene.instances.size();
         builder.add_object(reader);
+        for (size_t j = first; j < scene.instances.size(); ++j)
+            scene.instances[j].origin.object = static_cast<int32_t>(i);
     }
 }
 

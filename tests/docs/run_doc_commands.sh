@@ -4,7 +4,7 @@
 # layer on, in a scratch folder that holds build/penumbra and examples/ as a fresh clone
 # after the quick start does. `view` runs two frames under Xvfb (its own xvfb-run prefix
 # in a doc gives way to ours; skipped without xvfb-run). A code line that calls the tool as
-# plain `penumbra render|bench|compare|view|devices` (not on PATH after the quick start)
+# plain `penumbra render|bench|compare|view|devices|inspect` (not on PATH after the quick start)
 # fails the test, unless it is a synopsis with [optional] parts. Fails naming the file and
 # the first command that fails.
 #   tests/docs/run_doc_commands.sh REPOSITORY PENUMBRA_BINARY
@@ -25,7 +25,7 @@ code_lines() {
   done
 }
 
-bare="$(code_lines | grep -P '\t(\S+ )*penumbra (render|bench|compare|view|devices)\b' \
+bare="$(code_lines | grep -P '\t(\S+ )*penumbra (render|bench|compare|view|devices|inspect)\b' \
   | grep -vP '\tbuild/penumbra |\txvfb-run .* build/penumbra ' | grep -v '\[' || true)"
 if [[ -n "$bare" ]]; then
   echo "docs call 'penumbra' without build/ (it is not on PATH after the quick start):" >&2
@@ -39,7 +39,7 @@ while IFS=$'\t' read -r doc line; do
   command="${line%%  #*}"  # the comment after two spaces
   prefix=""
   case "$command" in
-    "build/penumbra devices"*) extra="" ;;
+    "build/penumbra devices"* | "build/penumbra inspect "*) extra="" ;;
     "build/penumbra view "*)
       if ! command -v xvfb-run >/dev/null; then echo "skipped (no xvfb-run): $command"; continue; fi
       prefix="xvfb-run -a -s '-screen 0 640x480x24'"

@@ -655,7 +655,7 @@ TEST_F(Cli, SkyBoxIsNamedInAWarningAndCastShadowsTurnsItOff) {
     write_file("sky.toml", std::string(kValidScene) + sky);
     const RunResult boxed = run("render sky.toml --validate --aov shadow --width 64 --height 48 -o boxed.png");
     ASSERT_EQ(boxed.exit_code, 0) << boxed.err;
-    EXPECT_NE(boxed.err.find("warning: \"objects[2] (box)\" encloses the camera and the whole scene"),
+    EXPECT_NE(boxed.err.find("warning: \"objects[2] (box)\" encloses the camera and the scene and shadows 100%"),
               std::string::npos)
         << boxed.err;
     // Every pixel showing geometry is shadowed; the rest show the sky through the culled

@@ -2,6 +2,10 @@
 // crash or an out-of-bounds read (tests/data/gltf/make_fixtures.py writes these files).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
 
 #include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
@@ -76,7 +80,7 @@ INSTANTIATE_TEST_SUITE_P(
         GltfErrorCase{"bad_alpha_mode.gltf",
                       "materials[0].alphaMode: expected one of OPAQUE, MASK, BLEND, got \"CUTOUT\""},
         GltfErrorCase{"partial_triangle.gltf", "5 vertex indices do not form whole triangles"},
-        GltfErrorCase{"missing_image.gltf", "images[0]: image \"missing.png\" could not be read or decoded"}),
+        GltfErrorCase{"missing_image.gltf", "images[0] \"missing.png\": could not be read or decoded"}),
     [](const auto& test_info) {
         std::string name = test_info.param.file;
         return name.substr(0, name.find('.'));
@@ -84,6 +88,26 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(GltfErrors, UnsupportedExtension) {
     EXPECT_THAT(gltf_error("make_fixtures.py"), HasSubstr("unsupported model extension \".py\""));
+}
+
+// One rule for images that did not load: the ones Penumbra reads stop the load (above:
+// a base colour texture), every other one is named in a warning with what refers to it.
+TEST(GltfErrors, AnImageThatIsNotReadIsNamedInAWarningNotRefused) {
+    nlohmann::json model = nlohmann::json::parse(std::ifstream(test_data("gltf/missing_image.gltf")));
+    nlohmann::json& material = model["materials"][0];
+    material["normalTexture"] = material["pbrMetallicRoughness"]["baseColorTexture"];
+    material["occlusionTexture"] = material["pbrMetallicRoughness"]["baseColorTexture"];
+    material["pbrMetallicRoughness"].erase("baseColorTexture");
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "penumbra_unread_missing_image.gltf";
+    std::ofstream(file) << model.dump();
+    Scene scene;
+    append_gltf(scene, file, {glm::mat4{1.0f}});
+    std::filesystem::remove(file);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_THAT(scene.warnings[0], HasSubstr("images[0] \"missing.png\" could not be read (missing file?); Penumbra "
+                                             "does not use it (normalTexture of materials[0], occlusionTexture of "
+                                             "materials[0])"));
+    EXPECT_EQ(scene.instances.size(), 1u);
 }
 
 TEST(GltfErrors, FailedLoadLeavesTheSceneUntouched) {

@@ -99,18 +99,5 @@ TEST(ShadowControl, DynamicFlagsPerObjectAndPlacement) {
     EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\ndynamic = 1\n"), HasSubstr("objects[0].dynamic"));
 }
 
-// A closed box around the camera and everything else is found and named; the ground plane
-// alone, or the box once it casts no shadow, is not.
-TEST(ShadowControl, EnclosingCastersAreFound) {
-    const std::string scene_text =
-        "[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n\n"
-        "[[objects]]\ntype = \"plane\"\nsize = [30.0, 30.0]\n\n"
-        "[[objects]]\ntype = \"box\"\nsize = [200.0, 200.0, 200.0]\n";
-    EXPECT_THAT(parse_scene_text(scene_text).enclosing_casters(), ElementsAre("objects[1] (box)"));
-    EXPECT_TRUE(parse_scene_text(scene_text + "cast_shadows = false\n").enclosing_casters().empty());
-    EXPECT_TRUE(
-        parse_scene_text("[[objects]]\ntype = \"plane\"\n\n[[objects]]\ntype = \"box\"\n").enclosing_casters().empty());
-}
-
 }  // namespace
 }  // namespace penumbra

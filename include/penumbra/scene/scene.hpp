@@ -139,6 +139,22 @@ struct Mesh {
     Aabb bounds;  // model-space bounds of the vertices
 };
 
+// Where an instance came from, in the terms scene files use: the scene file's
+// `objects[i]` entry and, for glTF models, the node, mesh and primitive it was made of
+// (names empty when the file gives none). `penumbra inspect` lists them, and messages
+// name casters the way exclude_casters accepts them.
+struct InstanceOrigin {
+    int32_t object = -1;     // index into the scene file's [[objects]]; -1: made by code (built-ins)
+    std::string type;        // the object's type: "plane", "box", ..., "gltf"
+    std::string file;        // glTF: the model's path as the scene file wrote it
+    int32_t placement = -1;  // glTF: index into the object's instances (0 without instances)
+    int32_t node = -1;       // glTF: nodes[i]
+    int32_t mesh = -1;       // glTF: meshes[j]
+    int32_t primitive = -1;  // glTF: meshes[j].primitives[k]
+    std::string node_name;
+    std::string mesh_name;
+};
+
 // A mesh placed in the world.
 struct Instance {
     uint32_t mesh = 0;
@@ -147,6 +163,7 @@ struct Instance {
     bool receive_shadows = true;  // false: lit as if nothing shadowed it
     bool dynamic = false;         // drawn every frame over cached static casters (--shadow-cache)
     std::string name;             // where it came from, for messages: a glTF node's name, an object's type
+    InstanceOrigin origin;
 };
 
 struct Scene {
@@ -167,9 +184,6 @@ struct Scene {
     const Light* sun() const;
     // Triangles submitted when every instance is drawn once.
     uint64_t triangle_count() const;
-    // Names of the shadow-casting instances whose world bounds enclose the camera and every
-    // other instance: a sky box or dome that would shadow the whole image.
-    std::vector<std::string> enclosing_casters() const;
 };
 
 }  // namespace penumbra
