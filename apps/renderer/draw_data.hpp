@@ -18,7 +18,8 @@ struct MaterialBinding {
     float alpha_cutoff = 0.5f;
     float roughness = 0.6f;
     float metallic = 0.0f;
-    glm::vec3 emissive{0.0f};  // emitted radiance, times the emissive texture when it has one
+    glm::vec3 emissive{0.0f};         // emitted radiance, times the emissive texture when it has one
+    float occlusion_strength = 1.0f;  // how much the occlusion texture (white: none) darkens ambient light
     bool has_texture = false;
     bool has_emissive_texture = false;
     bool alpha_masked = false;  // MASK, or BLEND cast and shaded as MASK

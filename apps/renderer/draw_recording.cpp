@@ -24,6 +24,7 @@ gpu::VertexLayout scene_vertex_layout() {
     layout.attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))});
     layout.attributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))});
     layout.attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv))});
+    layout.attributes.push_back({3, 0, VK_FORMAT_R8G8B8A8_UNORM, static_cast<uint32_t>(offsetof(Vertex, color))});
     return layout;
 }
 
@@ -31,7 +32,7 @@ shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBi
     shader::DrawPushConstants constants{};
     constants.base_color = material.base_color;
     constants.material = {material.alpha_cutoff, material.roughness, material.metallic, 0.0f};
-    constants.emissive = glm::vec4(material.emissive, 0.0f);
+    constants.emissive = glm::vec4(material.emissive, material.occlusion_strength);
     constants.flags = {material.has_emissive_texture ? 1u : 0u, material.has_texture ? 1u : 0u,
                        material.alpha_masked ? RENDERER_ALPHA_MASK : RENDERER_ALPHA_OPAQUE,
                        draw.receive_shadows ? 1u : 0u};

@@ -211,6 +211,10 @@ void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
         {RENDERER_BINDING_BASE_COLOR_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
          VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {RENDERER_BINDING_EMISSIVE_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+         nullptr},
+        {RENDERER_BINDING_METALLIC_ROUGHNESS_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+         VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {RENDERER_BINDING_OCCLUSION_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
          nullptr}};
     material_set_layout_ = gpu::create_descriptor_set_layout(context, bindings);
     draw_data_.material_set_layout = material_set_layout_;
@@ -218,7 +222,8 @@ void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
     std::vector<Material> materials = scene.materials;
     if (materials.empty()) materials.emplace_back();  // a scene may have meshes but no materials
     const auto count = static_cast<uint32_t>(materials.size());
-    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * count};
+    const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                         static_cast<uint32_t>(std::size(bindings)) * count};
     descriptor_pool_ = gpu::create_descriptor_pool(context, count, {&pool_size, 1});
 
     for (const Material& material : materials) {
@@ -230,14 +235,21 @@ void GpuScene::create_materials(const AppContext& context, const Scene& scene) {
         gpu::write_combined_image_sampler(context, binding_data.descriptor_set, RENDERER_BINDING_BASE_COLOR_TEXTURE,
                                           texture.view, sampler);
         const size_t emissive_index = texture_slot(material.emissive_texture);
-        gpu::write_combined_image_sampler(context, binding_data.descriptor_set, RENDERER_BINDING_EMISSIVE_TEXTURE,
-                                          textures_[emissive_index].view, texture_samplers_[emissive_index]);
+        // Textures a material lacks read the white texel: factors times 1.
+        const auto write_texture = [&](uint32_t binding, size_t slot) {
+            gpu::write_combined_image_sampler(context, binding_data.descriptor_set, binding, textures_[slot].view,
+                                              texture_samplers_[slot]);
+        };
+        write_texture(RENDERER_BINDING_EMISSIVE_TEXTURE, emissive_index);
+        write_texture(RENDERER_BINDING_METALLIC_ROUGHNESS_TEXTURE, texture_slot(material.metallic_roughness_texture));
+        write_texture(RENDERER_BINDING_OCCLUSION_TEXTURE, texture_slot(material.occlusion_texture));
         binding_data.texture_view = texture.view;
         binding_data.texture_sampler = sampler;
         binding_data.base_color = material.base_color;
         binding_data.has_texture = texture_index != white_texture_slot();
         binding_data.emissive = material.emissive;
         binding_data.has_emissive_texture = emissive_index != white_texture_slot();
+        binding_data.occlusion_strength = material.occlusion_strength;
         // BLEND materials are drawn and cast alpha-tested at 0.5 (docs/techniques.md):
         // sorted transparency is out of scope and a shadow map stores one depth per texel.
         binding_data.alpha_masked = material.alpha_mode != AlphaMode::Opaque;

@@ -246,7 +246,13 @@ const Accepted& accepted(GltfAttribute use) {
         {{kByte, false}, {kByte, true}, {kUbyte, false}, {kShort, false}, {kShort, true}, {kUshort, false}}};
     static const Accepted position_delta{
         "VEC3 of FLOAT", {{kFloat, false}}, {{kByte, false}, {kByte, true}, {kShort, false}, {kShort, true}}};
+    // glTF 2.0, 3.7.2.1: COLOR_n is VEC3 or VEC4 of these (no quantized extras).
+    static const Accepted color{"VEC3 or VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
+                                {{kFloat, false}, {kUbyte, true}, {kUshort, true}},
+                                {}};
     switch (use) {
+        case GltfAttribute::Color:
+            return color;
         case GltfAttribute::Position:
             return position;
         case GltfAttribute::Normal:
@@ -336,6 +342,16 @@ std::vector<glm::vec3> read_vec3_accessor(const GltfSource& source, int accessor
 
 std::vector<glm::vec2> read_texcoord_accessor(const GltfSource& source, int accessor, const std::string& where) {
     return read_vector_accessor<glm::vec2>(source, accessor, GltfAttribute::Texcoord, where);
+}
+
+std::vector<glm::vec4> read_color_accessor(const GltfSource& source, int accessor, const std::string& where) {
+    if (checked_layout(source, accessor, where).component_count == 4) {
+        return read_vector_accessor<glm::vec4>(source, accessor, GltfAttribute::Color, where);
+    }
+    const std::vector<glm::vec3> rgb = read_vector_accessor<glm::vec3>(source, accessor, GltfAttribute::Color, where);
+    std::vector<glm::vec4> colors(rgb.size());
+    for (size_t i = 0; i < rgb.size(); ++i) colors[i] = glm::vec4{rgb[i], 1.0f};
+    return colors;
 }
 
 std::vector<uint32_t> read_index_accessor(const GltfSource& source, int index, const std::string& where) {

@@ -36,16 +36,24 @@ GltfEmissive read_gltf_emissive(const GltfSource& source, int material_index) {
     }
     emissive.factor *= emissive_strength(source, material, where);
     const tinygltf::TextureInfo& texture = material.emissiveTexture;
-    if (texture.index < 0) return emissive;
-    emissive.texture = texture.index;
-    emissive.uv_set = std::max(texture.texCoord, 0);
-    emissive.where = where + ".emissiveTexture";
-    const auto transform = texture.extensions.find("KHR_texture_transform");
-    if (transform != texture.extensions.end()) {
-        emissive.uv_transform = read_texture_transform(
-            source, transform->second, emissive.where + ".extensions.KHR_texture_transform", emissive.uv_set);
-    }
+    emissive.texture =
+        read_texture_reference(source, texture.index, texture.texCoord, texture.extensions, where + ".emissiveTexture");
     return emissive;
+}
+
+GltfTextureReference read_texture_reference(const GltfSource& source, int texture, int tex_coord,
+                                            const tinygltf::ExtensionMap& extensions, const std::string& where) {
+    GltfTextureReference reference;
+    if (texture < 0) return reference;
+    reference.texture = texture;
+    reference.uv_set = std::max(tex_coord, 0);
+    reference.where = where;
+    const auto transform = extensions.find("KHR_texture_transform");
+    if (transform != extensions.end()) {
+        reference.uv_transform = read_texture_transform(source, transform->second,
+                                                        where + ".extensions.KHR_texture_transform", reference.uv_set);
+    }
+    return reference;
 }
 
 }  // namespace penumbra

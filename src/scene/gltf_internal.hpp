@@ -133,7 +133,7 @@ inline constexpr size_t kMaxGltfElementsWithoutData = size_t{1} << 24;
 
 // What an accessor is read for; each accepts the component types glTF 2.0 allows for it,
 // plus KHR_mesh_quantization's integer types when the file declares that extension.
-enum class GltfAttribute { Position, Normal, Texcoord, PositionDelta, NormalDelta };
+enum class GltfAttribute { Position, Normal, Texcoord, PositionDelta, NormalDelta, Color };
 
 // Reads the whole accessor (sparse substitution applied, integer components normalised
 // where the accessor says so), converting to floats. Each throws unless the accessor's
@@ -142,6 +142,8 @@ enum class GltfAttribute { Position, Normal, Texcoord, PositionDelta, NormalDelt
 std::vector<glm::vec3> read_vec3_accessor(const GltfSource& source, int accessor, GltfAttribute use,
                                           const std::string& where);
 std::vector<glm::vec2> read_texcoord_accessor(const GltfSource& source, int accessor, const std::string& where);
+// COLOR_n: VEC3 (alpha 1) or VEC4.
+std::vector<glm::vec4> read_color_accessor(const GltfSource& source, int accessor, const std::string& where);
 // Indices: unsigned byte, short or int scalars.
 std::vector<uint32_t> read_index_accessor(const GltfSource& source, int accessor, const std::string& where);
 // Number of elements of a checked accessor (throws like the readers when malformed).
@@ -188,12 +190,20 @@ glm::mat3 read_texture_transform(const GltfSource& source, const tinygltf::Value
 // times KHR_materials_emissive_strength's emissiveStrength, and the emissiveTexture with
 // the UV set and KHR_texture_transform it is read with. InputError for factors that are
 // not 3 finite numbers >= 0 or a strength that is not a finite number >= 0.
-struct GltfEmissive {
-    glm::vec3 factor{0.0f};
+// A material's textureInfo (glTF 2.0 5.22): the texture, and the UV set and
+// KHR_texture_transform it is read with.
+struct GltfTextureReference {
     int texture = -1;  // glTF texture index, -1 for none
     int uv_set = 0;
     glm::mat3 uv_transform{1.0f};
     std::string where;  // the textureInfo's JSON path
+};
+GltfTextureReference read_texture_reference(const GltfSource& source, int texture, int tex_coord,
+                                            const tinygltf::ExtensionMap& extensions, const std::string& where);
+
+struct GltfEmissive {
+    glm::vec3 factor{0.0f};
+    GltfTextureReference texture;
 };
 GltfEmissive read_gltf_emissive(const GltfSource& source, int material);
 

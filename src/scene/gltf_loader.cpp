@@ -386,7 +386,6 @@ private:
         }
         const tinygltf::Material& gltf = model().materials[static_cast<size_t>(index)];
         const std::string material_where = "materials[" + std::to_string(index) + "]";
-        const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
         const BaseColorSource color = base_color_source(index);
         Material material;
         material.base_color = color.factor;
@@ -394,28 +393,60 @@ private:
         material.alpha_mode = read_alpha_mode(gltf.alphaMode, material_where + ".alphaMode");
         material.alpha_cutoff = static_cast<float>(gltf.alphaCutoff);
         material.double_sided = gltf.doubleSided;
-        material.roughness = std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f);
-        material.metallic = std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f);
-        read_emissive(index, material);
+        read_shading(index, material);
         return material;
     }
 
-    // Penumbra keeps one UV set per vertex, mapped for the base colour texture: an emissive
+    // Penumbra keeps one UV set per vertex, mapped for the base colour texture: another
     // texture read with other UVs cannot be shown, so it is left out with a warning (its
-    // factor is kept).
-    void read_emissive(int index, Material& material) {
+    // factors are kept).
+    int32_t read_shading_texture(int material, const GltfTextureReference& reference) {
+        if (reference.texture < 0) return -1;
+        GltfPrimitiveOptions mesh_uvs;
+        read_uv_mapping(material, mesh_uvs);
+        if (reference.uv_set == mesh_uvs.uv_set && reference.uv_transform == mesh_uvs.uv_transform) {
+            return convert_texture(reference.texture, reference.where);
+        }
+        scene_.warnings.push_back(source_.origin + ": " + reference.where +
+                                  ": ignored (read with other texture coordinates or another "
+                                  "KHR_texture_transform than the base colour texture)");
+        return -1;
+    }
+
+    // The preview's shading inputs: metallic and roughness (pbrMetallicRoughness, or
+    // KHR_materials_pbrSpecularGlossiness read as a dielectric of roughness 1 - glossiness),
+    // occlusion and emission.
+    void read_shading(int index, Material& material) {
+        const tinygltf::Material& gltf = model().materials[static_cast<size_t>(index)];
+        const std::string where = "materials[" + std::to_string(index) + "]";
+        const auto spec_gloss = gltf.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (spec_gloss != gltf.extensions.end()) {
+            material.metallic = 0.0f;
+            material.roughness = 1.0f - glossiness(spec_gloss->second);
+        } else {
+            const tinygltf::PbrMetallicRoughness& pbr = gltf.pbrMetallicRoughness;
+            material.roughness = std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f);
+            material.metallic = std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f);
+            const tinygltf::TextureInfo& texture = pbr.metallicRoughnessTexture;
+            material.metallic_roughness_texture = read_shading_texture(
+                index, read_texture_reference(source_, texture.index, texture.texCoord, texture.extensions,
+                                              where + ".pbrMetallicRoughness.metallicRoughnessTexture"));
+        }
+        const tinygltf::OcclusionTextureInfo& occlusion = gltf.occlusionTexture;
+        material.occlusion_strength = std::clamp(static_cast<float>(occlusion.strength), 0.0f, 1.0f);
+        material.occlusion_texture =
+            read_shading_texture(index, read_texture_reference(source_, occlusion.index, occlusion.texCoord,
+                                                               occlusion.extensions, where + ".occlusionTexture"));
         const GltfEmissive emissive = read_gltf_emissive(source_, index);
         material.emissive = emissive.factor;
-        if (emissive.texture < 0) return;
-        GltfPrimitiveOptions mesh_uvs;
-        read_uv_mapping(index, mesh_uvs);
-        if (emissive.uv_set == mesh_uvs.uv_set && emissive.uv_transform == mesh_uvs.uv_transform) {
-            material.emissive_texture = convert_texture(emissive.texture, emissive.where);
-        } else {
-            scene_.warnings.push_back(source_.origin + ": " + emissive.where +
-                                      ": ignored (read with other texture coordinates or another "
-                                      "KHR_texture_transform than the base colour texture)");
-        }
+        material.emissive_texture = read_shading_texture(index, emissive.texture);
+    }
+
+    // KHR_materials_pbrSpecularGlossiness' glossinessFactor (default 1), clamped to [0, 1].
+    float glossiness(const tinygltf::Value& extension) const {
+        if (!extension.IsObject() || !extension.Has("glossinessFactor")) return 1.0f;
+        const tinygltf::Value& factor = extension.Get("glossinessFactor");
+        return factor.IsNumber() ? std::clamp(static_cast<float>(factor.GetNumberAsDouble()), 0.0f, 1.0f) : 1.0f;
     }
 
     AlphaMode read_alpha_mode(const std::string& mode, const std::string& where) const {

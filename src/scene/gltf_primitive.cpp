@@ -150,6 +150,15 @@ std::optional<Mesh> convert_gltf_primitive(const GltfSource& source, const tinyg
         source.fail(where + ".attributes",
                     "the material's base colour texture reads " + uv_name + ", which the primitive does not have");
     }
+    if (const int color_accessor = find_attribute(primitive, "COLOR_0"); color_accessor >= 0) {
+        const std::vector<glm::vec4> colors =
+            read_color_accessor(source, color_accessor, where + ".attributes.COLOR_0");
+        require_same_count(source, colors.size(), positions.size(), where + ".attributes.COLOR_0");
+        for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+            const glm::vec3 rgb = glm::clamp(glm::vec3{colors[element(i)]}, 0.0f, 1.0f);
+            mesh.vertices[i].color = glm::u8vec4{glm::round(rgb * 255.0f), 255};
+        }
+    }
     mesh.bounds = compute_mesh_bounds(mesh.vertices);
     return mesh;
 }

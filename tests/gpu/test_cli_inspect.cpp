@@ -12,7 +12,7 @@
 namespace {
 
 using Cli = penumbra::testing::CliTest;
-using penumbra::testing::add_test_quad;
+using penumbra::testing::add_test_box_face;
 using penumbra::testing::GltfTestNode;
 using penumbra::testing::GltfTestPrimitive;
 using penumbra::testing::write_test_gltf;
@@ -38,19 +38,8 @@ file = "model.gltf"
 // A closed box of half-size `half` around `center`, its faces split over `pieces` primitives.
 std::vector<GltfTestPrimitive> box_primitives(glm::vec3 center, float half, int pieces) {
     std::vector<GltfTestPrimitive> primitives(static_cast<size_t>(pieces));
-    for (int face = 0; face < 6; ++face) {
-        const int axis = face / 2;
-        const float side = face % 2 ? half : -half;
-        glm::vec3 corners[4];
-        for (int k = 0; k < 4; ++k) {
-            glm::vec3 p{0.0f};
-            p[axis] = side;
-            p[(axis + 1) % 3] = (k == 1 || k == 2) ? half : -half;
-            p[(axis + 2) % 3] = (k >= 2) ? half : -half;
-            corners[k] = center + p;
-        }
-        add_test_quad(primitives[static_cast<size_t>(face % pieces)], corners[0], corners[1], corners[2], corners[3]);
-    }
+    for (int face = 0; face < 6; ++face)
+        add_test_box_face(primitives[static_cast<size_t>(face % pieces)], center, half, face);
     return primitives;
 }
 

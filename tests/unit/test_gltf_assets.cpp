@@ -98,7 +98,9 @@ TEST(GltfAssets, AlphaBlendModeTest) {
     EXPECT_EQ(mask_cutoffs, (std::vector<float>{0.25f, 0.5f, 0.75f}));
     EXPECT_EQ(blend, 1);
     EXPECT_EQ(opaque, 2);  // MatBed and MatOpaque
-    EXPECT_EQ(scene->textures.size(), 2u) << "only base colour images become textures";
+    // The bed's base colour and its packed occlusion-roughness-metallic image (read once for
+    // both slots), and the labels; the normal map is not read.
+    EXPECT_EQ(scene->textures.size(), 3u) << "base colour, metallic-roughness and occlusion images become textures";
 }
 
 }  // namespace

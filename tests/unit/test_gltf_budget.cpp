@@ -188,9 +188,9 @@ TEST_F(GltfBudget, GeometryBombsAreRefusedBeforeExpanding) {
                 HasSubstr("would make 357913920 triangles as placed"));
     EXPECT_LT(seconds_, 1.0);
     // Two primitives stay under the triangles but not the bytes: 2 x (2^24 - 1) vertices of
-    // 32 bytes and 2 x 16,777,215 indices of 4.
+    // 36 bytes and 2 x 16,777,215 indices of 4.
     EXPECT_THAT(load_error(write("two.gltf", zeros_model(2, 1, kZeros, true))),
-                HasSubstr("meshes: images and meshes would take 1207959480 bytes, over the load budget of "
+                HasSubstr("meshes: images and meshes would take 1342177200 bytes, over the load budget of "
                           "1073741824 bytes (LoadBudget::max_bytes raises it)"));
     EXPECT_LT(seconds_, 1.0);
 }

@@ -5,6 +5,9 @@
 #include <cctype>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <filesystem>
+
+#include "gltf_writer.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
 
@@ -165,6 +168,22 @@ TEST(GltfLoader, ConvertsSixteenBitGreyAlphaToRgba8) {
     ASSERT_EQ(scene.textures.size(), 1u);
     EXPECT_EQ(scene.textures[0].rgba8,
               (std::vector<uint8_t>{255, 255, 255, 0x80, 0x12, 0x12, 0x12, 0, 0, 0, 0, 255, 0x80, 0x80, 0x80, 0x40}));
+}
+
+// COLOR_0 is kept per vertex as 8-bit linear RGB (alpha not applied), and white without it.
+TEST(GltfLoader, KeepsVertexColours) {
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "penumbra_vertex_colours.gltf";
+    testing::GltfTestPrimitive box = testing::test_box(glm::vec3{0.0f}, 1.0f);
+    box.colors.assign(box.positions.size(), glm::vec4{0.8f, 0.2f, 0.4f, 0.5f});
+    testing::write_test_gltf(file,
+                             {{"Coloured", "", {box}}, {"Plain", "", {testing::test_box(glm::vec3{3.0f}, 1.0f)}}});
+    Scene scene;
+    append_gltf(scene, file, {glm::mat4{1.0f}});
+    std::filesystem::remove(file);
+    std::filesystem::remove(std::filesystem::path(file).replace_extension(".bin"));
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    for (const Vertex& vertex : scene.meshes[0].vertices) EXPECT_EQ(vertex.color, glm::u8vec4(204, 51, 102, 255));
+    for (const Vertex& vertex : scene.meshes[1].vertices) EXPECT_EQ(vertex.color, glm::u8vec4(255, 255, 255, 255));
 }
 
 }  // namespace

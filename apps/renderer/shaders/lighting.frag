@@ -27,6 +27,9 @@ layout(std430, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_LIGHTS) read
 layout(push_constant) uniform PushBlock { DrawPushConstants draw; };
 layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_BASE_COLOR_TEXTURE) uniform sampler2D base_color_texture;
 layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_EMISSIVE_TEXTURE) uniform sampler2D emissive_texture;
+layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_METALLIC_ROUGHNESS_TEXTURE) uniform sampler2D
+    metallic_roughness_texture;
+layout(set = RENDERER_SET_MATERIAL, binding = RENDERER_BINDING_OCCLUSION_TEXTURE) uniform sampler2D occlusion_texture;
 
 #define PENUMBRA_SHADOW_SET RENDERER_SET_SHADOWS
 #include "penumbra/shadow.glsl"
@@ -55,6 +58,7 @@ PenumbraContactScreen contact_screen() {
 layout(location = 0) in vec3 in_world_position;
 layout(location = 1) in vec3 in_world_normal;
 layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec3 in_vertex_color;
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out float out_visibility;
@@ -76,6 +80,11 @@ void main() {
     vec4 base_color = draw.base_color;
     if (draw.flags.y != 0u) base_color *= texture(base_color_texture, in_uv);
     if (draw.flags.z == RENDERER_ALPHA_MASK && base_color.a < draw.material.x) discard;
+    base_color.rgb *= in_vertex_color;
+    // glTF's metallic-roughness texture: roughness in G, metallic in B (white without one).
+    const vec2 metal_rough = texture(metallic_roughness_texture, in_uv).bg;
+    const float metallic = draw.material.z * metal_rough.x;
+    const float roughness = draw.material.y * metal_rough.y;
 
     // An instance that does not receive shadows (scene files' receive_shadows = false) is
     // lit as if nothing were in the way; the lookups stay in uniform control flow.
@@ -105,7 +114,7 @@ void main() {
 #endif
 #endif
     vec3 color = shade_sun(base_color.rgb, normal, to_view, frame.to_sun.xyz, frame.sun_radiance.rgb * visibility,
-                           draw.material.y, draw.material.z);
+                           roughness, metallic);
     // Spot and point lights; with `--aov shadow:N` light N's visibility (shadow, cone, range,
     // facing) replaces the sun's in the visibility target.
     for (uint i = 0u; i < frame.local_light_count; ++i) {
@@ -139,9 +148,11 @@ void main() {
         if (int(i) == frame.visibility_light) visibility = shadow * cone;
         const float falloff = distance_falloff(distance, light.range);
         color += shade_sun(base_color.rgb, normal, to_view, to_light, light.radiance * (falloff * cone * shadow),
-                           draw.material.y, draw.material.z);
+                           roughness, metallic);
     }
-    color += base_color.rgb * frame.ambient.rgb;
+    // glTF's occlusion texture (R) darkens the ambient term only, by its strength.
+    const float occlusion = mix(1.0, texture(occlusion_texture, in_uv).r, draw.emissive.w);
+    color += base_color.rgb * frame.ambient.rgb * occlusion;
     // Emission (glTF emissiveFactor x texture) is the surface's own light: no shadow.
     vec3 emission = draw.emissive.rgb;
     if (draw.flags.x != 0u) emission *= texture(emissive_texture, in_uv).rgb;

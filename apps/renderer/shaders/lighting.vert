@@ -16,10 +16,12 @@ layout(std430, set = RENDERER_SET_FRAME, binding = RENDERER_BINDING_INSTANCE_DRA
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_color;  // glTF COLOR_0 (white without)
 
 layout(location = 0) out vec3 out_world_position;
 layout(location = 1) out vec3 out_world_normal;
 layout(location = 2) out vec2 out_uv;
+layout(location = 3) out vec3 out_color;
 
 void main() {
     // gl_InstanceIndex counts from the batch's firstInstance: its slot in this frame's order.
@@ -29,5 +31,6 @@ void main() {
     // Inverse transpose keeps normals perpendicular under non-uniform scale.
     out_world_normal = transpose(inverse(mat3(model))) * in_normal;
     out_uv = in_uv;
+    out_color = in_color.rgb;
     gl_Position = frame.view_projection * world;
 }

@@ -123,12 +123,23 @@ struct Material {
     // (read with the mesh's one UV set, like the base colour texture).
     glm::vec3 emissive{0.0f};
     int32_t emissive_texture = -1;  // index into Scene::textures, -1 for none
+    // glTF's metallicRoughnessTexture (roughness in G, metallic in B, multiplying the
+    // factors above) and occlusionTexture (R, blended in by occlusion_strength: it darkens
+    // the ambient light only), read with the base colour's UVs; -1 for none. The tools'
+    // preview shades with them; shadows do not depend on them.
+    int32_t metallic_roughness_texture = -1;
+    int32_t occlusion_texture = -1;
+    float occlusion_strength = 1.0f;
 };
 
 struct Vertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};
     glm::vec2 uv{0.0f};
+    // glTF's COLOR_0 (linear RGB, 8 bits a channel), multiplying the base colour in the
+    // tools' preview. Its alpha is not applied (the fourth byte is 255, a vertex format
+    // every GPU reads): shadow passes alpha-test the material's alpha only.
+    glm::u8vec4 color{255, 255, 255, 255};
 };
 
 // One triangle list with a single material, in its own model space.

@@ -22,6 +22,8 @@
 #define RENDERER_SET_MATERIAL 1
 #define RENDERER_BINDING_BASE_COLOR_TEXTURE 0
 #define RENDERER_BINDING_EMISSIVE_TEXTURE 1
+#define RENDERER_BINDING_METALLIC_ROUGHNESS_TEXTURE 2  // G: roughness, B: metallic (glTF)
+#define RENDERER_BINDING_OCCLUSION_TEXTURE 3           // R: ambient occlusion (glTF)
 // The ShadowSystem's descriptor set (the shaders define PENUMBRA_SHADOW_SET to this).
 #define RENDERER_SET_SHADOWS 2
 // The deferred resolve's output (ShadowSystem::visibility_image()), read by the lighting
@@ -84,7 +86,7 @@ struct DrawPushConstants {
     // x: 1 when the material has an emissive texture, y: 1 when it has a base colour
     // texture, z: alpha mode (RENDERER_ALPHA_*), w: 1 when the instance receives shadows
     uvec4 flags;
-    vec4 emissive;  // rgb: emitted radiance (linear), added unshadowed; w unused
+    vec4 emissive;  // rgb: emitted radiance (linear), added unshadowed; w: occlusion strength
 };
 
 #endif
