@@ -18,13 +18,15 @@ gpu::Image create_camera_target(const gpu::Device& device, VkFormat format, uint
     return gpu::create_image(device, desc);
 }
 
-gpu::VertexLayout scene_vertex_layout() {
+gpu::VertexLayout scene_vertex_layout(VertexColors colors) {
     gpu::VertexLayout layout;
     layout.stride = sizeof(Vertex);
     layout.attributes.push_back({0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))});
     layout.attributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))});
     layout.attributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv))});
-    layout.attributes.push_back({3, 0, VK_FORMAT_R8G8B8A8_UNORM, static_cast<uint32_t>(offsetof(Vertex, color))});
+    if (colors == VertexColors::Read) {
+        layout.attributes.push_back({3, 0, VK_FORMAT_R8G8B8A8_UNORM, static_cast<uint32_t>(offsetof(Vertex, color))});
+    }
     return layout;
 }
 

@@ -17,8 +17,13 @@ namespace penumbra::renderer {
 gpu::Image create_camera_target(const gpu::Device& device, VkFormat format, uint32_t width, uint32_t height,
                                 VkImageUsageFlags usage, VkImageAspectFlags aspect);
 
-// The scene's interleaved Vertex: position, normal, uv at locations 0, 1, 2.
-gpu::VertexLayout scene_vertex_layout();
+// Whether a pass's vertex shader reads the vertex colour: an attribute a shader does not
+// consume is a validation warning, so only the lighting pass (lighting_color_vert) binds it.
+enum class VertexColors { Read, Skipped };
+
+// The scene's interleaved Vertex: position, normal, uv at locations 0, 1, 2, and with
+// VertexColors::Read the colour at location 3.
+gpu::VertexLayout scene_vertex_layout(VertexColors colors);
 
 shader::DrawPushConstants draw_push_constants(const Draw& draw, const MaterialBinding& material);
 

@@ -18,7 +18,7 @@ gpu::UniquePipeline create_pipeline(const gpu::Device& device, VkPipelineLayout 
     gpu::GraphicsPipelineDesc desc;
     desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
     desc.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, shaders::geometry_aovs_frag(), {}});
-    desc.vertex_layout = scene_vertex_layout();
+    desc.vertex_layout = scene_vertex_layout(VertexColors::Skipped);
     desc.layout = layout;
     desc.color_formats = {kPositionFormat, kNormalFormat};
     desc.depth_format = kDepthFormat;

@@ -40,10 +40,10 @@ gpu::UniquePipeline create_lighting_pipeline(const gpu::Device& device, VkPipeli
     const bool deferred = resolve == ShadowResolve::Deferred;
     const bool over_prepass = deferred || contact;
     gpu::GraphicsPipelineDesc desc;
-    desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_vert(), {}});
+    desc.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, shaders::lighting_color_vert(), {}});
     desc.stages.push_back(
         {VK_SHADER_STAGE_FRAGMENT_BIT, lighting_fragment_shader(deferred, contact), shadow_specialization(shadows)});
-    desc.vertex_layout = scene_vertex_layout();
+    desc.vertex_layout = scene_vertex_layout(VertexColors::Read);
     desc.layout = layout;
     desc.color_formats = {kColorFormat, kVisibilityFormat, kCascadeFormat};
     desc.depth_format = kDepthFormat;

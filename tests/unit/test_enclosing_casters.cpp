@@ -171,5 +171,24 @@ TEST_F(EnclosingCasters, NoSunNoWarning) {
     EXPECT_TRUE(find(scene).empty());
 }
 
+// Nothing in the scenes Penumbra ships or measures with is a sky: no warning on the built-in
+// scenes, and none on bench/scenes (the oaks and terrain of ../shared/assets, Debian's
+// assimp-testmodels) when their assets are present.
+TEST(EnclosingCastersInRealScenes, NoneInTheBuiltInAndBenchScenes) {
+    for (const std::string& name : builtin_scene_names()) {
+        const Scene scene = load_scene("builtin:" + name);
+        EXPECT_TRUE(quality::find_enclosing_casters(scene, scene.camera, 16.0f / 9.0f).empty()) << name;
+    }
+    const fs::path shared = PENUMBRA_SHARED_ASSETS_DIR;
+    if (!fs::exists(shared / "oaktree") || !fs::exists("/usr/share/assimp/models/glTF2")) {
+        GTEST_SKIP() << "bench/scenes not checked: ../shared/assets or assimp-testmodels is absent";
+    }
+    for (const auto& file : fs::directory_iterator(fs::path(PENUMBRA_SOURCE_DIR) / "bench" / "scenes")) {
+        if (file.path().extension() != ".toml") continue;
+        const Scene scene = load_scene(file.path().string());
+        EXPECT_TRUE(quality::find_enclosing_casters(scene, scene.camera, 16.0f / 9.0f).empty()) << file.path();
+    }
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -1,9 +1,12 @@
 // Which instances cast and receive shadows (issue 16): cast_shadows and receive_shadows per
 // scene object and per glTF instance, exclude_casters by node or mesh name (with '*'), glTF
-// materials that are unlit, and the enclosing-caster check behind the sky-box warning.
+// materials that are unlit (the sky-box warning: test_enclosing_casters.cpp).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include "gltf_writer.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "scene_test_support.hpp"
 
@@ -97,6 +100,24 @@ TEST(ShadowControl, DynamicFlagsPerObjectAndPlacement) {
     for (const Instance& instance : model.instances) dynamic.push_back(instance.dynamic);
     EXPECT_THAT(dynamic, ElementsAre(true, true, true, false, false, false));
     EXPECT_THAT(scene_error("[[objects]]\ntype = \"box\"\ndynamic = 1\n"), HasSubstr("objects[0].dynamic"));
+}
+
+// The pattern scene-format.md prints, against a model whose sky node is called "SkyDome":
+// it matches as printed; patterns are case-sensitive, so "sky*" names nothing and says so.
+TEST(ShadowControl, TheDocumentedSkyPatternWorksAsPrinted) {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "penumbra_sky_pattern";
+    std::filesystem::create_directories(folder);
+    testing::write_test_gltf(folder / "model.gltf", {{"SkyDome", "", {testing::test_box(glm::vec3{0.0f}, 50.0f)}},
+                                                     {"Crate", "", {testing::test_box(glm::vec3{0.0f}, 1.0f)}}});
+    const auto scene = [&](const std::string& pattern) {
+        return parse_scene_toml(
+            "[[objects]]\ntype = \"gltf\"\nfile = \"model.gltf\"\nexclude_casters = [\"" + pattern + "\"]\n",
+            "scene.toml", folder);
+    };
+    EXPECT_THAT(casts(scene("Sky*")), ElementsAre(false, true));
+    EXPECT_THAT(testing::input_error_message([&] { scene("sky*"); }),
+                HasSubstr("\"sky*\" matches no node or mesh name of the model"));
+    std::filesystem::remove_all(folder);
 }
 
 }  // namespace
