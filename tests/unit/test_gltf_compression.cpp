@@ -137,6 +137,12 @@ TEST_F(GltfCompression, CorruptDracoDataIsOneError) {
                                    "the Draco mesh in bufferViews[0]"));
 }
 
+TEST_F(GltfCompression, DracoIndexCountThatDisagreesIsOneError) {
+    const std::string message = load_error(write("indices.glb", testing::draco_sphere_glb({0, "", 3})));
+    EXPECT_THAT(message, HasSubstr("meshes[0].primitives[0].extensions.KHR_draco_mesh_compression: the index "
+                                   "accessor has 675 elements, the Draco mesh decodes 672 corners"));
+}
+
 // Damage past the header: Draco may still decode something, but never a crash; what it
 // decodes must agree with the accessors or be refused.
 TEST_F(GltfCompression, DamagedDracoBodyIsRefusedOrDecodedWhole) {
