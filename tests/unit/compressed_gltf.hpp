@@ -124,12 +124,12 @@ inline std::string meshopt_sphere_glb(size_t cut_position_bytes = 0) {
 
 // KHR_draco_mesh_compression: the sphere's positions (and normals) as one Draco mesh. The
 // accessors' counts are the decoded mesh's (Draco may merge or reorder points), read back
-// with Draco's decoder. `damage` overwrites the compressed bytes from its offset, and adds
-// `extra_indices` to the index accessor's count.
+// with Draco's decoder. `damage` overwrites the compressed bytes from its offset, and
+// declares `missing_indices` fewer indices than the mesh has.
 struct DracoDamage {
     size_t offset = 0;
     std::string bytes;
-    size_t extra_indices = 0;
+    size_t missing_indices = 0;
 };
 inline std::string draco_sphere_glb(const DracoDamage& damage = {}) {
     const Mesh sphere = compressed_test_sphere();
@@ -165,7 +165,7 @@ inline std::string draco_sphere_glb(const DracoDamage& damage = {}) {
     document["accessors"][1]["count"] = decoded->num_points();
     document["accessors"][1]["componentType"] = 5126;
     document["accessors"][1].erase("normalized");
-    document["accessors"][2]["count"] = decoded->num_faces() * 3 + damage.extra_indices;
+    document["accessors"][2]["count"] = decoded->num_faces() * 3 - damage.missing_indices;
     document["bufferViews"] = {{{"buffer", 0}, {"byteLength", bin.size()}}};
     document["buffers"] = {{{"byteLength", (bin.size() + 3) / 4 * 4}}};
     const nlohmann::json draco_attributes = {{"POSITION", mesh->attribute(position)->unique_id()},
