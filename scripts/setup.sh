@@ -24,6 +24,9 @@ other_packages=(
   # libraries: glTF (with its stb/json dependencies), TOML, command line, PNG, tests
   libtinygltf-dev libstb-dev nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
   libpng-dev googletest libgtest-dev
+  # compressed glTF geometry, decoded by the scene component only (never the library):
+  # KHR_draco_mesh_compression (Draco) and EXT_meshopt_compression (meshoptimizer)
+  libdraco-dev libmeshoptimizer-dev
   # ray tracing: Embree 3 BVHs for `penumbra compare`'s ground-truth shadow rays
   libembree-dev
   # `penumbra view`: the window and its surface, the Dear ImGui panel (core library and the

@@ -140,6 +140,29 @@ std::string_view glb_json_chunk(const std::vector<unsigned char>& bytes) {
     return {reinterpret_cast<const char*>(bytes.data()) + kHeader + kChunkHeader, chunk_length};
 }
 
+// The same GLB with another JSON chunk (glTF 2.0, 4.4: a 12-byte header whose third word is
+// the total length, then chunks of length, type and data, each padded to 4 bytes; JSON with
+// spaces). The chunks after the JSON one are kept as they are.
+std::vector<unsigned char> glb_with_json(const std::vector<unsigned char>& bytes, const std::string& json) {
+    constexpr size_t kHeader = 12;
+    constexpr size_t kChunkHeader = 8;
+    const size_t rest = kHeader + kChunkHeader + glb_json_chunk(bytes).size();
+    std::string padded = json;
+    padded.resize((padded.size() + 3) / 4 * 4, ' ');
+    std::vector<unsigned char> glb(bytes.begin(), bytes.begin() + kHeader);
+    const auto append_u32 = [&](uint32_t value) {
+        const auto* raw = reinterpret_cast<const unsigned char*>(&value);
+        glb.insert(glb.end(), raw, raw + sizeof(value));
+    };
+    append_u32(static_cast<uint32_t>(padded.size()));
+    append_u32(0x4E4F534Au);  // "JSON"
+    glb.insert(glb.end(), padded.begin(), padded.end());
+    glb.insert(glb.end(), bytes.begin() + static_cast<std::ptrdiff_t>(rest), bytes.end());
+    const auto total = static_cast<uint32_t>(glb.size());
+    std::memcpy(glb.data() + 8, &total, sizeof(total));
+    return glb;
+}
+
 }  // namespace
 
 size_t json_nesting_depth(std::string_view text, size_t stop_beyond) {
@@ -196,6 +219,16 @@ tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin,
 
     const std::string folder = fs::absolute(file, error).parent_path().string();
     check_gltf_json(json, origin, folder);
+    const std::optional<GltfStandIns> stand_ins = json_with_stand_ins(json, binary);
+    std::vector<unsigned char> rewritten;
+    if (stand_ins) {
+        rewritten = binary ? glb_with_json(bytes, stand_ins->json)
+                           : std::vector<unsigned char>(stand_ins->json.begin(), stand_ins->json.end());
+    }
+    const std::vector<unsigned char>& input = stand_ins ? rewritten : bytes;
+    if (input.size() > std::numeric_limits<uint32_t>::max()) {
+        throw InputError(origin + ": larger than 4 GiB, which glTF cannot address");
+    }
 
     tinygltf::TinyGLTF loader;
     std::string base_dir = folder;
@@ -208,11 +241,12 @@ tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin,
     std::string errors;
     std::string warnings;
     const bool loaded =
-        binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, bytes.data(),
-                                             static_cast<unsigned int>(bytes.size()), base_dir)
-               : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(bytes.data()),
-                                            static_cast<unsigned int>(bytes.size()), base_dir);
+        binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, input.data(),
+                                             static_cast<unsigned int>(input.size()), base_dir)
+               : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(input.data()),
+                                            static_cast<unsigned int>(input.size()), base_dir);
     if (!loaded) throw InputError(origin + ": cannot load glTF: " + one_line(errors.empty() ? warnings : errors));
+    if (stand_ins) remove_stand_ins(model, *stand_ins);
     return model;
 }
 

@@ -54,6 +54,25 @@ struct GltfImageAllowance {
 tinygltf::Model read_gltf_model(const std::filesystem::path& file, const std::string& origin,
                                 const GltfImageAllowance& images);
 
+// What tinygltf 2.7 refuses but the compression extensions allow is stood in for before it
+// reads the JSON, and put back after (gltf_compression.cpp):
+// - EXT_meshopt_compression's placeholder buffers without a uri (the extension's "Fallback
+//   buffers"; in a GLB, buffer 0 without a uri is the BIN chunk, not one): tinygltf refuses
+//   a buffer without a uri, so each gets a one-byte data: uri, and is left without uri and
+//   data after;
+// - KHR_draco_mesh_compression's index accessors, which have no bufferView (the data is in
+//   the Draco mesh): tinygltf refuses indices without one, so each names the primitive's
+//   Draco bufferView, and none again after.
+// json_with_stand_ins returns nullopt when the file needs none.
+struct GltfStandIns {
+    std::string json;
+    std::vector<size_t> placeholder_buffers;
+    std::vector<size_t> draco_index_accessors;
+};
+std::optional<GltfStandIns> json_with_stand_ins(std::string_view json, bool binary);
+void remove_stand_ins(tinygltf::Model& model, const GltfStandIns& stand_ins);
+inline bool is_placeholder_buffer(const tinygltf::Buffer& buffer) { return buffer.uri.empty() && buffer.data.empty(); }
+
 // An image's size from its header, read before decoding: a PNG's IHDR or a JPEG's first
 // start-of-frame marker (gltf_budget.cpp). nullopt when the bytes are neither format or the
 // header is cut short.
@@ -83,6 +102,36 @@ GltfCost primitive_cost(const tinygltf::Model& model, const tinygltf::Primitive&
 GltfCost scene_cost(const Scene& scene);
 uint64_t saturating_add(uint64_t a, uint64_t b);
 uint64_t saturating_multiply(uint64_t a, uint64_t b);
+// What decoding compressed geometry may hold: the load budget's bytes less what the scene
+// and the model's decoded images already take. Each decoded buffer view or Draco primitive
+// takes its share, from its declared size, before it is decoded.
+struct GltfDecodeAllowance {
+    uint64_t bytes = 0;
+    uint64_t max_bytes = 0;
+    std::string budget_name;
+};
+// Takes `bytes` from the allowance, or refuses (InputError at `where`) what would exceed it.
+void take_decoded_bytes(const GltfSource& source, GltfDecodeAllowance& allowance, uint64_t bytes,
+                        const std::string& where);
+
+// Decodes the model's compressed geometry in place, so that the rest of the loader reads
+// plain accessors (gltf_compression.cpp): EXT_meshopt_compression buffer views first
+// (gltf_meshopt.cpp), then KHR_draco_mesh_compression primitives (gltf_draco.cpp), whose
+// decoded attributes and indices become new FLOAT and UNSIGNED_INT accessors. A buffer
+// left as a placeholder (json_with_placeholder_buffers) may only be named by views that
+// were decoded. InputError naming the JSON path for anything malformed, corrupt or over
+// the allowance.
+void decode_compressed_geometry(tinygltf::Model& model, const std::string& origin, GltfDecodeAllowance& allowance);
+void decode_meshopt_buffer_views(tinygltf::Model& model, const GltfSource& source, GltfDecodeAllowance& allowance);
+void decode_draco_primitives(tinygltf::Model& model, const GltfSource& source, GltfDecodeAllowance& allowance);
+
+// A required integer >= 0 or string property of a compression extension's object (the JSON
+// checks have held its integers to 0..2^31 - 1); InputError at "<where>.<key>" otherwise.
+size_t extension_integer(const GltfSource& source, const tinygltf::Value& object, const char* key,
+                         const std::string& where, std::optional<size_t> fallback = std::nullopt);
+std::string extension_string(const GltfSource& source, const tinygltf::Value& object, const char* key,
+                             const std::string& where, std::optional<std::string> fallback = std::nullopt);
+
 // Refuses (InputError naming the model, the counts, the limit and how to raise it) a model
 // whose `added` cost takes a scene holding `held` past the budget.
 void check_load_budget(const GltfSource& source, const GltfCost& held, const GltfCost& added, const LoadBudget& budget);

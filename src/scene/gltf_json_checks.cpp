@@ -154,6 +154,41 @@ void check_byte_stride(const JsonChecker& checker, const Json& view, const std::
     }
 }
 
+// The extension object `name` of `owner`, or nullptr.
+const Json* extension_object(const Json& owner, const char* name) {
+    if (!owner.is_object() || !owner.contains("extensions") || !owner["extensions"].is_object()) return nullptr;
+    const auto found = owner["extensions"].find(name);
+    return found == owner["extensions"].end() ? nullptr : &*found;
+}
+
+// KHR_draco_mesh_compression: its bufferView names a view; its attributes' values are
+// Draco's unique ids, held in an int by tinygltf.
+void check_draco_extension(const JsonChecker& checker, const DocumentTargets& targets, const Json& primitive,
+                           const std::string& where) {
+    const Json* draco = extension_object(primitive, "KHR_draco_mesh_compression");
+    if (draco == nullptr) return;
+    const std::string at = where + ".extensions.KHR_draco_mesh_compression";
+    checker.index(*draco, "bufferView", at, targets.buffer_views);
+    if (!draco->is_object() || !draco->contains("attributes") || !(*draco)["attributes"].is_object()) return;
+    for (const auto& [name, id] : (*draco)["attributes"].items()) {
+        checker.integer((*draco)["attributes"], name.c_str(), at + ".attributes", 0, kLargestCInt);
+    }
+}
+
+// EXT_meshopt_compression on a buffer view: its buffer, offsets, lengths and counts, which
+// tinygltf holds in an int.
+void check_meshopt_extension(const JsonChecker& checker, const DocumentTargets& targets, const Json& view,
+                             const std::string& where) {
+    const Json* meshopt = extension_object(view, "EXT_meshopt_compression");
+    if (meshopt == nullptr) return;
+    const std::string at = where + ".extensions.EXT_meshopt_compression";
+    checker.index(*meshopt, "buffer", at, targets.buffers);
+    checker.integer(*meshopt, "byteOffset", at, 0, kLargestCInt);
+    checker.integer(*meshopt, "byteLength", at, 1, kLargestCInt);
+    checker.integer(*meshopt, "byteStride", at, 1, kLargestCInt);
+    checker.integer(*meshopt, "count", at, 1, kLargestCInt);
+}
+
 void check_primitives(const JsonChecker& checker, const DocumentTargets& targets, const Json& mesh,
                       const std::string& where) {
     if (!mesh.is_object() || !mesh.contains("primitives")) return;
@@ -171,6 +206,7 @@ void check_primitives(const JsonChecker& checker, const DocumentTargets& targets
                 checker.index(primitive["attributes"], name.c_str(), at + ".attributes", targets.accessors);
             }
         }
+        check_draco_extension(checker, targets, primitive, at);
         if (!primitive.contains("targets") || !primitive["targets"].is_array()) continue;
         for (size_t t = 0; t < primitive["targets"].size(); ++t) {
             const Json& target = primitive["targets"][t];
@@ -239,29 +275,21 @@ void check_accessor(const JsonChecker& checker, const DocumentTargets& targets, 
 }
 
 // Extensions a file may require without changing what casts a shadow or where (they shade
-// surfaces, or Penumbra reads them): anything else in extensionsRequired is refused by
+// surfaces, or Penumbra reads them; the two compression extensions are decoded, see
+// gltf_compression.cpp): anything else in extensionsRequired is refused by
 // name, rather than failing later on what tinygltf cannot read (a Draco mesh's accessors
 // have no bufferView) or casting the wrong shadow.
 bool honoured_when_required(const std::string& extension) {
-    static const char* const kHonoured[] = {"KHR_mesh_quantization",
-                                            "KHR_lights_punctual",
-                                            "KHR_materials_unlit",
-                                            "KHR_materials_emissive_strength",
-                                            "KHR_materials_clearcoat",
-                                            "KHR_materials_sheen",
-                                            "KHR_materials_specular",
-                                            "KHR_materials_ior",
-                                            "KHR_materials_iridescence",
-                                            "KHR_materials_variants",
-                                            "KHR_materials_volume",
-                                            "KHR_texture_transform",
-                                            "KHR_materials_pbrSpecularGlossiness"};
+    static const char* const kHonoured[] = {
+        "KHR_mesh_quantization",   "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+        "KHR_lights_punctual",     "KHR_materials_unlit",        "KHR_materials_emissive_strength",
+        "KHR_materials_clearcoat", "KHR_materials_sheen",        "KHR_materials_specular",
+        "KHR_materials_ior",       "KHR_materials_iridescence",  "KHR_materials_variants",
+        "KHR_materials_volume",    "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness"};
     return std::find(std::begin(kHonoured), std::end(kHonoured), extension) != std::end(kHonoured);
 }
 
 std::string extension_feature(const std::string& extension) {
-    if (extension == "KHR_draco_mesh_compression") return " (Draco-compressed meshes)";
-    if (extension == "EXT_meshopt_compression") return " (meshoptimizer-compressed buffers)";
     if (extension == "KHR_texture_basisu" || extension == "EXT_texture_webp") return " (an image format)";
     return "";
 }
@@ -309,6 +337,7 @@ void check_gltf_json(std::string_view json, const std::string& origin, const std
         checker.integer(view, "byteOffset", where);
         checker.integer(view, "byteLength", where, 1);
         check_byte_stride(checker, view, where);
+        check_meshopt_extension(checker, targets, view, where);
     });
     checker.each(document, "textures", [&](const Json& texture, const std::string& where) {
         checker.index(texture, "source", where, targets.images);

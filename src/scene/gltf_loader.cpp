@@ -539,8 +539,13 @@ private:
 // The extensions the file lists (used or required) that Penumbra does not read, comma
 // separated; KHR_lights_punctual counts as read only when its lights are imported.
 std::string ignored_extensions(const tinygltf::Model& model, const GltfImportOptions& options) {
-    static const char* const kRead[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_materials_unlit",
-                                        "KHR_materials_pbrSpecularGlossiness", "KHR_materials_emissive_strength"};
+    static const char* const kRead[] = {"KHR_mesh_quantization",
+                                        "KHR_texture_transform",
+                                        "KHR_materials_unlit",
+                                        "KHR_materials_pbrSpecularGlossiness",
+                                        "KHR_materials_emissive_strength",
+                                        "KHR_draco_mesh_compression",
+                                        "EXT_meshopt_compression"};
     std::vector<std::string> listed = model.extensionsUsed;
     listed.insert(listed.end(), model.extensionsRequired.begin(), model.extensionsRequired.end());
     std::sort(listed.begin(), listed.end());
@@ -565,7 +570,9 @@ void append_gltf(Scene& scene, const std::filesystem::path& file, const std::vec
     const LoadBudget& budget = options.budget;
     const GltfImageAllowance images{budget.max_bytes > held.bytes ? budget.max_bytes - held.bytes : 0, budget.max_bytes,
                                     budget.max_bytes_name};
-    const tinygltf::Model model = read_gltf_model(file, origin, images);
+    tinygltf::Model model = read_gltf_model(file, origin, images);
+    GltfDecodeAllowance decoded{images.bytes, images.max_bytes, images.budget_name};
+    decode_compressed_geometry(model, origin, decoded);
     const GltfSource source{model, origin};
     // On error, leave the scene as it was rather than half-appended.
     const size_t texture_count = scene.textures.size();

@@ -50,8 +50,8 @@ INSTANTIATE_TEST_SUITE_P(
         GltfErrorCase{"truncated_buffer.gltf",
                       "buffers[0].uri \"truncated.bin\": the file is not the buffer's byteLength (140 bytes) long"},
         GltfErrorCase{"missing_buffer.gltf", "does_not_exist.bin"},
-        GltfErrorCase{"draco_required.gltf",
-                      "extensionsRequired: the file requires KHR_draco_mesh_compression (Draco-compressed meshes), "
+        GltfErrorCase{"basisu_required.gltf",
+                      "extensionsRequired: the file requires KHR_texture_basisu (an image format), "
                       "which Penumbra does not support"},
         GltfErrorCase{"accessor_out_of_range.gltf",
                       "attributes.POSITION (accessors[0]): 1000 elements of 12 bytes at offset 0 (stride 12) overrun "

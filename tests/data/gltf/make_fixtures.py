@@ -494,9 +494,10 @@ def write_malformed_fixtures():
     variant("bad_alpha_mode.gltf", lambda d: d["materials"][0].update(alphaMode="CUTOUT"))
     variant("partial_triangle.gltf", lambda d: d["accessors"][3].update(count=5))
 
-    # A required extension Penumbra cannot honour is refused by name.
-    variant("draco_required.gltf", lambda d: d.update(extensionsUsed=["KHR_draco_mesh_compression"],
-                                                      extensionsRequired=["KHR_draco_mesh_compression"]))
+    # A required extension Penumbra cannot honour is refused by name (Draco and meshopt
+    # compression are decoded: tests/unit/test_gltf_compression.cpp).
+    variant("basisu_required.gltf", lambda d: d.update(extensionsUsed=["KHR_texture_basisu"],
+                                                       extensionsRequired=["KHR_texture_basisu"]))
 
     bad_index = embed(*quad_document(indices=[0, 1, 2, 0, 2, 7]))
     write_json("index_out_of_range.gltf", bad_index)
