@@ -462,7 +462,7 @@ TEST_F(Cli, GeometryBombIsRefusedAndTheBudgetIsSettable) {
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
     expect_failure(
         run("render scene.toml --max-scene-triangles 50000000 -o out.png"), 2,
-        "images and meshes would take 4831837920 bytes (the scene held 61712 before), over the load budget of "
+        "images and meshes would take 5368708800 bytes (the scene held 68208 before), over the load budget of "
         "1073741824 bytes "
         "(--max-scene-bytes raises it)");
 
