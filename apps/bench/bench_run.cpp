@@ -300,7 +300,7 @@ FrameSamples run_pass_frames(const BenchJob& job, gpu::FrameCommands& commands, 
         commands.submit_and_wait([&](VkCommandBuffer cmd) {
             const Clock::time_point record_start = Clock::now();
             timer.begin_frame(cmd);
-            gpu::TimedScope frame_scope(&timer, cmd, "frame");
+            gpu::TimedScope frame_scope(timer, cmd, "frame");
             record(cmd);
             recording_ms = milliseconds_since(record_start);
         });
@@ -329,7 +329,7 @@ FrameSamples run_tap_frames(const renderer::AppContext& context, const BenchJob&
     context.submit_and_wait([&](VkCommandBuffer cmd) { pass.record_setup(cmd); });
 
     const FrameSamples samples = run_pass_frames(job, commands, timer, [&](VkCommandBuffer cmd) {
-        gpu::TimedScope taps_scope(&timer, cmd, "taps");
+        gpu::TimedScope taps_scope(timer, cmd, "taps");
         pass.record(cmd);
     });
     result.ceiling = CeilingReport{units == TapCeilingUnits::Compute ? "compute-taps" : "taps", "texture taps",

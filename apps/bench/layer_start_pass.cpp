@@ -80,18 +80,18 @@ void LayerStartPass::copy_cleared(VkCommandBuffer cmd) const {
 
 void LayerStartPass::record(VkCommandBuffer cmd, gpu::GpuTimer& timer) const {
     {
-        gpu::TimedScope scope(&timer, cmd, "start_render_pass_clear");
+        gpu::TimedScope scope(timer, cmd, "start_render_pass_clear");
         render_pass_clear(cmd, resolution_);
     }
     {
-        gpu::TimedScope scope(&timer, cmd, "start_clear_image");
+        gpu::TimedScope scope(timer, cmd, "start_clear_image");
         clear_image(cmd);
     }
     {
-        gpu::TimedScope scope(&timer, cmd, "start_copy_cleared");
+        gpu::TimedScope scope(timer, cmd, "start_copy_cleared");
         copy_cleared(cmd);
     }
-    gpu::TimedScope scope(&timer, cmd, "start_clear_quarter");
+    gpu::TimedScope scope(timer, cmd, "start_clear_quarter");
     render_pass_clear(cmd, resolution_ / 2);  // a quarter of the texels
 }
 

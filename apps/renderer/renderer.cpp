@@ -312,9 +312,9 @@ void Renderer::record_frame(VkCommandBuffer cmd, ReadbackMode readback) {
     const DrawData& draw_data = r.gpu_scene.draw_data();
     r.timer.begin_frame(cmd);
     {
-        gpu::TimedScope frame_scope(&r.timer, cmd, "frame");
+        gpu::TimedScope frame_scope(r.timer, cmd, "frame");
         if (r.prepass) {
-            gpu::TimedScope prepass_scope(&r.timer, cmd, "prepass");
+            gpu::TimedScope prepass_scope(r.timer, cmd, "prepass");
             r.prepass->record(cmd, r.frame_set, draw_data);
         }
         if (r.marks_pages) r.shadows.record_page_marking(cmd, r.prepass->screen_inputs(r.view_projection));
@@ -323,7 +323,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, ReadbackMode readback) {
             r.shadows.record_visibility(cmd, r.prepass->screen_inputs(r.view_projection));
             r.lighting_pass.use_visibility_image(r.shadows.visibility_image());
         }
-        gpu::TimedScope lighting_scope(&r.timer, cmd, "lighting");
+        gpu::TimedScope lighting_scope(r.timer, cmd, "lighting");
         r.lighting_pass.record(cmd, r.frame_set, shadow_set_, draw_data);
         if (r.geometry_aovs) r.geometry_aovs->record(cmd, r.frame_set, draw_data);
     }

@@ -1,4 +1,5 @@
 #include "penumbra/gpu/frame_commands.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 #include "penumbra/gpu/check.hpp"
 
@@ -10,6 +11,7 @@ FrameCommands::FrameCommands(const Device& device) : device_(device) {
     pool_info.queueFamilyIndex = device.queue_family();
     VkCommandPool pool = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateCommandPool(device, &pool_info, nullptr, &pool));
+    name_object(device, VK_OBJECT_TYPE_COMMAND_POOL, pool, "command pool");
     pool_ = UniqueCommandPool(device, pool);
 
     VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -17,10 +19,12 @@ FrameCommands::FrameCommands(const Device& device) : device_(device) {
     allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     allocate.commandBufferCount = 1;
     PENUMBRA_VK_CHECK(device->vkAllocateCommandBuffers(device, &allocate, &cmd_));
+    name_object(device, VK_OBJECT_TYPE_COMMAND_BUFFER, cmd_, "command buffer");
 
     VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateFence(device, &fence_info, nullptr, &fence));
+    name_object(device, VK_OBJECT_TYPE_FENCE, fence, "fence");
     fence_ = UniqueFence(device, fence);
 }
 

@@ -1,4 +1,5 @@
 #include "penumbra/gpu/one_time_commands.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 #include "penumbra/gpu/check.hpp"
 
@@ -10,6 +11,7 @@ OneTimeCommands::OneTimeCommands(const Device& device) : device_(device) {
     info.queueFamilyIndex = device.queue_family();
     VkCommandPool pool = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateCommandPool(device, &info, nullptr, &pool));
+    name_object(device, VK_OBJECT_TYPE_COMMAND_POOL, pool, "command pool");
     pool_ = UniqueCommandPool(device, pool);
 }
 
@@ -21,6 +23,7 @@ void OneTimeCommands::submit_and_wait(const std::function<void(VkCommandBuffer)>
     allocate.commandBufferCount = 1;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkAllocateCommandBuffers(device, &allocate, &cmd));
+    name_object(device, VK_OBJECT_TYPE_COMMAND_BUFFER, cmd, "command buffer");
     struct FreeOnExit {
         const Device& device;
         VkCommandPool pool;
@@ -37,6 +40,7 @@ void OneTimeCommands::submit_and_wait(const std::function<void(VkCommandBuffer)>
     VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateFence(device, &fence_info, nullptr, &fence));
+    name_object(device, VK_OBJECT_TYPE_FENCE, fence, "fence");
     const UniqueFence owned_fence(device, fence);
     VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     cmd_info.commandBuffer = cmd;

@@ -1,4 +1,5 @@
 #include "penumbra/gpu/pipeline.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 #include "penumbra/gpu/check.hpp"
 
@@ -10,6 +11,7 @@ UniqueShaderModule create_shader_module(const Device& device, std::span<const ui
     info.pCode = spirv.data();
     VkShaderModule module = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateShaderModule(device, &info, nullptr, &module));
+    name_object(device, VK_OBJECT_TYPE_SHADER_MODULE, module, "shader module");
     return UniqueShaderModule(device, module);
 }
 
@@ -125,6 +127,7 @@ UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipe
     info.layout = desc.layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    name_object(device, VK_OBJECT_TYPE_PIPELINE, pipeline, "graphics pipeline");
     return UniquePipeline(device, pipeline);
 }
 
@@ -141,6 +144,7 @@ UniquePipeline create_compute_pipeline(const Device& device, const ShaderStage& 
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    name_object(device, VK_OBJECT_TYPE_PIPELINE, pipeline, "compute pipeline");
     return UniquePipeline(device, pipeline);
 }
 
@@ -153,6 +157,7 @@ UniquePipelineLayout create_pipeline_layout(const Device& device, std::span<cons
     info.pPushConstantRanges = push_constants.data();
     VkPipelineLayout layout = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreatePipelineLayout(device, &info, nullptr, &layout));
+    name_object(device, VK_OBJECT_TYPE_PIPELINE_LAYOUT, layout, "pipeline layout");
     return UniquePipelineLayout(device, layout);
 }
 
@@ -163,6 +168,7 @@ UniqueDescriptorSetLayout create_descriptor_set_layout(const Device& device,
     info.pBindings = bindings.data();
     VkDescriptorSetLayout layout = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateDescriptorSetLayout(device, &info, nullptr, &layout));
+    name_object(device, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, layout, "descriptor set layout");
     return UniqueDescriptorSetLayout(device, layout);
 }
 
@@ -176,6 +182,7 @@ UniqueDescriptorPool create_descriptor_pool(const Device& device, uint32_t max_s
     info.pPoolSizes = sizes.data();
     VkDescriptorPool pool = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateDescriptorPool(device, &info, nullptr, &pool));
+    name_object(device, VK_OBJECT_TYPE_DESCRIPTOR_POOL, pool, "descriptor pool");
     return UniqueDescriptorPool(device, pool);
 }
 
@@ -186,6 +193,7 @@ VkDescriptorSet allocate_descriptor_set(const Device& device, VkDescriptorPool p
     info.pSetLayouts = &layout;
     VkDescriptorSet set = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkAllocateDescriptorSets(device, &info, &set));
+    name_object(device, VK_OBJECT_TYPE_DESCRIPTOR_SET, set, "descriptor set");
     return set;
 }
 
@@ -254,6 +262,7 @@ UniqueSampler create_sampler(const Device& device, const SamplerDesc& desc) {
     info.maxLod = 0.0f;
     VkSampler sampler = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateSampler(device, &info, nullptr, &sampler));
+    name_object(device, VK_OBJECT_TYPE_SAMPLER, sampler, "sampler");
     return UniqueSampler(device, sampler);
 }
 

@@ -1,4 +1,5 @@
 #include "penumbra/gpu/resources.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 #include <cstring>
 
@@ -26,6 +27,7 @@ UniqueMemory allocate(const Device& device, const VkMemoryRequirements& requirem
     info.memoryTypeIndex = device.find_memory_type(requirements.memoryTypeBits, properties);
     VkDeviceMemory memory = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkAllocateMemory(device, &info, nullptr, &memory));
+    name_object(device, VK_OBJECT_TYPE_DEVICE_MEMORY, memory, "memory");
     return UniqueMemory(device, memory);
 }
 
@@ -46,6 +48,7 @@ UniqueImageView create_view(const Device& device, VkImage image, const ImageDesc
     info.subresourceRange = {desc.aspect, 0, 1, base_layer, layer_count};
     VkImageView view = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateImageView(device, &info, nullptr, &view));
+    name_object(device, VK_OBJECT_TYPE_IMAGE_VIEW, view, "image view");
     return UniqueImageView(device, view);
 }
 
@@ -60,6 +63,7 @@ Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     VkBuffer buffer = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateBuffer(device, &info, nullptr, &buffer));
+    name_object(device, VK_OBJECT_TYPE_BUFFER, buffer, "buffer");
     result.buffer = UniqueBuffer(device, buffer);
 
     VkMemoryRequirements requirements{};
@@ -105,6 +109,7 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateImage(device, &info, nullptr, &image));
+    name_object(device, VK_OBJECT_TYPE_IMAGE, image, "image");
     result.image = UniqueImage(device, image);
 
     VkMemoryRequirements requirements{};

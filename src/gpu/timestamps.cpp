@@ -1,4 +1,5 @@
 #include "penumbra/gpu/timestamps.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 #include <string>
 
@@ -36,6 +37,7 @@ GpuTimer::GpuTimer(const Device& device, uint32_t max_scopes)
     info.queryCount = 2 * max_scopes;
     VkQueryPool pool = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device_->vkCreateQueryPool(device_, &info, nullptr, &pool));
+    name_object(device_, VK_OBJECT_TYPE_QUERY_POOL, pool, "timestamp queries");
     pool_ = UniqueQueryPool(device_, pool);
 }
 
@@ -85,8 +87,9 @@ std::optional<std::vector<ScopeTime>> GpuTimer::read() const {
     return times;
 }
 
-TimedScope::TimedScope(GpuTimer* timer, VkCommandBuffer cmd, std::string name) : timer_(timer), cmd_(cmd) {
-    if (timer_) scope_ = timer_->begin(cmd_, std::move(name));
+TimedScope::TimedScope(const Device& device, GpuTimer* timer, VkCommandBuffer cmd, const std::string& name)
+    : label_(device, cmd, name), timer_(timer), cmd_(cmd) {
+    if (timer_) scope_ = timer_->begin(cmd_, name);
 }
 
 TimedScope::~TimedScope() {

@@ -11,6 +11,7 @@
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
 #include "penumbra/gpu/check.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 namespace penumbra::library {
 namespace {
@@ -195,6 +196,7 @@ MeshId Geometry::insert_mesh(Mesh mesh) {
 }
 
 VkBuffer Geometry::upload(std::span<const std::byte> bytes, VkBufferUsageFlags usage, Mesh& mesh) {
+    const gpu::ObjectNames names(device_, "mesh buffers");
     gpu::Buffer staging =
         gpu::create_buffer(device_, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryKind::HostUpload);
     std::memcpy(staging.mapped, bytes.data(), bytes.size());
@@ -207,6 +209,7 @@ VkBuffer Geometry::upload(std::span<const std::byte> bytes, VkBufferUsageFlags u
 }
 
 void Geometry::attach_alpha_mask(Mesh& mesh, const AlphaMaskDesc& mask) {
+    const gpu::ObjectNames names(device_, "alpha masks");
     if (alpha_mask_pools_.empty() || alpha_masks_in_last_pool_ == kAlphaMasksPerPool) {
         const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kAlphaMasksPerPool};
         alpha_mask_pools_.push_back(gpu::create_descriptor_pool(device_, kAlphaMasksPerPool, {&size, 1},

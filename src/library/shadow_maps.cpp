@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/shadow_filters.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 
 namespace penumbra::library {
 namespace {
@@ -33,7 +34,8 @@ BiasSettings depth_bias_of(const ShadowSettings& settings) {
 CascadeMaps::CascadeMaps(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                          VkDescriptorSetLayout alpha_mask_set_layout, const ShadowSettings& settings,
                          uint32_t frames_in_flight)
-    : depth_pass_(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution,
+    : device_(device),
+      depth_pass_(device, frame_set_layout, alpha_mask_set_layout, settings.cascades.resolution,
                   static_cast<uint32_t>(settings.cascades.count), settings.strategy, settings.cache_static_casters,
                   frames_in_flight),
       depth_sampler_(create_nearest_sampler(device)) {
@@ -61,7 +63,7 @@ void CascadeMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const p
     const passes::GpuCullOptions gpu_culling{sun_casts, settings.cull_casters, frame};
     depth_pass_.record(cmd, frame_set, scene, draws, depth_bias_of(settings), culling, timer, gpu_culling);
     if (!moments_) return;
-    gpu::TimedScope scope(timer, cmd, "shadow_moments");
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_moments");
     const gpu::ImageDesc& map = depth_pass_.shadow_map().desc;
     std::vector<passes::MomentsLayer> layers;
     for (uint32_t cascade = 0; cascade < map.layers; ++cascade) {
@@ -89,6 +91,7 @@ void LocalMaps::fit(const LocalShadowPlan& plan, uint64_t frame) {
     const uint32_t layers = plan.layer_count;
     const uint32_t resolution = layers > 0 ? plan.atlas_resolution : 0u;
     if (layers == layers_ && resolution == resolution_) return;
+    const gpu::ObjectNames names(device_, "local light maps");
     retired_.retire(std::move(map_), frame);
     retired_.retire(std::move(moments_), frame);
     layers_ = layers;
@@ -119,7 +122,7 @@ void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const pas
         pass_.record_placeholder(cmd, *map_);
         return;
     }
-    gpu::TimedScope scope(timer, cmd, "shadow_local");
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_local");
     pass_.record(cmd, frame_set, scene, layers, *map_, settings.bias, settings.caster_culling, settings.cull_casters,
                  frame);
     if (!moments_) return;

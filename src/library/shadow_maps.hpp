@@ -44,6 +44,7 @@ public:
                 const passes::CasterFaceCulling& culling, bool sun_casts, uint64_t frame, gpu::GpuTimer* timer);
 
 private:
+    const gpu::Device& device_;
     passes::ShadowPass depth_pass_;
     gpu::UniqueSampler depth_sampler_;                  // nearest: the moments conversion reads raw depth
     std::optional<passes::MomentsConversion> moments_;  // vsm, evsm, msm

@@ -29,6 +29,7 @@
 #include "passes/shadow_filter_specialization.hpp"
 #include "passes/visibility_resolve_pass.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 #include "penumbra/gpu/device.hpp"
 
 namespace penumbra {
@@ -213,17 +214,35 @@ struct ShadowSystem::Impl {
           frames_in_flight(checked_frames_in_flight(desc.frames_in_flight)),
           timestamps(desc.timestamps),
           retired(frames_in_flight),
-          layouts(library::create_frame_set_layouts(device)),
-          alpha_mask_layout(passes::create_alpha_mask_set_layout(device)),
-          cascades(device, layouts.caster, alpha_mask_layout, cascade_map_settings(settings.shadow), frames_in_flight),
-          local(device, layouts.caster, alpha_mask_layout, settings.shadow, retired, frames_in_flight),
-          virtual_map(is_virtual(settings)
-                          ? std::make_unique<library::VirtualShadowMap>(device, layouts.caster, alpha_mask_layout,
-                                                                        settings.shadow, frames_in_flight)
-                          : nullptr),
-          resolve(device, layouts.sampling, settings.shadow.filter),
-          slots(device, frames_in_flight, layouts, resolve.screen_set_layout()),
+          // Each part's Vulkan objects are named for it (VK_EXT_debug_utils).
+          layouts(gpu::named(device, "set layouts", [&] { return library::create_frame_set_layouts(device); })),
+          alpha_mask_layout(
+              gpu::named(device, "alpha masks", [&] { return passes::create_alpha_mask_set_layout(device); })),
+          cascades(gpu::named(device, "cascade maps",
+                              [&] {
+                                  return library::CascadeMaps(device, layouts.caster, alpha_mask_layout,
+                                                              cascade_map_settings(settings.shadow), frames_in_flight);
+                              })),
+          local(gpu::named(device, "local light maps",
+                           [&] {
+                               return library::LocalMaps(device, layouts.caster, alpha_mask_layout, settings.shadow,
+                                                         retired, frames_in_flight);
+                           })),
+          virtual_map(is_virtual(settings) ? gpu::named(device, "virtual shadow map",
+                                                        [&] {
+                                                            return std::make_unique<library::VirtualShadowMap>(
+                                                                device, layouts.caster, alpha_mask_layout,
+                                                                settings.shadow, frames_in_flight);
+                                                        })
+                                           : nullptr),
+          resolve(gpu::named(
+              device, "visibility resolve",
+              [&] { return passes::VisibilityResolvePass(device, layouts.sampling, settings.shadow.filter); })),
+          slots(gpu::named(
+              device, "frame slots",
+              [&] { return library::FrameSlots(device, frames_in_flight, layouts, resolve.screen_set_layout()); })),
           geometry(device, retired, alpha_mask_layout, [this](const passes::VertexFormats& formats) {
+              const gpu::ObjectNames names(device, "caster pipelines");
               cascades.prepare_pipelines(formats);
               local.prepare_pipelines(formats);
               if (virtual_map) virtual_map->prepare_pipelines(formats);
@@ -461,6 +480,7 @@ struct ShadowSystem::Impl {
             return;
         }
         retired.retire(std::move(visibility), frame);
+        const gpu::ObjectNames names(device, "visibility image");
         visibility = std::make_unique<gpu::Image>(passes::create_visibility_image(device, width, height, layers));
     }
 };
@@ -648,7 +668,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
-    gpu::TimedScope scope(impl.timer_of(slot), cmd, "visibility");
+    gpu::TimedScope scope(impl.device, impl.timer_of(slot), cmd, "visibility");
     impl.resolve.record(cmd, slot.sampling_set, slot.screen_set, *impl.visibility, constants);
     slot.visibility_recorded = true;
 }

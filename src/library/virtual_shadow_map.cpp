@@ -68,7 +68,8 @@ float virtual_mark_radius_texels(const ShadowSettings& settings) {
 VirtualShadowMap::VirtualShadowMap(const gpu::Device& device, VkDescriptorSetLayout caster_frame_layout,
                                    VkDescriptorSetLayout alpha_mask_layout, const ShadowSettings& settings,
                                    uint32_t frames_in_flight)
-    : config_(virtual_clipmap_config(settings.virtual_maps)),
+    : device_(device),
+      config_(virtual_clipmap_config(settings.virtual_maps)),
       pages_(device, pages_desc(settings.virtual_maps, frames_in_flight)),
       pass_(device, caster_frame_layout, alpha_mask_layout, pages_, frames_in_flight) {}
 
@@ -151,10 +152,10 @@ void VirtualShadowMap::record_marking(VkCommandBuffer cmd, uint64_t frame, const
     constants.height = screen.height;
     constants.background_depth = screen.background_depth;
     {
-        gpu::TimedScope scope(timer, cmd, "shadow_virtual_mark");
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_virtual_mark");
         pages_.record_marking(cmd, frame, screen.depth, screen.depth_layout, constants);
     }
-    gpu::TimedScope scope(timer, cmd, "shadow_virtual_allocate");
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_virtual_allocate");
     pages_.record_allocation(cmd, frame);
 }
 

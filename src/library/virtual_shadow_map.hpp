@@ -83,6 +83,7 @@ public:
 private:
     std::vector<shader::VirtualInvalidation> invalidations(const VirtualFrameInputs& inputs) const;
 
+    const gpu::Device& device_;
     VirtualClipmapConfig config_;
     passes::VirtualPages pages_;
     passes::VirtualShadowPass pass_;

@@ -10,6 +10,7 @@
 #include "passes/shader_interface.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 #include "penumbra/gpu/one_time_commands.hpp"
 #include "penumbra_shaders.hpp"
 
@@ -169,6 +170,7 @@ GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLay
       statistics_(frames_in_flight_ + 1) {}
 
 void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32_t counts) {
+    const gpu::ObjectNames names(device_, "caster culling");
     if (buffers_ && buffers_->draw_capacity >= draws && buffers_->command_capacity >= commands &&
         buffers_->count_capacity >= counts) {
         return;
@@ -214,6 +216,7 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
 // Groups the draws into buckets (each with room for its draws in every layer) and copies
 // them, through this frame's staging buffer, into the device buffers.
 void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count) {
+    const gpu::ObjectNames names(device_, "caster culling");
     std::map<BucketKey, uint32_t> bucket_of;
     std::vector<uint32_t> draws_in_bucket;
     buckets_.clear();
@@ -325,6 +328,7 @@ bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& sc
 }
 
 void GpuCasterCulling::finish_commands(VkCommandBuffer cmd, uint64_t frame) {
+    const gpu::ObjectNames names(device_, "caster culling");
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
     const VkDeviceSize statistics_offset = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
     const VkDeviceSize statistics_bytes = VkDeviceSize{2} * layer_count_ * sizeof(uint32_t);
@@ -378,6 +382,7 @@ uint64_t GpuCasterCulling::buffer_bytes() const {
 }
 
 CulledDraws GpuCasterCulling::read_back(const gpu::OneTimeCommands& commands) const {
+    const gpu::ObjectNames names(device_, "caster culling readback");
     CulledDraws result;
     result.draws_per_layer.resize(layer_count_);
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());

@@ -102,7 +102,7 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
     }
     gpu::ImageState map_state = keep ? gpu::ImageState::ShaderSampled : gpu::ImageState::DiscardAfterShaderReads;
     if (any([](const CascadeDraws& d) { return !d.restore.empty(); })) {
-        gpu::TimedScope scope(timer, cmd, "shadow_cache_restore");
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_cache_restore");
         gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::TransferDst);
         map_state = gpu::ImageState::TransferDst;
         copy_cache(cmd, draws, true);
@@ -111,7 +111,7 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
     record_static(cmd, scene, draws, bias, culling, timer);
     map_state = gpu::ImageState::DepthAttachment;
     if (any([](const CascadeDraws& d) { return !d.store.empty(); })) {
-        gpu::TimedScope scope(timer, cmd, "shadow_cache_store");
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_cache_store");
         gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::TransferSrc);
         map_state = gpu::ImageState::TransferSrc;
         copy_cache(cmd, draws, false);
@@ -136,7 +136,7 @@ void ShadowPass::record_multiview(VkCommandBuffer cmd, const CasterScene& scene,
     }
     std::sort(union_list.begin(), union_list.end());
     union_list.erase(std::unique(union_list.begin(), union_list.end()), union_list.end());
-    gpu::TimedScope scope(timer, cmd, "shadow_multiview");
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_multiview");
     begin_rendering(cmd, shadow_map_.view, (1u << cascade_count_) - 1u, bias, VK_ATTACHMENT_LOAD_OP_CLEAR);
     record_caster_draws(device_, cmd, pipelines_, scene, union_list, 0, culling);
     device_->vkCmdEndRendering(cmd);
@@ -148,7 +148,7 @@ void ShadowPass::record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, 
                                 const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer,
                                 GpuCullOptions options) {
     {
-        gpu::TimedScope scope(timer, cmd, "shadow_cull");
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_cull");
         gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::Cascades,
                                   std::vector<bool>(options.casts ? cascade_count_ : 0u, true), options.cull,
                                   options.frame);
@@ -156,7 +156,7 @@ void ShadowPass::record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, 
     gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
                     gpu::ImageState::DepthAttachment);
     {
-        gpu::TimedScope scope(timer, cmd, "shadow_layered");
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_layered");
         begin_rendering(cmd, shadow_map_.view, 0, bias, VK_ATTACHMENT_LOAD_OP_CLEAR, cascade_count_);
         for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade)
             gpu_culling_->record_draws(cmd, pipelines_, scene, culling, cascade);
@@ -198,7 +198,7 @@ void ShadowPass::record_static(VkCommandBuffer cmd, const CasterScene& scene, co
     for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
         const CascadeDraws& layer = draws[cascade];
         if (layer.reuse && layer.regions.empty()) continue;
-        gpu::TimedScope scope(timer, cmd, "shadow_cascade_" + std::to_string(cascade));
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_cascade_" + std::to_string(cascade));
         begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias,
                         layer.reuse ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR);
         record_regions(cmd, scene, layer.regions, cascade, layer.reuse, culling);
@@ -238,7 +238,7 @@ void ShadowPass::copy_cache(VkCommandBuffer cmd, const std::vector<CascadeDraws>
 void ShadowPass::record_dynamic(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                                 const BiasSettings& bias, const CasterFaceCulling& culling,
                                 gpu::GpuTimer* timer) const {
-    gpu::TimedScope scope(timer, cmd, "shadow_dynamic");
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_dynamic");
     for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade) {
         if (draws[cascade].dynamic.empty()) continue;
         begin_rendering(cmd, shadow_map_.layer_views[cascade], 0, bias, VK_ATTACHMENT_LOAD_OP_LOAD);

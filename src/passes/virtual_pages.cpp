@@ -7,6 +7,7 @@
 
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/debug_names.hpp"
 #include "penumbra_shaders.hpp"
 
 namespace penumbra::passes {
@@ -280,6 +281,7 @@ std::optional<shader::VirtualCounters> VirtualPages::counters(uint64_t frame) co
 }
 
 VirtualPageState VirtualPages::read_back(const gpu::OneTimeCommands& commands) const {
+    const gpu::ObjectNames names(device_, "virtual page readback");
     const std::array<const gpu::Buffer*, 5> sources{&page_table_, &requests_, &physical_, &counters_, &render_list_};
     VkDeviceSize total = 0;
     for (const gpu::Buffer* source : sources) total += source->size;

@@ -109,10 +109,10 @@ void VirtualShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, c
                                const VirtualPages& pages, uint64_t frame, const BiasSettings& bias,
                                const CasterFaceCulling& culling, gpu::GpuTimer* timer) {
     {
-        gpu::TimedScope scope(timer, cmd, "shadow_virtual_cull");
+        gpu::TimedScope scope(device_, timer, cmd, "shadow_virtual_cull");
         record_cull(cmd, scene, pages, frame);
     }
-    gpu::TimedScope scope(timer, cmd, "shadow_virtual_raster");
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_virtual_raster");
     gpu::transition(device_, cmd, pool_, pool_state_, gpu::ImageState::DepthAttachment);
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = pool_.view;

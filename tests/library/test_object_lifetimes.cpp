@@ -1,13 +1,17 @@
 // Every Vulkan object a ShadowSystem creates is destroyed, and re-creating its resources
 // (the viewer changes a filter or a resolution every few frames) does not accumulate any
-// (issue 17: the viewer grew with every renderer re-creation). The objects are counted
-// through the caller's loader entry point, DeviceDesc::get_instance_proc_addr, which the
-// library must use for every Vulkan function: this one hands out counting wrappers of the
-// create and destroy functions.
+// (issue 17: the viewer grew with every renderer re-creation); with VK_EXT_debug_utils each
+// gets a debug name and each pass a command label. The objects are counted through the
+// caller's loader entry point, DeviceDesc::get_instance_proc_addr, which the library must
+// use for every Vulkan function: this one hands out counting wrappers of the create and
+// destroy functions, and recording ones of the debug-utils naming and labelling functions.
 #include <array>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "library_fixture.hpp"
 
@@ -40,6 +44,10 @@ constexpr std::array<const char*, kKindCount> kKindNames{
 
 using Counts = std::array<int64_t, kKindCount>;
 Counts g_live{};
+std::vector<std::pair<Kind, uint64_t>> g_created;  // every object created, in order
+std::map<uint64_t, std::string> g_names;           // vkSetDebugUtilsObjectNameEXT, by handle
+std::vector<std::string> g_labels;                 // vkCmdBeginDebugUtilsLabelEXT, in order
+int g_open_labels = 0;                             // begun and not yet ended
 std::map<std::string, PFN_vkVoidFunction> g_real;  // the real functions, by name
 PFN_vkGetInstanceProcAddr g_real_get_instance_proc_addr = nullptr;
 
@@ -54,7 +62,10 @@ VKAPI_ATTR VkResult VKAPI_CALL counted_create(VkDevice device, const Info* info,
                                               Handle* out) {
     using Create = VkResult(VKAPI_PTR*)(VkDevice, const Info*, const VkAllocationCallbacks*, Handle*);
     const VkResult result = real<Create>(name)(device, info, allocator, out);
-    if (result == VK_SUCCESS) ++g_live[kind];
+    if (result == VK_SUCCESS) {
+        ++g_live[kind];
+        g_created.emplace_back(kind, reinterpret_cast<uint64_t>(*out));
+    }
     return result;
 }
 template <Kind kind, typename Handle, const char* name>
@@ -71,8 +82,28 @@ VKAPI_ATTR VkResult VKAPI_CALL counted_pipelines(VkDevice device, VkPipelineCach
     using Create = VkResult(VKAPI_PTR*)(VkDevice, VkPipelineCache, uint32_t, const Info*, const VkAllocationCallbacks*,
                                         VkPipeline*);
     const VkResult result = real<Create>(name)(device, cache, count, infos, allocator, out);
-    for (uint32_t i = 0; i < count; ++i) g_live[kPipeline] += out[i] != VK_NULL_HANDLE ? 1 : 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (out[i] == VK_NULL_HANDLE) continue;
+        ++g_live[kPipeline];
+        g_created.emplace_back(kPipeline, reinterpret_cast<uint64_t>(out[i]));
+    }
     return result;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL recorded_name(VkDevice device, const VkDebugUtilsObjectNameInfoEXT* info) {
+    g_names[info->objectHandle] = info->pObjectName ? info->pObjectName : "";
+    return real<PFN_vkSetDebugUtilsObjectNameEXT>("vkSetDebugUtilsObjectNameEXT")(device, info);
+}
+
+VKAPI_ATTR void VKAPI_CALL recorded_label_begin(VkCommandBuffer cmd, const VkDebugUtilsLabelEXT* label) {
+    g_labels.emplace_back(label->pLabelName);
+    ++g_open_labels;
+    real<PFN_vkCmdBeginDebugUtilsLabelEXT>("vkCmdBeginDebugUtilsLabelEXT")(cmd, label);
+}
+
+VKAPI_ATTR void VKAPI_CALL recorded_label_end(VkCommandBuffer cmd) {
+    --g_open_labels;
+    real<PFN_vkCmdEndDebugUtilsLabelEXT>("vkCmdEndDebugUtilsLabelEXT")(cmd);
 }
 
 #define NAME(function) constexpr char k_##function[] = #function
@@ -136,6 +167,9 @@ const std::map<std::string, PFN_vkVoidFunction>& wrappers() {
         {"vkCreateComputePipelines",
          reinterpret_cast<F>(&counted_pipelines<VkComputePipelineCreateInfo, k_vkCreateComputePipelines>)},
         {"vkDestroyPipeline", reinterpret_cast<F>(&counted_destroy<kPipeline, VkPipeline, k_vkDestroyPipeline>)},
+        {"vkSetDebugUtilsObjectNameEXT", reinterpret_cast<F>(&recorded_name)},
+        {"vkCmdBeginDebugUtilsLabelEXT", reinterpret_cast<F>(&recorded_label_begin)},
+        {"vkCmdEndDebugUtilsLabelEXT", reinterpret_cast<F>(&recorded_label_end)},
     };
 #undef PAIR
     return table;
@@ -177,6 +211,10 @@ protected:
         LibraryTest::SetUp();
         g_live = {};
         g_real.clear();
+        g_created.clear();
+        g_names.clear();
+        g_labels.clear();
+        g_open_labels = 0;
         g_real_get_instance_proc_addr = device_.get_instance_proc_addr != nullptr
                                             ? device_.get_instance_proc_addr
                                             : reinterpret_cast<PFN_vkGetInstanceProcAddr>(&vkGetInstanceProcAddr);
@@ -256,6 +294,48 @@ TEST_F(ObjectLifetimes, ReplacedResourcesDoNotAccumulate) {
     shadows.set_lights(lights);
     for (int frame = 0; frame < 3; ++frame) render_visibility(shadows);  // releases what was retired
     EXPECT_EQ(describe(g_live), describe(settled));
+}
+
+// With VK_EXT_debug_utils on the instance (the tests' context enables it with the validation
+// layer), every object a system creates gets a name saying what it is for, and every pass a
+// balanced command label, so that capture tools and validation messages name them: with
+// cascades and a point light, and with the virtual shadow map.
+TEST_F(ObjectLifetimes, EveryObjectIsNamedAndEveryPassLabelled) {
+    const MeshArrays box = box_mesh();
+    const MeshArrays ground = ground_mesh();
+    Settings virtual_settings = with_filter(ShadowFilter::Pcf, 512);
+    virtual_settings.shadow.technique = ShadowTechnique::Virtual;
+    for (const Settings& settings : {with_filter(ShadowFilter::Vsm, 512), virtual_settings}) {
+        g_created.clear();
+        g_names.clear();
+        g_labels.clear();
+        {
+            ShadowSystem shadows(counting_desc(settings));
+            add_scene(shadows, box, ground);
+            add_lights(shadows);
+            render_visibility(shadows);
+        }
+        ASSERT_FALSE(g_created.empty());
+        std::set<std::string> purposes;
+        for (const auto& [kind, handle] : g_created) {
+            const auto name = g_names.find(handle);
+            ASSERT_NE(name, g_names.end()) << kKindNames[kind] << " created without a debug name";
+            EXPECT_EQ(name->second.rfind("penumbra ", 0), 0u) << name->second;
+            purposes.insert(name->second.substr(0, name->second.find(':')));
+        }
+        EXPECT_TRUE(purposes.count("penumbra cascade maps")) << "named: " << testing::PrintToString(purposes);
+        EXPECT_TRUE(purposes.count("penumbra visibility image")) << testing::PrintToString(purposes);
+        const std::set<std::string> labels(g_labels.begin(), g_labels.end());
+        EXPECT_TRUE(labels.count("penumbra visibility")) << testing::PrintToString(labels);
+        EXPECT_TRUE(labels.count("penumbra shadow_local")) << testing::PrintToString(labels);
+        if (settings.shadow.technique == ShadowTechnique::Virtual) {
+            EXPECT_TRUE(purposes.count("penumbra virtual shadow map")) << testing::PrintToString(purposes);
+            EXPECT_TRUE(labels.count("penumbra shadow_virtual_raster")) << testing::PrintToString(labels);
+        } else {
+            EXPECT_TRUE(labels.count("penumbra shadow_moments")) << testing::PrintToString(labels);
+        }
+        EXPECT_EQ(g_open_labels, 0) << "every label begun is ended";
+    }
 }
 
 }  // namespace

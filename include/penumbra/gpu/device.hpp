@@ -77,6 +77,13 @@ public:
     // A memory type among `type_bits` with all of `properties`; throws VulkanError if none.
     uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
 
+    // VK_EXT_debug_utils is enabled on the instance: objects get names and passes labels
+    // (penumbra/gpu/debug_names.hpp).
+    bool debug_names() const { return vk_.vkSetDebugUtilsObjectNameEXT != nullptr; }
+    // What the objects the gpu helpers create now are for (gpu::ObjectNames sets it).
+    const std::string& object_purpose() const { return object_purpose_; }
+    void set_object_purpose(std::string purpose) const { object_purpose_ = std::move(purpose); }
+
 protected:
     // For the library's own device context, which creates the handles first and then calls
     // initialize().
@@ -91,6 +98,9 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     uint32_t max_multiview_views_ = 0;
+    // Naming state, not the device's: changed while objects are created, hence mutable
+    // (a Device, like a ShadowSystem, is used from one thread at a time).
+    mutable std::string object_purpose_ = "penumbra";
 };
 
 // Describes a physical device (name, type, driver, API version, usability).

@@ -30,6 +30,9 @@ namespace penumbra::gpu {
     X(vkGetDeviceProcAddr)                       \
     X(vkCreateDebugUtilsMessengerEXT)            \
     X(vkDestroyDebugUtilsMessengerEXT)           \
+    X(vkSetDebugUtilsObjectNameEXT)              \
+    X(vkCmdBeginDebugUtilsLabelEXT)              \
+    X(vkCmdEndDebugUtilsLabelEXT)                \
     X(vkDestroySurfaceKHR)                       \
     X(vkGetPhysicalDeviceSurfaceCapabilitiesKHR) \
     X(vkGetPhysicalDeviceSurfaceFormatsKHR)      \

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/gpu/debug_names.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/handle.hpp"
 
@@ -49,6 +50,8 @@ public:
     // (VK_NOT_READY: the caller may retry, or drop this frame's timings).
     std::optional<std::vector<ScopeTime>> read() const;
 
+    const Device& device() const { return device_; }
+
 private:
     const Device& device_;
     uint32_t max_scopes_;
@@ -59,16 +62,21 @@ private:
     std::vector<bool> ended_;
 };
 
-// Opens a scope on construction and closes it on destruction; does nothing when the
-// timer is null, so that recording code can be timed or not with the same calls.
+// A pass: opens a timing scope on construction and closes it on destruction, inside a
+// command label of the same name (CommandLabel). The scope is skipped when the timer is
+// null, so that recording code can be timed or not with the same calls; the label stays.
 class TimedScope {
 public:
-    TimedScope(GpuTimer* timer, VkCommandBuffer cmd, std::string name);
+    TimedScope(const Device& device, GpuTimer* timer, VkCommandBuffer cmd, const std::string& name);
+    // With a timer: its device labels the pass.
+    TimedScope(GpuTimer& timer, VkCommandBuffer cmd, const std::string& name)
+        : TimedScope(timer.device(), &timer, cmd, name) {}
     ~TimedScope();
     TimedScope(const TimedScope&) = delete;
     TimedScope& operator=(const TimedScope&) = delete;
 
 private:
+    CommandLabel label_;
     GpuTimer* timer_;
     VkCommandBuffer cmd_;
     uint32_t scope_ = 0;
