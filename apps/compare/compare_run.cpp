@@ -7,6 +7,7 @@
 #include "compare/compare_job.hpp"
 #include "compare/compare_report.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/inventory.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "penumbra/shadow_system.hpp"
 #include "quality/camera_jitter.hpp"
@@ -74,10 +75,6 @@ const Light& require_sun(const Scene& scene, const std::string& origin) {
     }
     if (!sun->cast_shadows) throw InputError(origin + ": the sun casts no shadows (cast_shadows = false)");
     return *sun;
-}
-
-const char* light_type_name(LightType type) {
-    return type == LightType::Spot ? "spot" : type == LightType::Point ? "point" : "directional";
 }
 
 // The spot or point light `--light index` names, checked to be one the renderer lights

@@ -30,18 +30,6 @@ std::string quoted_or_unnamed(const std::string& name) {
     return name.empty() ? "(unnamed)" : "\"" + escape_control_characters(name) + "\"";
 }
 
-std::string light_type_name(LightType type) {
-    switch (type) {
-        case LightType::Directional:
-            return "directional";
-        case LightType::Spot:
-            return "spot";
-        case LightType::Point:
-            return "point";
-    }
-    return "directional";
-}
-
 std::string alpha_modes_text(const SceneEntry& entry) {
     std::string text;
     for (const AlphaMode mode : entry.alpha_modes)

@@ -87,4 +87,16 @@ const char* alpha_mode_name(AlphaMode mode) {
     return "opaque";
 }
 
+const char* light_type_name(LightType type) {
+    switch (type) {
+        case LightType::Directional:
+            return "directional";
+        case LightType::Spot:
+            return "spot";
+        case LightType::Point:
+            return "point";
+    }
+    return "directional";
+}
+
 }  // namespace penumbra

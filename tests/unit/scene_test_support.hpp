@@ -1,8 +1,10 @@
 #pragma once
 // Helpers shared by the scene and glTF unit tests.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -38,5 +40,28 @@ inline Scene parse_scene_text(std::string_view text) {
 inline std::string scene_error(std::string_view text) {
     return input_error_message([&] { parse_scene_text(text); });
 }
+
+// A fixture whose tests write files into `dir_`: an empty folder named after the test suite,
+// the process (runs from several build folders at once stay apart) and the test, created
+// before each test and removed after it.
+class ScratchFolderTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = std::filesystem::temp_directory_path() / ("penumbra_" + std::string(test->test_suite_name()) + "_" +
+                                                         std::to_string(::getpid()) + "_" + test->name());
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+
+    // Writes `bytes` to `dir_ / name` and returns that path.
+    std::filesystem::path write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(dir_ / name, std::ios::binary) << bytes;
+        return dir_ / name;
+    }
+
+    std::filesystem::path dir_;
+};
 
 }  // namespace penumbra::testing

@@ -11,6 +11,7 @@
 #include "gltf_writer.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "quality/enclosing_casters.hpp"
+#include "scene_test_support.hpp"
 
 namespace penumbra {
 namespace {
@@ -95,22 +96,12 @@ type = "gltf"
 file = "room.gltf"
 )toml";
 
-class EnclosingCasters : public ::testing::Test {
+class EnclosingCasters : public ScratchFolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("penumbra_enclosing_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
     std::vector<quality::EnclosingCaster> find(const std::string& scene_text) const {
         const Scene scene = parse_scene_toml(scene_text, "scene.toml", dir_);
         return quality::find_enclosing_casters(scene, scene.camera, 4.0f / 3.0f);
     }
-
-    fs::path dir_;
 };
 
 TEST_F(EnclosingCasters, ASkyOfManyPrimitivesIsOneCasterNamedAsExcludeCastersTakesIt) {

@@ -3,7 +3,6 @@
 // in a time proportional to the file, and the counting agrees with what loading makes.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <array>
 #include <chrono>
@@ -87,21 +86,8 @@ TEST(LoadBudgetArithmetic, SaturatesInsteadOfWrapping) {
     EXPECT_EQ(saturating_multiply(6, 7), 42u);
 }
 
-class GltfBudget : public ::testing::Test {
+class GltfBudget : public testing::ScratchFolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("penumbra_gltf_budget_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    fs::path write(const std::string& name, const std::string& bytes) const {
-        std::ofstream(dir_ / name, std::ios::binary) << bytes;
-        return dir_ / name;
-    }
-
     // The InputError of loading `file` once, and how long it took to refuse.
     std::string load_error(const fs::path& file, const LoadBudget& budget = {}, size_t placements = 1) {
         const auto start = std::chrono::steady_clock::now();
@@ -115,7 +101,6 @@ protected:
         return message;
     }
 
-    fs::path dir_;
     double seconds_ = 0.0;
 };
 

@@ -5,7 +5,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
-#include <unistd.h>
 
 #include <fstream>
 #include <glm/geometric.hpp>
@@ -26,21 +25,8 @@ const fs::path kAssimpGltf = "/usr/share/assimp/models/glTF2";
 const fs::path kDracoEngine = kAssimpGltf / "draco/2CylinderEngine.gltf";
 const fs::path kPlainEngine = kAssimpGltf / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
-class GltfCompression : public ::testing::Test {
+class GltfCompression : public testing::ScratchFolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("penumbra_gltf_compression_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    fs::path write(const std::string& name, const std::string& bytes) const {
-        std::ofstream(dir_ / name, std::ios::binary) << bytes;
-        return dir_ / name;
-    }
-
     static Scene load(const fs::path& file) {
         Scene scene;
         append_gltf(scene, file, {glm::mat4{1.0f}});
@@ -50,8 +36,6 @@ protected:
     static std::string load_error(const fs::path& file) {
         return input_error_message([&] { load(file); });
     }
-
-    fs::path dir_;
 };
 
 // libdraco.so.7 exports its own build of tinygltf; the loader's calls must reach Debian's

@@ -21,29 +21,14 @@ using ::testing::HasSubstr;
 using testing::input_error_message;
 using testing::test_data;
 
-class GltfHostile : public ::testing::Test {
+class GltfHostile : public testing::ScratchFolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("penumbra_gltf_hostile_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    fs::path write(const std::string& name, const std::string& bytes) const {
-        std::ofstream(dir_ / name, std::ios::binary) << bytes;
-        return dir_ / name;
-    }
-
     static std::string load_error(const fs::path& file, size_t placements = 1) {
         return input_error_message([&] {
             Scene scene;
             append_gltf(scene, file, std::vector<glm::mat4>(placements, glm::mat4{1.0f}));
         });
     }
-
-    fs::path dir_;
 };
 
 // The quad fixture's text with its "nodes" array replaced.

@@ -38,6 +38,8 @@ std::string exclusion_name(const InstanceOrigin& origin);
 // (built-in geometry made by code: its cast_shadows).
 std::string no_shadow_advice(const InstanceOrigin& origin);
 
+// The names scene files write: "opaque", "mask", "blend"; "directional", "spot", "point".
 const char* alpha_mode_name(AlphaMode mode);
+const char* light_type_name(LightType type);
 
 }  // namespace penumbra
