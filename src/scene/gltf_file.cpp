@@ -140,6 +140,32 @@ std::string_view glb_json_chunk(const std::vector<unsigned char>& bytes) {
     return {reinterpret_cast<const char*>(bytes.data()) + kHeader + kChunkHeader, chunk_length};
 }
 
+// Refuses a GLB whose chunks do not fit in it (glTF 2.0, 4.4: the header's length word is
+// the whole container's; each chunk is an 8-byte length and type, then its data). tinygltf
+// checks a BIN chunk's data against the length but forgets its 8-byte header, and reads
+// past the end of the file when the length word is also the file's (as glb_with_json()
+// writes it).
+void check_glb_chunks(const std::vector<unsigned char>& bytes, const std::string& origin) {
+    constexpr uint64_t kHeader = 12;
+    constexpr uint64_t kChunkHeader = 8;
+    if (bytes.size() < kHeader + kChunkHeader) return;  // tinygltf names a short file
+    const uint64_t length = read_u32(bytes, 8);
+    if (length > bytes.size()) {
+        throw InputError(origin + ": the GLB header says " + std::to_string(length) + " bytes, the file has " +
+                         std::to_string(bytes.size()) + " (truncated?)");
+    }
+    uint64_t offset = kHeader;
+    for (int chunk = 0; offset + kChunkHeader <= length; ++chunk) {
+        const uint64_t chunk_length = read_u32(bytes, static_cast<size_t>(offset));
+        if (offset + kChunkHeader + chunk_length > length) {
+            throw InputError(origin + ": GLB chunk " + std::to_string(chunk) + " says " + std::to_string(chunk_length) +
+                             " bytes, only " + std::to_string(length - offset - kChunkHeader) +
+                             " follow it in the container");
+        }
+        offset += kChunkHeader + chunk_length;
+    }
+}
+
 // The same GLB with another JSON chunk (glTF 2.0, 4.4: a 12-byte header whose third word is
 // the total length, then chunks of length, type and data, each padded to 4 bytes; JSON with
 // spaces). The chunks after the JSON one are kept as they are.
@@ -157,7 +183,9 @@ std::vector<unsigned char> glb_with_json(const std::vector<unsigned char>& bytes
     append_u32(static_cast<uint32_t>(padded.size()));
     append_u32(0x4E4F534Au);  // "JSON"
     glb.insert(glb.end(), padded.begin(), padded.end());
-    glb.insert(glb.end(), bytes.begin() + static_cast<std::ptrdiff_t>(rest), bytes.end());
+    const size_t container_end = std::max<size_t>(rest, read_u32(bytes, 8));  // check_glb_chunks(): <= size
+    glb.insert(glb.end(), bytes.begin() + static_cast<std::ptrdiff_t>(rest),
+               bytes.begin() + static_cast<std::ptrdiff_t>(container_end));
     const auto total = static_cast<uint32_t>(glb.size());
     std::memcpy(glb.data() + 8, &total, sizeof(total));
     return glb;
@@ -210,6 +238,7 @@ tinygltf::Model read_gltf_model(const fs::path& file, const std::string& origin,
         throw InputError(origin + ": GLB container version " + std::to_string(read_u32(bytes, 4)) +
                          " (glTF 2.0 files are version 2)");
     }
+    if (binary) check_glb_chunks(bytes, origin);
     const std::string_view json =
         binary ? glb_json_chunk(bytes) : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     if (json_nesting_depth(json, kMaxGltfJsonDepth) > kMaxGltfJsonDepth) {

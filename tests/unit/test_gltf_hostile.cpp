@@ -226,5 +226,24 @@ TEST_F(GltfHostile, GlbOfAnotherVersionIsRefused) {
     EXPECT_THAT(load_error(write("v1.glb", glb)), HasSubstr("GLB container version 1 (glTF 2.0 files are version 2)"));
 }
 
+// A BIN chunk that says 8 bytes more than follow its header: tinygltf measures the chunk's
+// data against the container without its 8-byte header and reads past the end (found by
+// fuzz_glb through a Draco file, whose JSON the loader rewrites).
+TEST_F(GltfHostile, GlbChunkLongerThanTheContainerIsRefused) {
+    std::ifstream file(test_data("gltf/quad.glb"), std::ios::binary);
+    std::string glb((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    ASSERT_GT(glb.size(), 40u);
+    glb.resize(glb.size() - 8);
+    const auto length = static_cast<uint32_t>(glb.size());
+    std::memcpy(glb.data() + 8, &length, sizeof(length));
+    EXPECT_THAT(load_error(write("overrun.glb", glb)), HasSubstr("GLB chunk 1 says"));
+
+    const uint32_t claimed = length + 8;
+    std::memcpy(glb.data() + 8, &claimed, sizeof(claimed));
+    EXPECT_THAT(load_error(write("truncated.glb", glb)),
+                HasSubstr("the GLB header says " + std::to_string(length + 8) + " bytes, the file has " +
+                          std::to_string(length) + " (truncated?)"));
+}
+
 }  // namespace
 }  // namespace penumbra
