@@ -16,6 +16,7 @@
 #include "bench/paths.hpp"
 #include "bench/statistics.hpp"
 #include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/settings_overrides.hpp"
 #include "renderer/render_job.hpp"
 
 namespace penumbra::bench {
@@ -54,6 +55,13 @@ struct BenchJob {
     // and a turn about its vertical axis, one turn per 120 frames (cached cascades with
     // moving casters).
     bool animate_dynamic = false;
+    // Measured frames alternate between the settings and these changed ones (a live
+    // ShadowSystem::update_settings() before every frame): the renderer's call is the
+    // "update_settings" CPU step (its own pipelines included), the rebuild it leaves to the
+    // next prepare() "settings_rebuild", and the maps it empties are redrawn in the frame's
+    // GPU scopes. Empty: no change.
+    SettingsOverrides toggle;
+    std::string toggle_text;  // as given (--toggle), for the report
     std::optional<std::filesystem::path> json;
     // Called after every frame (warm-up included) with frames done and the total.
     std::function<void(uint32_t done, uint32_t total)> progress;

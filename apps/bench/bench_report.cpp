@@ -44,6 +44,7 @@ Json run_json(const BenchJob& job) {
                 {"light_path", light_path_name(job.light_path)},
                 {"readback", job.readback},
                 {"animate_dynamic", job.animate_dynamic},
+                {"toggle", job.toggle_text.empty() ? Json(nullptr) : Json(job.toggle_text)},
                 {"ceiling", choice_name(kCeilingChoices, job.ceiling)},
                 {"taps", is_tap_ceiling(job.ceiling) ? Json(job.taps) : Json(nullptr)},
                 {"validation", job.render.device.validation}};
@@ -118,6 +119,9 @@ std::string format_header(const BenchResult& result) {
                   format_technique(s).c_str(), s.shadow.cull_casters ? "on" : "off",
                   choice_name(kCasterCullingChoices, s.shadow.caster_culling), result.job.frames, result.job.warmup,
                   camera_path_name(result.job.camera_path), light_path_name(result.job.light_path));
+    if (!result.job.toggle_text.empty()) {
+        return line + ("every measured frame toggles " + result.job.toggle_text + " (update_settings)\n");
+    }
     return line;
 }
 

@@ -17,6 +17,7 @@
 #include "penumbra/gpu/frame_commands.hpp"
 #include "penumbra/gpu/timestamps.hpp"
 #include "penumbra/scene/loader.hpp"
+#include "penumbra/scene/settings_overrides.hpp"
 #include "renderer/renderer.hpp"
 
 namespace penumbra::bench {
@@ -159,6 +160,7 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
     if (!frame.gpu_times.empty()) samples.gpu.add("shadow_sun", sun_shadow_ms(frame.gpu_times));
     samples.cpu.add("cascade_setup", frame.cpu_times.cascade_setup_ms);
     samples.cpu.add("culling", frame.cpu_times.culling_ms);
+    samples.cpu.add("settings_rebuild", frame.cpu_times.settings_ms);
     samples.cpu.add("recording", frame.cpu_times.recording_ms);
     samples.cpu.add("submit_wait", frame.cpu_times.submit_wait_ms);
     samples.cpu.add("frame_wall", wall_ms);
@@ -254,6 +256,22 @@ void record_contact_cost(renderer::Renderer& renderer, const Camera& camera, ren
     if (with && without_ms) samples.gpu.add("contact", *with - *without_ms);
 }
 
+// --toggle: the settings and the changed ones; refused when the change is not one a live
+// renderer takes (the image size, the resolve path, the pre-pass).
+std::optional<std::pair<RenderSettings, RenderSettings>> toggled_settings(const BenchJob& job,
+                                                                          const renderer::Renderer& renderer) {
+    if (job.toggle_text.empty()) return std::nullopt;
+    RenderSettings changed = renderer.settings();
+    apply_overrides(job.toggle, changed);
+    validate_settings(changed, "--toggle");
+    if (renderer.needs_new_renderer(changed)) {
+        throw InputError("--toggle: " + job.toggle_text +
+                         " changes what a renderer creates once (the image size, the resolve path, the pre-pass, "
+                         "contact shadows): it cannot be toggled live");
+    }
+    return std::pair{renderer.settings(), changed};
+}
+
 // The renderer's frames along the camera and light paths. The Renderer keeps a reference
 // to `prepared.scene` and reads its sun every frame, so moving the sun here moves it there.
 FrameSamples run_renderer_frames(const renderer::AppContext& context, const BenchJob& job, PreparedJob& prepared,
@@ -270,11 +288,17 @@ FrameSamples run_renderer_frames(const renderer::AppContext& context, const Benc
                               (prepared.settings.contact.sun || prepared.settings.contact.local_lights) &&
                               renderer.resolve() == ShadowResolve::Deferred;
     FrameSamples samples;
+    const std::optional<std::pair<RenderSettings, RenderSettings>> toggled = toggled_settings(job, renderer);
     const uint32_t total = job.warmup + job.frames;
     for (uint32_t index = 0; index < total; ++index) {
         const float t = path_parameter(job, index);
         if (sun) sun->direction = glm::normalize(sun_on_path(job.light_path, start_sun, t));
         if (job.animate_dynamic) move_dynamic_instances(renderer, prepared.scene, index);
+        if (toggled && index >= job.warmup) {
+            const Clock::time_point change = Clock::now();
+            renderer.update_settings((index - job.warmup) % 2 == 0 ? toggled->second : toggled->first);
+            samples.cpu.add("update_settings", milliseconds_since(change));
+        }
         const Camera camera = camera_on_path(job.camera_path, start_camera, t, job.frames);
         const Clock::time_point start = Clock::now();
         renderer.render(camera, readback);

@@ -11,6 +11,7 @@
 #include "compare_options.hpp"
 #include "number_checks.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/scene/settings_files.hpp"
 #include "setting_options.hpp"
 #include "view_options.hpp"
 
@@ -25,7 +26,7 @@ struct RawRenderOptions {
 };
 
 struct RawBenchOptions {
-    std::string camera_path, light_path, ceiling, json;
+    std::string camera_path, light_path, ceiling, json, toggle;
 };
 
 glm::vec3 parse_vec3(const std::string& text, const std::string& flag) {
@@ -149,6 +150,9 @@ void add_bench_options(CLI::App& bench, bench::BenchJob& job, RawBenchOptions& r
     bench.add_option("--taps", job.taps, "Texture taps per pixel for --ceiling taps and compute-taps (default 16)")
         ->check(CLI::Range(1u, bench::kMaxTaps));
     bench.add_flag("--readback", job.readback, "Read the images back every frame, as `render` does");
+    bench.add_option("--toggle", raw.toggle,
+                     "Alternate every measured frame between the settings and this change, TABLE.KEY=VALUE as in a "
+                     "config file (e.g. shadow.filter=\"pcss\"): times update_settings() and what it rebuilds");
     bench.add_flag("--animate-dynamic", job.animate_dynamic,
                    "Move every dynamic instance each frame (a 2 m circle about its place, one turn per 120 frames)");
 }
@@ -165,6 +169,18 @@ void finish_bench_job(const RawRenderOptions& raw, const RawBenchOptions& bench_
         job.ceiling = parse_choice(bench_raw.ceiling, "--ceiling", choice_map(bench::kCeilingChoices));
     }
     if (!bench_raw.json.empty()) job.json = bench_raw.json;
+    if (!bench_raw.toggle.empty()) {
+        // "TABLE.KEY=VALUE" is the config-file line "KEY = VALUE" under [TABLE].
+        const size_t dot = bench_raw.toggle.find('.');
+        const size_t equals = bench_raw.toggle.find('=');
+        if (dot == std::string::npos || equals == std::string::npos || dot > equals) {
+            throw InputError("--toggle: expected TABLE.KEY=VALUE (e.g. shadow.filter=\"pcss\"), got \"" +
+                             bench_raw.toggle + "\"");
+        }
+        job.toggle = parse_settings_text(
+            "[" + bench_raw.toggle.substr(0, dot) + "]\n" + bench_raw.toggle.substr(dot + 1) + "\n", "--toggle");
+        job.toggle_text = bench_raw.toggle;
+    }
 }
 
 }  // namespace

@@ -110,10 +110,15 @@ LightingPass::LightingPass(const gpu::Device& device, VkDescriptorSetLayout fram
     }
     const VkPushConstantRange push_range = draw_push_constant_range();
     pipeline_layout_ = gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
+    contact_shadows_ = contact_shadows;
+    respecialize(shadows);
+}
+
+void LightingPass::respecialize(const ShadowSystem& shadows) {
     single_sided_ =
-        create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_BACK_BIT, shadows, resolve, contact_shadows);
+        create_lighting_pipeline(device_, pipeline_layout_, VK_CULL_MODE_BACK_BIT, shadows, resolve_, contact_shadows_);
     double_sided_ =
-        create_lighting_pipeline(device, pipeline_layout_, VK_CULL_MODE_NONE, shadows, resolve, contact_shadows);
+        create_lighting_pipeline(device_, pipeline_layout_, VK_CULL_MODE_NONE, shadows, resolve_, contact_shadows_);
 }
 
 void LightingPass::use_visibility_image(const VisibilityImage& visibility) {

@@ -43,6 +43,10 @@ public:
 
     const LightingTargets& targets() const { return targets_; }
 
+    // Rebuilds the pipelines with the ShadowSystem's current specialization constants (after
+    // an update_settings() that changed them); the GPU must be done with the old ones.
+    void respecialize(const ShadowSystem& shadows);
+
     // Deferred: points set 3 at the ShadowSystem's visibility image (after record_visibility(),
     // before record(); the descriptor is rewritten only when the image changed, and the
     // previous frame must have completed).
@@ -59,6 +63,7 @@ private:
     uint32_t width_;
     uint32_t height_;
     ShadowResolve resolve_;
+    bool contact_shadows_ = false;               // the pass traces contact shadows
     const gpu::Image* prepass_depth_ = nullptr;  // null: the pass has a depth buffer of its own
     LightingTargets targets_;
     gpu::UniqueDescriptorSetLayout screen_set_layout_;  // deferred or contact: set 3

@@ -9,6 +9,7 @@
 
 #include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
+#include "penumbra/gpu/check.hpp"
 #include "penumbra/gpu/frame_commands.hpp"
 #include "penumbra/gpu/pipeline.hpp"
 #include "quality/enclosing_casters.hpp"
@@ -205,21 +206,37 @@ ShadowResolve Renderer::resolve() const { return resources_->resolve; }
 
 const gpu::Image& Renderer::color_target() const { return resources_->lighting_pass.targets().color; }
 
-bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next) {
+bool Renderer::needs_new_renderer(const RenderSettings& next) const {
+    const RenderSettings& current = settings_;
     const auto is_shadow_map = [](DebugView view) { return view == DebugView::ShadowMap; };
     // Contact shadows need the depth pre-pass and the lighting pass's variant that reads it
     // (and make the automatic resolve deferred), as does `--aov contact`.
     const auto contact_aov = [](const RenderSettings& s) { return s.visibility_light == kVisibilityContact; };
+    // The filter can change what --resolve auto picks; the virtual shadow map marks its
+    // pages from the pre-pass's depth.
+    const ShadowResolve resolve = effective_resolve(next.resolve, next.shadow.filter.mode, casts_local_shadows(scene_),
+                                                    uint64_t{next.width} * next.height, next.contact.enabled);
+    const bool needs_prepass =
+        resolve == ShadowResolve::Deferred || next.shadow.technique == ShadowTechnique::Virtual || next.contact.enabled;
     return current.width != next.width || current.height != next.height || current.resolve != next.resolve ||
+           resolve != resources_->resolve || (needs_prepass && !resources_->prepass) ||
            current.contact.enabled != next.contact.enabled || contact_aov(current) != contact_aov(next) ||
-           requires_recreation(current, next) || is_shadow_map(current.debug) != is_shadow_map(next.debug);
+           is_shadow_map(current.debug) != is_shadow_map(next.debug);
 }
 
 void Renderer::update_settings(const RenderSettings& settings) {
-    if (requires_new_renderer(settings_, settings)) {
+    if (needs_new_renderer(settings)) {
         throw std::invalid_argument("Renderer::update_settings: the new settings need a new Renderer");
     }
-    resources_->shadows.update_settings(static_cast<const Settings&>(settings));
+    // The ShadowSystem keeps the scene through every change; the lighting pass follows its
+    // specialization constants. Frames are waited for (render() leaves none in flight
+    // beyond the one the caller presents).
+    const SettingsChange change = resources_->shadows.update_settings(static_cast<const Settings&>(settings));
+    if (change.shader_specialization_changed) {
+        PENUMBRA_VK_CHECK(context_->vkDeviceWaitIdle(context_));
+        resources_->lighting_pass.respecialize(resources_->shadows);
+    }
+    resources_->marks_pages = settings.shadow.technique == ShadowTechnique::Virtual;
     settings_ = settings;
 }
 
@@ -298,6 +315,7 @@ void Renderer::prepare_frame(const Camera& camera) {
     last_frame_.unshadowed_lights = frame.unshadowed_lights;
     last_frame_.cpu_times.cascade_setup_ms = frame.cpu_fit_ms;
     last_frame_.cpu_times.culling_ms = frame.cpu_cull_ms;
+    last_frame_.cpu_times.settings_ms = frame.cpu_settings_ms;
 
     const shader::FrameUniforms uniforms = build_frame_uniforms(view, scene_, settings_);
     std::memcpy(resources_->frame_uniforms.mapped, &uniforms, sizeof(uniforms));

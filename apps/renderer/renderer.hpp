@@ -56,6 +56,7 @@ enum class ReadbackMode {
 struct CpuTimes {
     double cascade_setup_ms = 0.0;  // ShadowSystem::prepare(): fitting of cascades and local lights
     double culling_ms = 0.0;        // ShadowSystem::prepare(): caster culling of every map
+    double settings_ms = 0.0;       // ShadowSystem::prepare(): applying changed settings
     double recording_ms = 0.0;      // command recording
     double submit_wait_ms = 0.0;    // from submission until the fence signals
 };
@@ -74,11 +75,6 @@ struct FrameInfo {
     std::vector<gpu::ScopeTime> gpu_times;
     CpuTimes cpu_times;
 };
-
-// True when going from `current` to `next` changes a resource the Renderer creates once:
-// the image size, what requires a new ShadowSystem (requires_recreation()), or the
-// shadow-map debug readback.
-bool requires_new_renderer(const RenderSettings& current, const RenderSettings& next);
 
 // The first kMaxLocalLights spot and point lights of `lights` (indices): the ones lit.
 std::vector<uint32_t> lit_local_lights(const std::vector<Light>& lights);
@@ -105,10 +101,13 @@ public:
     // height), left in gpu::ImageState::TransferSrc by render(); a presenter copies or
     // blits it (the window viewer) after render() has returned.
     const gpu::Image& color_target() const;
-    // Replaces the settings read while recording a frame (splits, fitting, bias, blend
-    // width, culling, the cascade debug tint). Settings that size or specialise resources
-    // need a new Renderer: see requires_new_renderer(); throws std::invalid_argument then.
+    // Takes new settings for the next frame, the scene kept: every shadow setting (the
+    // ShadowSystem rebuilds its maps or pipelines, the lighting pass its pipelines when the
+    // filter's specialization changed). What changes the renderer's own targets (the image
+    // size, the resolve path, the pre-pass, contact shadows, the shadow-map readback) needs
+    // a new Renderer: see needs_new_renderer(); throws std::invalid_argument then.
     void update_settings(const RenderSettings& settings);
+    bool needs_new_renderer(const RenderSettings& next) const;
     const gpu::GpuTimer& gpu_timer() const;
     // GPU memory of the shadow maps, in bytes.
     uint64_t shadow_map_bytes() const;

@@ -1,8 +1,8 @@
 #pragma once
 // How a setting of a ShadowSystem is declared, once (the table is kSettingDeclarations in
 // penumbra/settings.hpp): its name, type, range or choices, help line, the filters it
-// applies to, whether a change recreates GPU resources, and how to read and write it in a
-// Settings. validate_settings(), requires_recreation() and Penumbra's tools (config files,
+// applies to, what a change rebuilds inside a ShadowSystem, and how to read and write it in
+// a Settings. validate_settings(), settings_change_effect() and Penumbra's tools (config files,
 // command-line flags and --help, the viewer's panel, bench reports) read the declarations,
 // so that a setting is defined in one place: its field and its declaration.
 #include <array>
@@ -29,6 +29,14 @@ enum class SettingType {
     NumberList,  // any number of numbers (manual cascade splits)
 };
 
+// What a change of a setting rebuilds inside a ShadowSystem (ShadowSystem::update_settings()
+// takes every change and keeps the meshes, instances and lights).
+enum class SettingEffect : uint8_t {
+    Live,      // a uniform: the next prepare() uses it
+    Pipeline,  // specialises Penumbra's shaders (and the caller's, see shader_specialization())
+    Resource,  // sizes or picks the shadow maps: they are reallocated and drawn again
+};
+
 // A setting's value in the form readers and writers exchange: Boolean: bool, Integer:
 // int64_t, Number: double, Choice: the choice's name, NumberList: the numbers.
 using SettingValue = std::variant<bool, int64_t, double, std::string, std::vector<float>>;
@@ -50,7 +58,7 @@ struct SettingDeclaration {
     std::span<const int64_t> allowed = {};            // Integer: when not empty, the only values allowed
     std::span<const char* const> choices = {};        // Choice: the names, in the order lists show them
     bool powers_of_two = false;                       // Integer: a size that interactive controls step by doubling
-    bool recreates = false;                           // a change needs a new ShadowSystem (requires_recreation)
+    SettingEffect effect = SettingEffect::Live;       // what a change rebuilds in a ShadowSystem
     uint32_t filters = kEveryFilter;                  // the filters it applies to (bits by ShadowFilter value)
     bool (*applies_when)(const Settings&) = nullptr;  // and only while this holds (nullptr: always)
     SettingValue (*get)(const Settings&) = nullptr;

@@ -245,8 +245,8 @@ inline constexpr int64_t kTwoOrFour[] = {2, 4};
 inline constexpr uint32_t kMomentFilters = filter_bits({ShadowFilter::Vsm, ShadowFilter::Evsm, ShadowFilter::Msm});
 
 // Every setting of Settings, in the order config files and reports list them. A field's
-// default is its initializer above; a setting whose `recreates` is true sizes or
-// specialises GPU resources (pipelines, maps), so changing it needs a new ShadowSystem.
+// default is its initializer above; `effect` says what a change of it rebuilds inside a
+// ShadowSystem (SettingEffect: nothing, pipelines, or maps; the scene is kept for each).
 inline constexpr SettingDeclaration kSettingDeclarations[] = {
     // The sun's technique and its virtual shadow map (docs/techniques.md).
     declare_choice<kShadowTechniqueChoices, &Settings::shadow, &ShadowSettings::technique>(
@@ -255,7 +255,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .group = "virtual",
          .label = "technique",
          .help = "The sun's shadow: cascaded or virtual shadow maps",
-         .recreates = true}),
+         .effect = SettingEffect::Resource}),
     declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::resolution>(
         {.name = "virtual_resolution",
          .group = "virtual",
@@ -264,7 +264,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .minimum = 1024,
          .maximum = 16384,
          .powers_of_two = true,
-         .recreates = true,
+         .effect = SettingEffect::Resource,
          .applies_when = setting_conditions::virtual_maps}),
     declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::levels>(
         {.name = "virtual_levels",
@@ -273,7 +273,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "Virtual shadow map: clipmap levels, each twice as wide as the one before",
          .minimum = 1,
          .maximum = 24,
-         .recreates = true,
+         .effect = SettingEffect::Resource,
          .applies_when = setting_conditions::virtual_maps}),
     declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::first_level_extent>(
         {.name = "virtual_first_extent",
@@ -298,7 +298,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "Virtual shadow map: memory of the physical pages (64 KiB each)",
          .minimum = 16,
          .maximum = 1024,
-         .recreates = true,
+         .effect = SettingEffect::Resource,
          .applies_when = setting_conditions::virtual_maps}),
     // The sun's cascades (docs/techniques.md).
     declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::count>({.name = "cascades",
@@ -307,7 +307,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
                                                                                     .help = "Number of shadow cascades",
                                                                                     .minimum = 1,
                                                                                     .maximum = kMaxCascades,
-                                                                                    .recreates = true}),
+                                                                                    .effect = SettingEffect::Resource}),
     declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::resolution>(
         {.name = "shadow_resolution",
          .config_key = "resolution",
@@ -317,7 +317,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .minimum = 512,
          .maximum = 8192,
          .powers_of_two = true,
-         .recreates = true}),
+         .effect = SettingEffect::Resource}),
     declare_choice<kSplitSchemeChoices, &Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::scheme>(
         {.name = "split_scheme", .group = "cascades", .label = "split scheme", .help = "Cascade splits"}),
     declare<&Settings::shadow, &ShadowSettings::cascades, &CascadeSettings::split_lambda>(
@@ -385,7 +385,11 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
                                                               .minimum = 0,
                                                               .maximum = 0.5}),
     declare_choice<kShadowStrategyChoices, &Settings::shadow, &ShadowSettings::strategy>(
-        {.name = "strategy", .group = "bias", .label = "strategy", .help = "Shadow rendering", .recreates = true}),
+        {.name = "strategy",
+         .group = "bias",
+         .label = "strategy",
+         .help = "Shadow rendering",
+         .effect = SettingEffect::Resource}),
     declare<&Settings::shadow, &ShadowSettings::cull_casters>({.name = "cull_casters",
                                                                .group = "bias",
                                                                .label = "cull casters",
@@ -402,16 +406,20 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .label = "cache static casters",
          .help = "Keep static casters' shadows from frame to frame (cascades, spot and point lights); draw only "
                  "what moved or changed",
-         .recreates = true}),
+         .effect = SettingEffect::Resource}),
     // The filter and its parameters, for every light (docs/filters.md).
     declare_choice<kShadowFilterChoices, &Settings::shadow, &ShadowSettings::filter, &FilterSettings::mode>(
-        {.name = "filter", .group = "filter", .label = "filter", .help = "Shadow filter", .recreates = true}),
+        {.name = "filter",
+         .group = "filter",
+         .label = "filter",
+         .help = "Shadow filter",
+         .effect = SettingEffect::Resource}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::receiver_plane_bias>(
         {.name = "receiver_plane_bias",
          .group = "filter",
          .label = "receiver-plane bias",
          .help = "pcf, poisson, pcss: receiver-plane depth bias",
-         .recreates = true,
+         .effect = SettingEffect::Pipeline,
          .filters = filter_bits({ShadowFilter::Pcf, ShadowFilter::Poisson, ShadowFilter::Pcss})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcf_radius>(
         {.name = "pcf_radius",
@@ -420,7 +428,6 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "pcf: grid radius R, (2R+1)^2 taps",
          .minimum = 0,
          .maximum = kMaxPcfRadius,
-         .recreates = true,
          .filters = filter_bits({ShadowFilter::Pcf})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::poisson_taps>(
         {.name = "poisson_taps",
@@ -428,7 +435,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .label = "Poisson taps",
          .help = "poisson: taps",
          .allowed = kSixteenOrThirtyTwo,
-         .recreates = true,
+         .effect = SettingEffect::Pipeline,
          .filters = filter_bits({ShadowFilter::Poisson})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::poisson_radius>(
         {.name = "poisson_radius",
@@ -437,7 +444,6 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "poisson (and moments_poisson): disk radius in texels",
          .minimum = 0.5,
          .maximum = 32,
-         .recreates = true,
          .applies_when = setting_conditions::poisson_disk}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_blocker_taps>(
         {.name = "pcss_blocker_taps",
@@ -445,21 +451,21 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .label = "blocker taps",
          .help = "pcss: blocker-search taps",
          .allowed = kSixteenOrThirtyTwo,
-         .recreates = true,
+         .effect = SettingEffect::Pipeline,
          .filters = filter_bits({ShadowFilter::Pcss})}),
     declare_choice<kPcssQualityChoices, &Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_quality>(
         {.name = "pcss_quality",
          .group = "filter",
          .label = "PCSS quality",
          .help = "pcss: filter taps (low 16, medium 25, high 49)",
-         .recreates = true,
+         .effect = SettingEffect::Pipeline,
          .filters = filter_bits({ShadowFilter::Pcss})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_early_out>(
         {.name = "pcss_early_out",
          .group = "filter",
          .label = "PCSS early out",
          .help = "pcss: fully shadowed when every blocker tap occludes",
-         .recreates = true,
+         .effect = SettingEffect::Pipeline,
          .filters = filter_bits({ShadowFilter::Pcss})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::pcss_max_penumbra>(
         {.name = "pcss_max_penumbra",
@@ -468,7 +474,6 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "pcss: largest penumbra radius in texels",
          .minimum = 1,
          .maximum = 128,
-         .recreates = true,
          .filters = filter_bits({ShadowFilter::Pcss})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::light_bleeding_reduction>(
         {.name = "light_bleeding_reduction",
@@ -477,7 +482,6 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "vsm, evsm, msm: light-bleeding reduction",
          .minimum = 0,
          .maximum = 0.95,
-         .recreates = true,
          .filters = kMomentFilters}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::blur_radius>(
         {.name = "blur_radius",
@@ -486,14 +490,14 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "vsm, evsm, msm: Gaussian blur radius of the moments in texels (0 = off)",
          .minimum = 0,
          .maximum = 8,
-         .recreates = true,
+         .effect = SettingEffect::Resource,
          .filters = kMomentFilters}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::moments_poisson>(
         {.name = "moments_poisson",
          .group = "filter",
          .label = "Poisson taps of the moments",
          .help = "vsm, evsm, msm: 16 Poisson taps of the moments (poisson_radius)",
-         .recreates = true,
+         .effect = SettingEffect::Pipeline,
          .filters = kMomentFilters}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::evsm_positive_exponent>(
         {.name = "evsm_positive_exponent",
@@ -502,7 +506,6 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "evsm: positive warp exponent (clamped to 42 for 32-bit float)",
          .minimum = 0.1,
          .maximum = 100,
-         .recreates = true,
          .filters = filter_bits({ShadowFilter::Evsm})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::evsm_negative_exponent>(
         {.name = "evsm_negative_exponent",
@@ -511,7 +514,6 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "evsm: negative warp exponent (clamped to 42)",
          .minimum = 0.1,
          .maximum = 100,
-         .recreates = true,
          .filters = filter_bits({ShadowFilter::Evsm})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::evsm_components>(
         {.name = "evsm_components",
@@ -519,7 +521,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .label = "EVSM components",
          .help = "evsm: 2 (positive warp only) or 4 components",
          .allowed = kTwoOrFour,
-         .recreates = true,
+         .effect = SettingEffect::Resource,
          .filters = filter_bits({ShadowFilter::Evsm})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::msm_moment_bias>(
         {.name = "msm_moment_bias",
@@ -528,14 +530,13 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "msm: moment bias",
          .minimum = 0,
          .maximum = 0.01,
-         .recreates = true,
          .filters = filter_bits({ShadowFilter::Msm})}),
     declare<&Settings::shadow, &ShadowSettings::filter, &FilterSettings::msm_optimized_quantization>(
         {.name = "msm_optimized_quantization",
          .group = "filter",
          .label = "MSM optimized quantization",
          .help = "msm: optimized moment quantization, 16-bit moments (Peters & Klein 2015)",
-         .recreates = true,
+         .effect = SettingEffect::Resource,
          .filters = filter_bits({ShadowFilter::Msm})}),
     // Spot and point light shadow maps (docs/local-lights.md).
     declare<&Settings::local_shadows, &LocalShadowSettings::budget>(
@@ -545,7 +546,7 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .help = "Spot/point lights with a shadow map per frame; the rest render unshadowed",
          .minimum = 0,
          .maximum = kMaxLocalShadowBudget,
-         .recreates = true}),
+         .effect = SettingEffect::Resource}),
     declare<&Settings::local_shadows, &LocalShadowSettings::resolution>(
         {.name = "local_shadow_resolution",
          .group = "local_shadows",
@@ -554,13 +555,13 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
          .minimum = 16,
          .maximum = 8192,
          .powers_of_two = true,
-         .recreates = true}),
+         .effect = SettingEffect::Resource}),
     declare_choice<kLocalShadowSizingChoices, &Settings::local_shadows, &LocalShadowSettings::sizing>(
         {.name = "local_shadow_sizing",
          .group = "local_shadows",
          .label = "shadow sizing",
          .help = "How a light without its own shadow_resolution gets its map's size",
-         .recreates = true}),
+         .effect = SettingEffect::Resource}),
     // Screen-space contact shadows (docs/techniques.md): uniforms only.
     declare<&Settings::contact, &ContactShadowSettings::enabled>(
         {.name = "contact_shadows",
@@ -640,11 +641,10 @@ void validate_shadow_settings(const ShadowSettings& settings, const std::string&
 void validate_local_shadow_settings(const LocalShadowSettings& settings, const std::string& origin);
 void validate_settings(const Settings& settings, const std::string& origin);
 
-// True when going from `current` to `next` changes a setting whose declaration `recreates`
-// (what a ShadowSystem creates once): the cascade count or resolution, the filter and its
-// parameters (pipelines, moments maps and the specialization of the caller's shaders), the
-// shadow strategy, or the local shadow budget, resolution and sizing. Every other setting
-// may change between frames (ShadowSystem::update_settings).
-bool requires_recreation(const Settings& current, const Settings& next);
+// The largest effect (SettingDeclaration::effect) among the settings that differ between
+// `current` and `next`; Live when none differ. ShadowSystem::update_settings() takes every
+// change and keeps the scene: Live ones are uniforms, Pipeline ones rebuild Penumbra's
+// pipelines, Resource ones its maps.
+SettingEffect settings_change_effect(const Settings& current, const Settings& next);
 
 }  // namespace penumbra

@@ -7,7 +7,9 @@
 //   #include "penumbra/shadow.glsl"
 //   #include "penumbra/shadow_fragment.glsl"  // fragment shaders: helpers with derivatives
 //
-// and specialize the pipeline with ShadowSystem::shader_specialization(PENUMBRA_SPEC_ID_BASE).
+// and specialize the pipeline with ShadowSystem::shader_specialization(PENUMBRA_SPEC_ID_BASE),
+// or define PENUMBRA_FILTER_FROM_UNIFORMS first: one pipeline for every filter, which reads
+// the filter from the uniforms (penumbra/glsl/filter_constants.glsl).
 // Everything here works in any stage (the compute resolve uses it too); `pixel` is the
 // pixel's centre in framebuffer coordinates (gl_FragCoord.xy), which rotates the Poisson
 // patterns per pixel. Every name this library declares starts with penumbra_, Penumbra or

@@ -128,6 +128,17 @@ struct PenumbraShadowUniforms {
     float contact_max_distance;    // view depth where they end (faded over the last fifth)
     float padding_contact0;
     float padding_contact1;
+    // The filter's specialization constants as values (ShadowSystem::shader_specialization()
+    // gives the same), for shaders that read them from here instead of being specialised
+    // (PENUMBRA_FILTER_FROM_UNIFORMS, penumbra/glsl/filter_constants.glsl).
+    PENUMBRA_UINT filter_mode;                 // PENUMBRA_FILTER_*
+    PENUMBRA_UINT filter_search_taps;          // PENUMBRA_SPEC_SEARCH_TAPS
+    PENUMBRA_UINT filter_taps;                 // PENUMBRA_SPEC_FILTER_TAPS
+    PENUMBRA_UINT filter_receiver_plane_bias;  // 0 or 1
+    PENUMBRA_UINT filter_pcss_early_out;       // 0 or 1
+    PENUMBRA_UINT filter_moments_poisson;      // 0 or 1
+    PENUMBRA_UINT filter_evsm_components;      // 2 or 4
+    PENUMBRA_UINT filter_msm_quantized;        // 0 or 1
 };
 
 // Shadow of one light of the set_lights() list (spot and point lights; others unshadowed).
@@ -208,7 +219,7 @@ struct PenumbraVirtualClipmap {
     float light_tan_half_angle;  // tan of the sun's angular radius (PCSS)
     float max_receiver_slope;    // receiver-plane gradient clamp, metres of depth per metre across
     float fade_start;            // view depth where the shadow starts fading to lit at shadow_distance
-    float padding0;
+    float footprint_base;        // metres of pixel footprint at distance 0 (orthographic views; else 0)
     float padding1;
     PenumbraVirtualLevel levels[PENUMBRA_MAX_VIRTUAL_LEVELS];
 };

@@ -127,8 +127,8 @@ struct InstanceDesc {
 // The camera the shadows are fitted to and that the shaders' cascade selection uses.
 // Penumbra's conventions: right-handed world, view space looks down -Z.
 struct ViewDesc {
-    Mat4 view;                   // world -> view
-    float fov_y_radians = 1.0f;  // vertical field of view of the caller's projection, (0, pi)
+    Mat4 view;                   // world -> view (looking down -Z)
+    float fov_y_radians = 1.0f;  // vertical field of view, (0, pi) (without `projection`)
     float near_plane = 0.1f;     // > 0
     float far_plane = 200.0f;    // > near_plane, finite: the cascades reach min(far, max_distance)
     uint32_t width = 1280;       // the rendered image in pixels: aspect ratio, and the local
@@ -138,14 +138,31 @@ struct ViewDesc {
     // number, a new rotation every frame; a fixed value keeps the pattern still (the tools'
     // `compare` fixes it while it measures temporal stability).
     std::optional<uint32_t> sampling_frame;
+    // The camera's projection, view -> Vulkan clip space (depth 0..1), as the caller renders
+    // with it: any perspective (symmetric, off-centre, jittered for TAA, finite or infinite
+    // far, reverse or forward Z) or orthographic projection. The cascades fit its frustum
+    // (up to min(far, max_distance)); a jitter of up to 2 pixels leaves stable cascades
+    // where they are. nullopt: the symmetric perspective of fov_y_radians, near_plane and
+    // far_plane (reverse_z_projection()); with a projection those three are not read.
+    std::optional<Mat4> projection;
+};
+
+// What ShadowSystem::update_settings() changed.
+struct SettingsChange {
+    SettingEffect effect = SettingEffect::Live;  // the largest effect among the changed settings
+    // shader_specialization() gives other values from now on: rebuild the pipelines of your
+    // shaders that include penumbra/shadow.glsl before recording with them after the next
+    // prepare(). Never true for Live settings.
+    bool shader_specialization_changed = false;
 };
 
 // A look-at ViewDesc (eye, target, up; up may not be parallel to target - eye).
 ViewDesc look_at_view(Vec3 eye, Vec3 target, Vec3 up, float fov_y_radians, float near_plane, float far_plane,
                       uint32_t width, uint32_t height);
 
-// The projection Penumbra's own passes use for a ViewDesc: Vulkan clip space, Y flipped
-// (image row 0 at the top), reverse-Z (depth 1 at the near plane, 0 at the far plane).
+// The projection of a ViewDesc: ViewDesc::projection when given, else Penumbra's own:
+// Vulkan clip space, Y flipped (image row 0 at the top), reverse-Z (depth 1 at the near
+// plane, 0 at the far plane).
 Mat4 reverse_z_projection(const ViewDesc& view);
 
 // A rectangle of a cascade's texels, counted from the cascade's texel (0, 0) (not the
@@ -237,7 +254,9 @@ struct FrameInfo {
     // The set the caller binds for penumbra/shadow.glsl (at the set index of its choosing),
     // valid for the command buffer that records this frame.
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
-    double cpu_fit_ms = 0.0;   // prepare(): cascade splits and fitting, local-light fitting
+    double cpu_fit_ms = 0.0;  // prepare(): cascade splits and fitting, local-light fitting
+    // prepare(): applying update_settings() (pipelines and maps rebuilt); 0 without a change
+    double cpu_settings_ms = 0.0;
     double cpu_cull_ms = 0.0;  // prepare(): caster culling of every map
 };
 
@@ -406,9 +425,15 @@ public:
     // cast_shadows get shadow maps in list order, up to the local shadow budget.
     void set_lights(std::span<const LightDesc> lights);
 
-    // Settings that do not size or specialise anything (see requires_recreation()) take
-    // effect from the next prepare(); others throw UsageError: create a new ShadowSystem.
-    void update_settings(const Settings& settings);
+    // Takes any valid settings (validate_settings(): InputError otherwise) from the next
+    // prepare() on; the frame already prepared records with the old ones. The meshes,
+    // instances and lights stay, and so does the descriptor set layout. Changes rebuild
+    // inside the system what they must (SettingEffect, per setting in kSettingDeclarations):
+    // live ones are uniforms; Pipeline ones respecialise Penumbra's shaders; Resource ones
+    // reallocate the maps, which are drawn again in full. The result says whether the
+    // caller's own pipelines (built with shader_specialization()) must be rebuilt.
+    SettingsChange update_settings(const Settings& settings);
+    // The settings of the next prepare(): the last update_settings() ones.
     const Settings& settings() const;
 
     // CPU work of a frame: cascade splits and fitting for `view`, the local lights' fits,

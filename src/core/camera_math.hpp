@@ -19,8 +19,22 @@ struct CameraView {
     float fov_y_radians = 1.0f;
     float aspect = 1.0f;  // width / height
     float near_plane = 0.1f;
-    float far_plane = 100.0f;
+    float far_plane = 100.0f;  // may be infinite (a caller's infinite-far projection)
+    // The frustum's four edges in view space, for the NDC corners (-1,-1), (1,-1), (-1,1),
+    // (1,1): at view distance d (along -Z) edge i passes through (edge_origin[i] +
+    // edge_slope[i] * d, -d). A perspective's edges leave the eye (origins 0), an
+    // orthographic projection's are parallel (slopes 0); off-centre (jittered) frusta have
+    // unequal slopes.
+    std::array<glm::vec2, 4> edge_origin{};
+    std::array<glm::vec2, 4> edge_slope{};
+    // A caller's projection (ViewDesc::projection): the off-centre shift, in edge slope,
+    // that the stable cascade fit absorbs (kJitterPixels pixels: TAA jitter) by padding a
+    // symmetric frustum instead of following it; 0 for Penumbra's own symmetric frusta.
+    glm::vec2 jitter_allowance{0.0f};
 };
+
+// The sub-pixel (TAA) jitter of a caller's projection that the stable cascade fit absorbs.
+inline constexpr float kJitterPixels = 2.0f;
 
 // Reverse-Z perspective projection into Vulkan clip space (depth 1 at near, 0 at far).
 glm::mat4 perspective_reverse_z(float fov_y_radians, float aspect, float near_plane, float far_plane);
@@ -38,6 +52,20 @@ CameraView make_camera_view(const core::Camera& camera, float aspect);
 // forward direction are taken from its inverse. Requires an invertible `view`.
 CameraView make_camera_view(const glm::mat4& view, float fov_y_radians, float aspect, float near_plane,
                             float far_plane);
+
+// The same for a caller's projection (view -> Vulkan clip space): any perspective
+// (symmetric, off-centre or jittered, finite or infinite far, reverse or forward Z) or
+// orthographic projection. The near and far planes, the field of view and the frustum's
+// edges are taken from it; `height` is the image's, in pixels (the jitter allowance).
+CameraView make_camera_view(const glm::mat4& view, const glm::mat4& projection, uint32_t width, uint32_t height);
+
+// The frustum's extent across the image's height at view distance d: metres =
+// base + per_metre * d (perspective: base 0; orthographic: per_metre 0).
+struct FrustumSpan {
+    float base = 0.0f;
+    float per_metre = 0.0f;
+};
+FrustumSpan vertical_frustum_span(const CameraView& camera);
 
 // World-space corners of the view frustum between view distances slice_near and slice_far
 // (distances along the view direction). Order: near plane (4), then far plane (4).

@@ -8,7 +8,9 @@
 #include "core/cascade_fitting.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 
 namespace penumbra {
 namespace {
@@ -17,12 +19,74 @@ float round_up_to_sixteenth(float metres) { return std::ceil(metres * 16.0f) / 1
 
 }  // namespace
 
+namespace {
+
+// Half the frustum's extent per metre of view distance, when it is a perspective centred on
+// the view axis (within the jitter allowance, which pads it): the closed-form sphere's input.
+std::optional<glm::dvec2> symmetric_half_tangents(const CameraView& camera) {
+    for (const glm::vec2& origin : camera.edge_origin) {
+        if (origin != glm::vec2(0.0f)) return std::nullopt;  // orthographic
+    }
+    if (camera.jitter_allowance == glm::vec2(0.0f)) {  // Penumbra's own symmetric perspective
+        const double tan_half_y = std::tan(static_cast<double>(camera.fov_y_radians) * 0.5);
+        return glm::dvec2(tan_half_y * camera.aspect, tan_half_y);
+    }
+    const std::array<glm::vec2, 4>& s = camera.edge_slope;
+    const glm::dvec2 half_span(0.5 * std::abs(s[1].x - s[0].x), 0.5 * std::abs(s[2].y - s[0].y));
+    const glm::dvec2 shift(0.5 * (s[0].x + s[1].x), 0.5 * (s[0].y + s[2].y));
+    const glm::dvec2 allowance(camera.jitter_allowance);
+    if (std::abs(shift.x) > allowance.x || std::abs(shift.y) > allowance.y) return std::nullopt;
+    return half_span + allowance;  // holds the frustum at any shift within the allowance
+}
+
+// A frustum slice of any shape: the centre on the segment between its near and far faces'
+// centres that minimises the farthest corner (a convex function of the position along it:
+// golden-section search), in view space, so that it moves with the camera rigidly.
+BoundingSphere generic_slice_sphere(const CameraView& camera, float slice_near, float slice_far) {
+    std::array<glm::dvec3, 8> corners{};
+    glm::dvec3 near_centre(0.0), far_centre(0.0);
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec2 slope(camera.edge_slope[i]);
+        const glm::dvec2 origin(camera.edge_origin[i]);
+        corners[i] = glm::dvec3(origin + slope * static_cast<double>(slice_near), -static_cast<double>(slice_near));
+        corners[4 + i] = glm::dvec3(origin + slope * static_cast<double>(slice_far), -static_cast<double>(slice_far));
+        near_centre += corners[i] * 0.25;
+        far_centre += corners[4 + i] * 0.25;
+    }
+    const auto farthest = [&](double t) {
+        const glm::dvec3 centre = glm::mix(near_centre, far_centre, t);
+        double largest = 0.0;
+        for (const glm::dvec3& corner : corners)
+            largest = std::max(largest, glm::dot(corner - centre, corner - centre));
+        return largest;
+    };
+    const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
+    double low = 0.0, high = 1.0;
+    for (int step = 0; step < 80; ++step) {
+        const double a = high - ratio * (high - low);
+        const double b = low + ratio * (high - low);
+        if (farthest(a) <= farthest(b)) {
+            high = b;
+        } else {
+            low = a;
+        }
+    }
+    const double t = 0.5 * (low + high);
+    BoundingSphere sphere;
+    sphere.center =
+        glm::vec3(glm::inverse(camera.view) * glm::vec4(glm::vec3(glm::mix(near_centre, far_centre, t)), 1.0f));
+    sphere.radius = static_cast<float>(std::sqrt(farthest(t)));
+    return sphere;
+}
+
+}  // namespace
+
 BoundingSphere frustum_slice_bounding_sphere(const CameraView& camera, float slice_near, float slice_far) {
+    const std::optional<glm::dvec2> half_tangents = symmetric_half_tangents(camera);
+    if (!half_tangents) return generic_slice_sphere(camera, slice_near, slice_far);
     // 1. In view space the slice is symmetric about the view axis: the corners at view
     //    distance d lie at squared distance d^2 * k from the axis, k = tan_x^2 + tan_y^2.
-    const double tan_half_y = std::tan(static_cast<double>(camera.fov_y_radians) * 0.5);
-    const double tan_half_x = tan_half_y * camera.aspect;
-    const double k = tan_half_x * tan_half_x + tan_half_y * tan_half_y;
+    const double k = glm::dot(*half_tangents, *half_tangents);
     const double n = slice_near;
     const double f = slice_far;
     // 2. A centre at distance z on the axis needs radius^2 = max((z - n)^2 + k n^2,

@@ -152,10 +152,14 @@ uint32_t coverage_shadow_resolution(const core::Light& light, const CameraView& 
     const float distance = glm::length(bounds.center - camera.eye);
     if (distance <= bounds.radius) return max_resolution;
     if (sphere_outside_frustum(camera.view_projection, bounds)) return min_resolution;
-    // The sphere's angular radius asin(r / d), in pixels at the screen's centre.
+    // The sphere's angular radius asin(r / d) as its half-width at distance d, in pixels at
+    // the screen's centre: the frustum's height there is base + per_metre * d metres
+    // (a perspective's 2 tan(fov / 2) d, an orthographic view's constant height).
     const float sine = bounds.radius / distance;
-    const float pixels_per_tangent = 0.5f * static_cast<float>(viewport_height) / std::tan(0.5f * camera.fov_y_radians);
-    float pixels_across = 2.0f * pixels_per_tangent * sine / std::sqrt(1.0f - sine * sine);
+    const FrustumSpan span = vertical_frustum_span(camera);
+    const float half_width = distance * sine / std::sqrt(1.0f - sine * sine);
+    float pixels_across =
+        2.0f * half_width * static_cast<float>(viewport_height) / (span.base + span.per_metre * distance);
     if (local_shadow_is_cube(light)) pixels_across *= 0.5f;
     return std::clamp(next_power_of_two(pixels_across), min_resolution, max_resolution);
 }

@@ -80,11 +80,12 @@ bool is_moment_filter(ShadowFilter filter) {
     return filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm || filter == ShadowFilter::Msm;
 }
 
-bool requires_recreation(const Settings& current, const Settings& next) {
+SettingEffect settings_change_effect(const Settings& current, const Settings& next) {
+    SettingEffect effect = SettingEffect::Live;
     for (const SettingDeclaration& setting : kSettingDeclarations) {
-        if (setting.recreates && setting.get(current) != setting.get(next)) return true;
+        if (setting.effect > effect && setting.get(current) != setting.get(next)) effect = setting.effect;
     }
-    return false;
+    return effect;
 }
 
 }  // namespace penumbra

@@ -98,9 +98,10 @@ glm::vec2 virtual_texel_of(const VirtualClipmap& clipmap, int level, const glm::
 }
 
 int select_virtual_level(const VirtualClipmap& clipmap, const glm::vec3& camera_position, float footprint_per_metre,
-                         float lod_bias, const glm::vec3& world_position, float margin_texels) {
+                         float lod_bias, const glm::vec3& world_position, float margin_texels, float footprint_base) {
     if (clipmap.levels.empty()) return -1;
-    const float footprint = glm::length(world_position - camera_position) * footprint_per_metre * std::exp2(lod_bias);
+    const float footprint =
+        (footprint_base + glm::length(world_position - camera_position) * footprint_per_metre) * std::exp2(lod_bias);
     const float finest = clipmap.levels.front().texel_world_size;
     const int last = static_cast<int>(clipmap.levels.size()) - 1;
     const int wanted = footprint > finest ? static_cast<int>(std::floor(std::log2(footprint / finest))) : 0;

@@ -68,11 +68,12 @@ VirtualClipmap compute_virtual_clipmap(const glm::vec3& camera_position, const g
 float pixel_footprint_per_metre(float fov_y_radians, uint32_t image_height);
 
 // The level a receiver at `world_position` samples: the finest level whose texel is no
-// larger than its pixel footprint (distance from `camera_position` times
-// `footprint_per_metre`) times 2^lod_bias, or the first coarser level whose window holds
+// larger than its pixel footprint (`footprint_base` plus the distance from
+// `camera_position` times `footprint_per_metre`) times 2^lod_bias, or the first coarser level whose window holds
 // the receiver `margin_texels` (its texels) inside the edge; -1 when no level does.
 int select_virtual_level(const VirtualClipmap& clipmap, const glm::vec3& camera_position, float footprint_per_metre,
-                         float lod_bias, const glm::vec3& world_position, float margin_texels);
+                         float lod_bias, const glm::vec3& world_position, float margin_texels,
+                         float footprint_base = 0.0f);
 
 // A receiver's place in a level: virtual texel coordinates from the window's corner.
 glm::vec2 virtual_texel_of(const VirtualClipmap& clipmap, int level, const glm::vec3& world_position);

@@ -1,9 +1,11 @@
 #include "library/frame_setup.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "core/caster_facing.hpp"
 #include "core/shadow_filters.hpp"
+#include "passes/shadow_filter_specialization.hpp"
 
 namespace penumbra::library {
 namespace {
@@ -61,6 +63,22 @@ std::vector<core::Aabb> caster_bounds(const passes::CasterScene& scene) {
     return boxes;
 }
 
+// The uniforms' copy of the filter's specialization constants, by constant id.
+using FilterField = uint32_t shader::PenumbraShadowUniforms::*;
+constexpr std::array<FilterField, PENUMBRA_SPEC_CONSTANT_COUNT> kFilterFields = [] {
+    using U = shader::PenumbraShadowUniforms;
+    std::array<FilterField, PENUMBRA_SPEC_CONSTANT_COUNT> fields{};
+    fields[PENUMBRA_SPEC_FILTER_MODE] = &U::filter_mode;
+    fields[PENUMBRA_SPEC_SEARCH_TAPS] = &U::filter_search_taps;
+    fields[PENUMBRA_SPEC_FILTER_TAPS] = &U::filter_taps;
+    fields[PENUMBRA_SPEC_RECEIVER_PLANE] = &U::filter_receiver_plane_bias;
+    fields[PENUMBRA_SPEC_PCSS_EARLY_OUT] = &U::filter_pcss_early_out;
+    fields[PENUMBRA_SPEC_MOMENTS_POISSON] = &U::filter_moments_poisson;
+    fields[PENUMBRA_SPEC_EVSM_COMPONENTS] = &U::filter_evsm_components;
+    fields[PENUMBRA_SPEC_MSM_QUANTIZED] = &U::filter_msm_quantized;
+    return fields;
+}();
+
 shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, const CascadeSet& cascades,
                                                      const core::Light* sun, bool sun_casts_shadows,
                                                      const ShadowSettings& settings,
@@ -100,6 +118,10 @@ shader::PenumbraShadowUniforms build_shadow_uniforms(const CameraView& camera, c
     uniforms.evsm_positive_exponent = exponents.x;
     uniforms.evsm_negative_exponent = exponents.y;
     uniforms.msm_moment_bias = filter.msm_moment_bias;
+    // VK_TRUE is 1: booleans read as != 0 either way.
+    for (const gpu::SpecializationValue& value : passes::shadow_filter_specialization(filter)) {
+        uniforms.*kFilterFields.at(value.constant_id) = value.value;
+    }
     uniforms.frame_index = frame_index;
     uniforms.caster_slope_bias = caster_bias.slope;
     uniforms.caster_bias_clamp = caster_bias.clamp;

@@ -186,6 +186,13 @@ MeshId Geometry::add_mesh(const MeshData& data) {
     return insert_mesh(std::move(mesh));
 }
 
+void Geometry::for_each_vertex_format(const std::function<void(const passes::VertexFormats&)>& visit) const {
+    for (const auto& [id, mesh] : meshes_) {
+        visit(passes::vertex_formats(mesh.caster, false));
+        if (mesh.alpha_mask_set != VK_NULL_HANDLE) visit(passes::vertex_formats(mesh.caster, true));
+    }
+}
+
 MeshId Geometry::insert_mesh(Mesh mesh) {
     prepare_pipelines_(passes::vertex_formats(mesh.caster, false));
     if (mesh.alpha_mask_set != VK_NULL_HANDLE) prepare_pipelines_(passes::vertex_formats(mesh.caster, true));

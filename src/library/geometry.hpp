@@ -55,6 +55,10 @@ public:
 
     uint64_t buffer_bytes() const;
 
+    // Calls `visit` with every vertex format combination of the meshes (with and without
+    // their alpha masks), as `prepare_pipelines` was: for maps made after the meshes.
+    void for_each_vertex_format(const std::function<void(const passes::VertexFormats&)>& visit) const;
+
 private:
     struct Mesh {
         passes::CasterMesh caster;

@@ -9,7 +9,10 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "core/camera_math.hpp"
 #include "core/cascades.hpp"
@@ -67,6 +70,43 @@ const Settings& checked_settings(const Settings& settings) {
     return settings;
 }
 
+// The camera of a ViewDesc: its projection's frustum, or the symmetric perspective of its
+// field of view and planes.
+CameraView camera_of(const ViewDesc& view) {
+    if (view.projection) {
+        return make_camera_view(library::to_glm(view.view), library::to_glm(*view.projection), view.width, view.height);
+    }
+    const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
+    return make_camera_view(library::to_glm(view.view), view.fov_y_radians, aspect, view.near_plane, view.far_plane);
+}
+
+// A caller's projection must give a frustum in front of the camera: a near plane at a
+// positive distance, a farther far plane (or none), and a non-empty extent.
+void check_projection(const ViewDesc& view) {
+    const auto reject = [](const std::string& problem) {
+        throw InputError("ShadowSystem::prepare: ViewDesc::projection: " + problem);
+    };
+    for (const float value : view.projection->m) {
+        if (!std::isfinite(value)) reject("must be finite");
+    }
+    if (std::abs(glm::determinant(library::to_glm(*view.projection))) < 1e-20f) reject("is not invertible");
+    const CameraView camera = camera_of(view);
+    if (!(camera.near_plane > 0.0f) || !std::isfinite(camera.near_plane)) {
+        reject("its near plane is at view distance " + std::to_string(camera.near_plane) +
+               " (a Vulkan projection of a camera looking down -Z puts it at a finite distance > 0)");
+    }
+    if (!(camera.far_plane > camera.near_plane)) reject("its far plane is not beyond its near plane");
+    // Edges no wider than ~179.99 degrees apart, within the world's magnitude.
+    constexpr float kMaxSlope = 1e4f;
+    const FrustumSpan span = vertical_frustum_span(camera);
+    bool bounded = camera.near_plane < kMaxWorldMagnitude;
+    for (int i = 0; i < 4; ++i) {
+        bounded = bounded && glm::all(glm::lessThan(glm::abs(camera.edge_origin[i]), glm::vec2(kMaxWorldMagnitude))) &&
+                  glm::all(glm::lessThan(glm::abs(camera.edge_slope[i]), glm::vec2(kMaxSlope)));
+    }
+    if (!bounded || !(span.base + span.per_metre > 0.0f)) reject("its frustum is empty or unbounded");
+}
+
 void check_view(const ViewDesc& view) {
     const auto reject = [](const std::string& field, const std::string& problem) {
         throw InputError("ShadowSystem::prepare: ViewDesc::" + field + ": " + problem);
@@ -75,6 +115,14 @@ void check_view(const ViewDesc& view) {
         if (!std::isfinite(value)) reject("view", "must be finite");
     }
     if (std::abs(glm::determinant(library::to_glm(view.view))) < 1e-12f) reject("view", "is not invertible");
+    if (view.width == 0 || view.height == 0 || view.width > kMaxScreenSize || view.height > kMaxScreenSize) {
+        reject("width/height", std::to_string(view.width) + "x" + std::to_string(view.height) +
+                                   " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
+    }
+    if (view.projection) {
+        check_projection(view);
+        return;
+    }
     if (!(view.fov_y_radians > 0.0f && view.fov_y_radians < 3.14159f)) {
         reject("fov_y_radians", std::to_string(view.fov_y_radians) + " is outside (0, pi)");
     }
@@ -84,10 +132,11 @@ void check_view(const ViewDesc& view) {
     if (!(view.far_plane > view.near_plane) || !std::isfinite(view.far_plane)) {
         reject("far_plane", std::to_string(view.far_plane) + " must be finite and > near_plane");
     }
-    if (view.width == 0 || view.height == 0 || view.width > kMaxScreenSize || view.height > kMaxScreenSize) {
-        reject("width/height", std::to_string(view.width) + "x" + std::to_string(view.height) +
-                                   " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
-    }
+}
+
+bool any_setting_differs(const Settings& a, const Settings& b) {
+    return std::ranges::any_of(kSettingDeclarations,
+                               [&](const SettingDeclaration& setting) { return setting.get(a) != setting.get(b); });
 }
 
 bool is_virtual(const Settings& settings) { return settings.shadow.technique == ShadowTechnique::Virtual; }
@@ -132,9 +181,11 @@ struct ShadowSystem::Impl {
     library::RetiredObjects retired;
     library::FrameSetLayouts layouts;
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
-    library::CascadeMaps cascades;
-    library::LocalMaps local;
+    // The maps the settings size (SettingEffect::Resource replaces them, the scene stays).
+    std::unique_ptr<library::CascadeMaps> cascades;
+    std::unique_ptr<library::LocalMaps> local;
     std::unique_ptr<library::VirtualShadowMap> virtual_map;  // Settings::shadow.technique = virtual
+    std::optional<Settings> pending_settings;                // update_settings(): applied by the next prepare()
     bool cascade_placeholder_drawn = false;  // with virtual_map: the cascades' placeholder is in its layout
     passes::VisibilityResolvePass resolve;
     library::FrameSlots slots;
@@ -218,23 +269,9 @@ struct ShadowSystem::Impl {
           layouts(gpu::named(device, "set layouts", [&] { return library::create_frame_set_layouts(device); })),
           alpha_mask_layout(
               gpu::named(device, "alpha masks", [&] { return passes::create_alpha_mask_set_layout(device); })),
-          cascades(gpu::named(device, "cascade maps",
-                              [&] {
-                                  return library::CascadeMaps(device, layouts.caster, alpha_mask_layout,
-                                                              cascade_map_settings(settings.shadow), frames_in_flight);
-                              })),
-          local(gpu::named(device, "local light maps",
-                           [&] {
-                               return library::LocalMaps(device, layouts.caster, alpha_mask_layout, settings.shadow,
-                                                         retired, frames_in_flight);
-                           })),
-          virtual_map(is_virtual(settings) ? gpu::named(device, "virtual shadow map",
-                                                        [&] {
-                                                            return std::make_unique<library::VirtualShadowMap>(
-                                                                device, layouts.caster, alpha_mask_layout,
-                                                                settings.shadow, frames_in_flight);
-                                                        })
-                                           : nullptr),
+          cascades(make_cascades()),
+          local(make_local()),
+          virtual_map(make_virtual_map()),
           resolve(gpu::named(
               device, "visibility resolve",
               [&] { return passes::VisibilityResolvePass(device, layouts.sampling, settings.shadow.filter); })),
@@ -243,10 +280,64 @@ struct ShadowSystem::Impl {
               [&] { return library::FrameSlots(device, frames_in_flight, layouts, resolve.screen_set_layout()); })),
           geometry(device, retired, alpha_mask_layout, [this](const passes::VertexFormats& formats) {
               const gpu::ObjectNames names(device, "caster pipelines");
-              cascades.prepare_pipelines(formats);
-              local.prepare_pipelines(formats);
-              if (virtual_map) virtual_map->prepare_pipelines(formats);
+              prepare_pipelines(formats);
           }) {}
+
+    // Each part's Vulkan objects are named for it (VK_EXT_debug_utils).
+    std::unique_ptr<library::CascadeMaps> make_cascades() {
+        return gpu::named(device, "cascade maps", [&] {
+            return std::make_unique<library::CascadeMaps>(device, layouts.caster, alpha_mask_layout,
+                                                          cascade_map_settings(settings.shadow), frames_in_flight);
+        });
+    }
+    std::unique_ptr<library::LocalMaps> make_local() {
+        return gpu::named(device, "local light maps", [&] {
+            return std::make_unique<library::LocalMaps>(device, layouts.caster, alpha_mask_layout, settings.shadow,
+                                                        retired, frames_in_flight);
+        });
+    }
+    std::unique_ptr<library::VirtualShadowMap> make_virtual_map() {
+        if (!is_virtual(settings)) return nullptr;
+        return gpu::named(device, "virtual shadow map", [&] {
+            return std::make_unique<library::VirtualShadowMap>(device, layouts.caster, alpha_mask_layout,
+                                                               settings.shadow, frames_in_flight);
+        });
+    }
+
+    // The caster pipelines of the maps for one vertex format combination of the scene.
+    void prepare_pipelines(const passes::VertexFormats& formats) {
+        const gpu::ObjectNames names(device, "caster pipelines");
+        cascades->prepare_pipelines(formats);
+        local->prepare_pipelines(formats);
+        if (virtual_map) virtual_map->prepare_pipelines(formats);
+    }
+
+    // Settings that update_settings() took, from the start of a frame (before anything of it
+    // is planned): Resource changes replace the maps, Pipeline changes respecialise the
+    // resolve (and the moment conversions, which carry the filter's parameters). The
+    // replaced objects are retired: frames still in flight may sample them. The scene, the
+    // descriptor set layouts and the frame slots stay.
+    void apply_pending_settings() {
+        if (!pending_settings) return;
+        const Settings next = *std::exchange(pending_settings, std::nullopt);
+        const SettingEffect effect = settings_change_effect(settings, next);
+        const bool moments = is_moment_filter(settings.shadow.filter.mode) || is_moment_filter(next.shadow.filter.mode);
+        settings = next;
+        if (effect == SettingEffect::Live) return;
+        retired.retire(resolve.respecialize(settings.shadow.filter), frame);
+        if (effect == SettingEffect::Resource || moments) replace_maps();
+    }
+
+    void replace_maps() {
+        retired.retire(std::exchange(cascades, make_cascades()), frame);
+        retired.retire(std::exchange(local, make_local()), frame);
+        retired.retire(std::exchange(virtual_map, make_virtual_map()), frame);
+        geometry.for_each_vertex_format([this](const passes::VertexFormats& formats) { prepare_pipelines(formats); });
+        // The new maps hold nothing yet: every caster is drawn again.
+        cascade_cache.invalidate();
+        local_cache.invalidate();
+        cascade_placeholder_drawn = false;
+    }
 
     ~Impl() {
         // Nothing the caller recorded may still run (the destructor's contract); retired
@@ -290,7 +381,9 @@ struct ShadowSystem::Impl {
         library::VirtualFrameInputs inputs;
         inputs.frame = frame;
         inputs.camera = &camera;
-        inputs.footprint_per_metre = pixel_footprint_per_metre(view.fov_y_radians, view.height);
+        const FrustumSpan span = vertical_frustum_span(camera);
+        inputs.footprint_per_metre = span.per_metre / static_cast<float>(view.height);
+        inputs.footprint_base = span.base / static_cast<float>(view.height);
         inputs.shadow_distance = set.shadow_distance;
         inputs.light_direction = direction;
         inputs.sun_angular_diameter_degrees = sun_light ? sun_light->angular_diameter_degrees : 0.0f;
@@ -328,7 +421,7 @@ struct ShadowSystem::Impl {
         if (!cpu_culls && casts) {
             passes::check_gpu_culling_room(device, scene.draws.size(), static_cast<uint32_t>(set.cascades.size()));
         }
-        cascade_draws = cpu_culls ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades.cached(),
+        cascade_draws = cpu_culls ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades->cached(),
                                                        geometry.static_changes(), settings.shadow.cascades.resolution)
                                   : std::vector<passes::CascadeDraws>(set.cascades.size());
         sun_casts = casts;
@@ -386,7 +479,7 @@ struct ShadowSystem::Impl {
         if (frame <= frames_in_flight) return;
         const uint64_t complete = frame - frames_in_flight;
         // With the virtual shadow map the cascades' placeholder has no GPU culling.
-        const passes::GpuCasterCulling* cascade_culling_pass = cascades.gpu_culling();
+        const passes::GpuCasterCulling* cascade_culling_pass = cascades->gpu_culling();
         if (const auto counted = cascade_culling_pass ? cascade_culling_pass->culled(complete) : std::nullopt) {
             for (size_t c = 0; c < info.cascades.size() && c < counted->size(); ++c) {
                 info.cascades[c].draws = (*counted)[c].draws;
@@ -394,7 +487,7 @@ struct ShadowSystem::Impl {
             }
         }
         const LocalLayerHistory& then = local_history[complete % local_history.size()];
-        const auto counted = local.gpu_culling()->culled(complete);
+        const auto counted = local->gpu_culling()->culled(complete);
         if (then.frame != complete || !counted) return;
         for (LocalShadowInfo& out : info.local_shadows) {
             for (const LocalLayerRange& range : then.ranges) {
@@ -418,10 +511,10 @@ struct ShadowSystem::Impl {
         if (settings.shadow.strategy == ShadowStrategy::Layered) {
             passes::check_gpu_culling_room(device, scene.draws.size(), plan.layer_count);
         }
-        local.fit(plan, frame);
+        local->fit(plan, frame);
         const std::vector<bool> kept =
             settings.shadow.cache_static_casters
-                ? local_cache.kept_layers(lights, plan, scene, geometry.static_changes(), local.generation())
+                ? local_cache.kept_layers(lights, plan, scene, geometry.static_changes(), local->generation())
                 : std::vector<bool>{};
         local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters, kept,
                                                    settings.shadow.strategy == ShadowStrategy::Layered);
@@ -462,15 +555,15 @@ struct ShadowSystem::Impl {
     // The virtual shadow map's pages, the cascades' placeholder once, and the local lights.
     void record_virtual_maps(VkCommandBuffer cmd, library::FrameSlot& slot, const passes::CasterScene& scene) {
         if (!cascade_placeholder_drawn) {
-            cascades.record(cmd, slot.caster_set, scene, cascade_draws, cascade_map_settings(settings.shadow),
-                            cascade_culling, false, frame, nullptr);
+            cascades->record(cmd, slot.caster_set, scene, cascade_draws, cascade_map_settings(settings.shadow),
+                             cascade_culling, false, frame, nullptr);
             cascade_placeholder_drawn = true;
         }
         virtual_map->record_pages(cmd, slot.caster_set, scene, frame, settings.shadow.bias, cascade_culling,
                                   timer_of(slot));
         geometry.forget_static_changes(planned_static_changes);
-        local.record(cmd, slot.caster_set, scene, local_layers, plan, settings.shadow, frame, timer_of(slot));
-        if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local.generation());
+        local->record(cmd, slot.caster_set, scene, local_layers, plan, settings.shadow, frame, timer_of(slot));
+        if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local->generation());
     }
 
     void ensure_visibility_image(uint32_t width, uint32_t height, uint32_t slot_count) {
@@ -515,26 +608,27 @@ void ShadowSystem::set_lights(std::span<const LightDesc> lights) {
     impl_->lights = std::move(converted);
 }
 
-void ShadowSystem::update_settings(const Settings& settings) {
+SettingsChange ShadowSystem::update_settings(const Settings& settings) {
     validate_settings(settings, "ShadowSystem::update_settings");
-    if (requires_recreation(impl_->settings, settings)) {
-        throw UsageError(
-            "ShadowSystem::update_settings: the new settings change the cascade count or resolution, the filter, "
-            "the strategy, the shadow technique, the virtual shadow map's resolution, levels or pool, or the local "
-            "shadow budget, resolution or sizing; create a new ShadowSystem for them");
-    }
+    Impl& impl = *impl_;
+    const Settings& current = impl.pending_settings ? *impl.pending_settings : impl.settings;
+    SettingsChange change;
+    change.effect = settings_change_effect(current, settings);
+    change.shader_specialization_changed = passes::shadow_filter_specialization(current.shadow.filter) !=
+                                           passes::shadow_filter_specialization(settings.shadow.filter);
     // Biases and culling change the depths the caches hold.
-    for (const SettingDeclaration& setting : kSettingDeclarations) {
-        if (setting.get(impl_->settings) != setting.get(settings)) {
-            impl_->cascade_cache.invalidate();
-            impl_->local_cache.invalidate();
-            if (impl_->virtual_map) impl_->virtual_map->invalidate();
-        }
+    if (any_setting_differs(current, settings)) {
+        impl.cascade_cache.invalidate();
+        impl.local_cache.invalidate();
+        if (impl.virtual_map) impl.virtual_map->invalidate();
     }
-    impl_->settings = settings;
+    impl.pending_settings = settings;
+    return change;
 }
 
-const Settings& ShadowSystem::settings() const { return impl_->settings; }
+const Settings& ShadowSystem::settings() const {
+    return impl_->pending_settings ? *impl_->pending_settings : impl_->settings;
+}
 
 const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     check_view(view);
@@ -543,6 +637,9 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     impl.retire_slot(slot);  // before anything changes: throws when the slot is still in use
     impl.frame += 1;
     impl.retired.release(impl.frame);
+    const Clock::time_point settings_start = Clock::now();
+    impl.apply_pending_settings();
+    impl.info.cpu_settings_ms = milliseconds_since(settings_start);
     slot.frame = impl.frame;
     slot.shadow_maps_recorded = false;
     slot.visibility_recorded = false;
@@ -559,9 +656,7 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     }
 
     const Clock::time_point start = Clock::now();
-    const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
-    const CameraView camera =
-        make_camera_view(library::to_glm(view.view), view.fov_y_radians, aspect, view.near_plane, view.far_plane);
+    const CameraView camera = camera_of(view);
     const passes::CasterScene& scene = impl.geometry.build_scene();
     impl.info.cpu_fit_ms = milliseconds_since(start);
     impl.info.cpu_cull_ms = 0.0;
@@ -578,7 +673,7 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
         virtual_bindings = library::SampledVirtual{map.clipmap_buffer(impl.frame), map.page_table(),
                                                    map.page_table_bytes(), map.pool().view};
     }
-    impl.slots.write_sampling_set(slot, impl.cascades.sampled(), impl.local.sampled(), virtual_bindings);
+    impl.slots.write_sampling_set(slot, impl.cascades->sampled(), impl.local->sampled(), virtual_bindings);
     impl.info.descriptor_set = slot.sampling_set;
     return impl.info;
 }
@@ -628,17 +723,17 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         return;
     }
     impl.slots.record_placeholder_layout(cmd);
-    impl.cascades.record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
-                         impl.sun_casts, impl.frame, timer);
+    impl.cascades->record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
+                          impl.sun_casts, impl.frame, timer);
     // The cache holds this frame's static casters once the commands run; the changes the
     // plan covered are drawn.
-    if (impl.cascades.cached())
+    if (impl.cascades->cached())
         impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
     impl.geometry.forget_static_changes(impl.planned_static_changes);
-    impl.local.record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, impl.frame,
-                      timer);
+    impl.local->record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, impl.frame,
+                       timer);
     if (impl.settings.shadow.cache_static_casters)
-        impl.local_cache.commit(impl.lights, impl.plan, impl.local.generation());
+        impl.local_cache.commit(impl.lights, impl.plan, impl.local->generation());
     slot.shadow_maps_recorded = true;
 }
 
@@ -684,7 +779,9 @@ VkDescriptorSetLayout ShadowSystem::descriptor_set_layout() const { return impl_
 
 ShaderSpecialization ShadowSystem::shader_specialization(uint32_t first_constant_id) const {
     Impl::Specialization made;
-    for (const gpu::SpecializationValue& value : passes::shadow_filter_specialization(impl_->settings.shadow.filter)) {
+    // The settings of the next prepare(): a caller rebuilds its pipelines right after
+    // update_settings() said the specialization changed.
+    for (const gpu::SpecializationValue& value : passes::shadow_filter_specialization(settings().shadow.filter)) {
         made.entries.push_back({first_constant_id + value.constant_id,
                                 static_cast<uint32_t>(made.data.size() * sizeof(uint32_t)), sizeof(uint32_t)});
         made.data.push_back(value.value);
@@ -710,8 +807,8 @@ VkSpecializationInfo ShaderSpecialization::info() const {
 }
 
 ShadowMaps ShadowSystem::shadow_maps() const {
-    const library::SampledMaps cascades = impl_->cascades.sampled();
-    const library::SampledMaps local = impl_->local.sampled();
+    const library::SampledMaps cascades = impl_->cascades->sampled();
+    const library::SampledMaps local = impl_->local->sampled();
     MapImage virtual_pool;
     if (impl_->virtual_map) {
         const gpu::Image& pool = impl_->virtual_map->pool();
@@ -742,15 +839,15 @@ std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
 MemoryStats ShadowSystem::memory() const {
     const Impl& impl = *impl_;
     MemoryStats stats;
-    stats.cascade_maps = impl.cascades.memory_bytes();
-    stats.local_maps = impl.local.memory_bytes();
+    stats.cascade_maps = impl.cascades->memory_bytes();
+    stats.local_maps = impl.local->memory_bytes();
     stats.visibility = impl.visibility ? impl.visibility->memory_size : 0u;
     stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
     if (impl.virtual_map) {
         stats.virtual_pool = impl.virtual_map->pool_bytes();
         stats.buffers += impl.virtual_map->buffer_bytes();
     }
-    for (const passes::GpuCasterCulling* culling : {impl.cascades.gpu_culling(), impl.local.gpu_culling()}) {
+    for (const passes::GpuCasterCulling* culling : {impl.cascades->gpu_culling(), impl.local->gpu_culling()}) {
         if (culling) stats.buffers += culling->buffer_bytes();
     }
     return stats;

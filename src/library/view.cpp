@@ -21,6 +21,7 @@ ViewDesc look_at_view(Vec3 eye, Vec3 target, Vec3 up, float fov_y_radians, float
 }
 
 Mat4 reverse_z_projection(const ViewDesc& view) {
+    if (view.projection) return *view.projection;
     const float aspect = view.height > 0 ? static_cast<float>(view.width) / static_cast<float>(view.height) : 1.0f;
     return library::to_public(perspective_reverse_z(view.fov_y_radians, aspect, view.near_plane, view.far_plane));
 }

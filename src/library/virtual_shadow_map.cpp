@@ -120,6 +120,7 @@ void VirtualShadowMap::prepare(const VirtualFrameInputs& inputs, const ShadowSet
     view.camera_view = inputs.camera->view;
     view.camera_position = inputs.camera->eye;
     view.footprint_per_metre = inputs.footprint_per_metre;
+    view.footprint_base = inputs.footprint_base;
     view.lod_bias = settings.virtual_maps.lod_bias;
     view.mark_radius_texels = virtual_mark_radius_texels(settings);
     view.shadow_distance = inputs.shadow_distance;

@@ -37,6 +37,7 @@ struct VirtualFrameInputs {
     uint64_t frame = 0;
     const CameraView* camera = nullptr;
     float footprint_per_metre = 0.0f;  // pixel_footprint_per_metre() of the caller's view
+    float footprint_base = 0.0f;       // metres of pixel footprint at distance 0 (orthographic views)
     float shadow_distance = 0.0f;
     glm::vec3 light_direction{0.0f, -1.0f, 0.0f};
     float sun_angular_diameter_degrees = 0.0f;

@@ -77,7 +77,10 @@ static_assert(offsetof(PenumbraShadowUniforms, contact_lights) == offsetof(Penum
 static_assert(offsetof(PenumbraShadowUniforms, contact_length) == offsetof(PenumbraShadowUniforms, contact_lights) + 8);
 static_assert(offsetof(PenumbraShadowUniforms, contact_max_distance) ==
               offsetof(PenumbraShadowUniforms, contact_lights) + 20);
-static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms, contact_lights) + 32);
+static_assert(offsetof(PenumbraShadowUniforms, filter_mode) == offsetof(PenumbraShadowUniforms, contact_lights) + 32);
+static_assert(offsetof(PenumbraShadowUniforms, filter_msm_quantized) ==
+              offsetof(PenumbraShadowUniforms, filter_mode) + 4 * (PENUMBRA_SPEC_CONSTANT_COUNT - 1));
+static_assert(sizeof(PenumbraShadowUniforms) == offsetof(PenumbraShadowUniforms, filter_mode) + 32);
 static_assert(sizeof(PenumbraShadowUniforms) % 16 == 0);
 static_assert(sizeof(PenumbraShadowUniforms) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");
 
@@ -134,6 +137,7 @@ static_assert(offsetof(PenumbraVirtualClipmap, pool_pages_per_row) == 180);
 static_assert(offsetof(PenumbraVirtualClipmap, pool_rows) == 184);
 static_assert(offsetof(PenumbraVirtualClipmap, light_tan_half_angle) == 188);
 static_assert(offsetof(PenumbraVirtualClipmap, fade_start) == 196);
+static_assert(offsetof(PenumbraVirtualClipmap, footprint_base) == 200);
 static_assert(offsetof(PenumbraVirtualClipmap, levels) == 208);
 static_assert(sizeof(PenumbraVirtualClipmap) == 208 + 32 * PENUMBRA_MAX_VIRTUAL_LEVELS);
 static_assert(sizeof(PenumbraVirtualClipmap) <= 16384, "Vulkan guarantees 16 KiB uniform buffer ranges");

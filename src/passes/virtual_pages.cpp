@@ -78,6 +78,7 @@ shader::PenumbraVirtualClipmap virtual_clipmap_block(const VirtualClipmap& clipm
     block.light_view = clipmap.light_view;
     block.camera_view = view.camera_view;
     block.camera_position = glm::vec4(view.camera_position, view.footprint_per_metre);
+    block.footprint_base = view.footprint_base;
     block.level_count = static_cast<uint32_t>(clipmap.levels.size());
     block.pages_per_side = clipmap.pages_per_side;
     block.frame = view.frame;

@@ -57,6 +57,7 @@ struct VirtualFrameView {
     glm::mat4 camera_view{1.0f};  // world -> view of the prepared camera
     glm::vec3 camera_position{0.0f};
     float footprint_per_metre = 0.0f;  // pixel_footprint_per_metre() of the prepared camera
+    float footprint_base = 0.0f;       // metres of pixel footprint at distance 0 (orthographic views)
     float lod_bias = 0.0f;
     float mark_radius_texels = 0.0f;  // the filter's reach, the normal offset and a bilinear tap, in texels
     float shadow_distance = 0.0f;

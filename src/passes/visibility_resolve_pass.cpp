@@ -1,6 +1,7 @@
 #include "passes/visibility_resolve_pass.hpp"
 
 #include <array>
+#include <utility>
 
 #include "passes/shadow_filter_specialization.hpp"
 #include "penumbra/gpu/barriers.hpp"
@@ -40,13 +41,24 @@ VisibilityResolvePass::VisibilityResolvePass(const gpu::Device& device, VkDescri
     const std::array<VkDescriptorSetLayout, 2> sets{shadow_set_layout, screen_set_layout_};
     const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(shader::ResolvePushConstants)};
     layout_ = gpu::create_pipeline_layout(device, sets, {&range, 1});
-    pipeline_ = gpu::create_compute_pipeline(
-        device, {VK_SHADER_STAGE_COMPUTE_BIT, shaders::visibility_resolve_comp(), shadow_filter_specialization(filter)},
-        layout_);
+    pipeline_ = create_pipeline(filter);
     gpu::SamplerDesc sampler;
     sampler.filter = VK_FILTER_NEAREST;
     sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     nearest_ = gpu::create_sampler(device, sampler);
+}
+
+gpu::UniquePipeline VisibilityResolvePass::create_pipeline(const FilterSettings& filter) const {
+    return gpu::create_compute_pipeline(
+        device_,
+        {VK_SHADER_STAGE_COMPUTE_BIT, shaders::visibility_resolve_comp(), shadow_filter_specialization(filter)},
+        layout_);
+}
+
+gpu::UniquePipeline VisibilityResolvePass::respecialize(const FilterSettings& filter) {
+    gpu::UniquePipeline replaced = create_pipeline(filter);
+    std::swap(replaced, pipeline_);
+    return replaced;
 }
 
 void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, const ScreenInputs& screen,

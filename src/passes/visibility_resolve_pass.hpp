@@ -21,6 +21,9 @@ public:
                           const FilterSettings& filter);
 
     VkDescriptorSetLayout screen_set_layout() const { return screen_set_layout_; }
+    // Rebuilds the pipeline for another filter (its specialization constants); the layouts
+    // stay. Returns the replaced pipeline, which recorded frames may still use.
+    gpu::UniquePipeline respecialize(const FilterSettings& filter);
     // Writes set 1: the depth, the normals and the face normals (the depth again for those
     // absent) sampled with a nearest sampler in the given layouts, and `target` as the
     // storage image.
@@ -32,6 +35,8 @@ public:
                 const shader::ResolvePushConstants& constants) const;
 
 private:
+    gpu::UniquePipeline create_pipeline(const FilterSettings& filter) const;
+
     const gpu::Device& device_;
     gpu::UniqueDescriptorSetLayout screen_set_layout_;
     gpu::UniquePipelineLayout layout_;

@@ -107,8 +107,15 @@ void run(Input& in, penumbra::ShadowSystem& system, std::vector<penumbra::MeshId
         }
         default: {
             const penumbra::Vec3 eye = in.vec3();
-            system.prepare(penumbra::look_at_view(eye, in.vec3(), in.vec3(), in.number(), in.number(), in.number(),
-                                                  1 + in.small(255), 1 + in.small(255)));
+            penumbra::ViewDesc view = penumbra::look_at_view(eye, in.vec3(), in.vec3(), in.number(), in.number(),
+                                                             in.number(), 1 + in.small(255), 1 + in.small(255));
+            // Half the time the caller's projection: any matrix, from the field of view's on.
+            if (in.byte() & 1) {
+                penumbra::Mat4 projection = penumbra::reverse_z_projection(view);
+                for (float& value : projection.m) value = in.byte() & 1 ? in.number() : value;
+                view.projection = projection;
+            }
+            system.prepare(view);
             break;
         }
     }

@@ -115,6 +115,19 @@ TEST_F(BenchCli, ShadowCacheReportsTheTexelsItDrawsAndCopies) {
     expect_positive_timings(cached["gpu_ms"], {"lighting", "frame"});
 }
 
+// --toggle: every measured frame changes the filter live (a Resource change: the maps are
+// made again in prepare()), under validation; the renderer's and the system's CPU costs are
+// reported. What a renderer creates once cannot be toggled.
+TEST_F(BenchCli, ToggledSettingsAreTimedLive) {
+    const json report = run_json(std::string(kForest) + kSmall + " --toggle 'shadow.filter=\"pcss\"'");
+    ASSERT_FALSE(report.empty());
+    EXPECT_EQ(report["run"]["toggle"], "shadow.filter=\"pcss\"");
+    expect_positive_timings(report["cpu_ms"], {"update_settings", "settings_rebuild"});
+    fs::remove(dir_ / "report.json");
+    expect_usage_error(std::string(kForest) + kSmall + " --toggle output.width=200", "cannot be toggled live");
+    expect_usage_error(std::string(kForest) + kSmall + " --toggle shadow", "--toggle: expected TABLE.KEY=VALUE");
+}
+
 TEST_F(BenchCli, AnimatedDynamicInstancesAreDrawnOverTheCacheEveryFrame) {
     // Three dynamic crowns circling in view, a still camera: the static casters stay
     // cached; the movers are drawn every frame, and the static texels they covered last

@@ -169,8 +169,7 @@ TEST_F(ContactShadowTest, FindTheShadowTheCascadeLosesAndNoOther) {
     EXPECT_LT(off.shadow_found, off.shadow_pixels / 10) << "of " << off.shadow_pixels;
 
     // A live change: the same system, no new one.
-    ASSERT_FALSE(requires_recreation(contact_settings(false), contact_settings(true)));
-    shadows.update_settings(contact_settings(true));
+    ASSERT_EQ(shadows.update_settings(contact_settings(true)).effect, SettingEffect::Live);
     const VisibilityImage2D with = render(shadows);
     const Tally on = tally(with, hits_, judged_shadow);
     EXPECT_GE(on.shadow_found, on.shadow_pixels * 9 / 10) << "of " << on.shadow_pixels;

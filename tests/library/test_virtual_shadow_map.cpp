@@ -280,12 +280,15 @@ TEST_F(VirtualShadowMapTest, BadSettingsAndCallsOutOfOrderAreNamed) {
     EXPECT_EQ(message,
               "ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() earlier in this "
               "frame (the pages the frame's pixels sample)");
-    // A live setting changes without a new system; a sizing one is refused.
+    // A live setting is a uniform; the pool's size reallocates it in the same system.
     Settings changed = shadows.settings();
     changed.shadow.virtual_maps.lod_bias = -1.0f;
-    EXPECT_EQ(error_of([&] { shadows.update_settings(changed); }), "no error");
-    changed.shadow.virtual_maps.pool_mib = 64;
-    EXPECT_NE(error_of([&] { shadows.update_settings(changed); }).find("create a new ShadowSystem"), std::string::npos);
+    EXPECT_EQ(shadows.update_settings(changed).effect, SettingEffect::Live);
+    const uint64_t pool_bytes = shadows.memory().shadow_maps();
+    changed.shadow.virtual_maps.pool_mib *= 2;
+    EXPECT_EQ(shadows.update_settings(changed).effect, SettingEffect::Resource);
+    shadows.prepare(top_down_view());
+    EXPECT_GT(shadows.memory().shadow_maps(), pool_bytes);
 }
 
 }  // namespace

@@ -99,7 +99,7 @@ TEST(SettingDeclarations, EachDeclarationReadsAndWritesItsOwnFieldOnly) {
             if (&other == &setting) continue;
             EXPECT_EQ(other.get(changed), other.get(defaults)) << setting.name << " wrote " << other.name;
         }
-        EXPECT_EQ(requires_recreation(defaults, changed), setting.recreates) << setting.name;
+        EXPECT_EQ(settings_change_effect(defaults, changed), setting.effect) << setting.name;
     }
 }
 

@@ -1,5 +1,6 @@
 // validate_shadow_settings: defaults pass, boundaries pass, every out-of-range or NaN
 // value is an InputError that names the origin, the setting and the value.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -168,53 +169,72 @@ TEST(ShadowSettings, ValidManualSplitsPassAndAreIgnoredForOtherSchemes) {
 namespace penumbra {
 namespace {
 
-// What needs a new ShadowSystem: every filter field (each specialises the pipelines or sizes
-// the moments maps), the cascade count and resolution, the strategy, the local-shadow budget,
-// resolution and sizing; the biases, splits, distances and blend band change between frames.
-TEST(SettingsRecreation, StructuralFieldsNeedANewSystemOthersDoNot) {
+// What a change rebuilds inside a ShadowSystem: the maps for what sizes them or picks their
+// format (the filter, the moments' components, quantization and blur, the cascade count and
+// resolution, the strategy, the local-shadow budget, resolution and sizing); the pipelines
+// for the specialization constants (tap counts, PCSS quality and early out, receiver-plane
+// bias, the moments' Poisson taps); nothing for the uniforms (biases, splits, distances,
+// blend band, contact shadows, filter radii, bleeding reduction, exponents, moment bias).
+TEST(SettingsChangeEffect, MapsPipelinesOrUniforms) {
     const Settings base;
-    const std::vector<std::function<void(Settings&)>> structural = {
+    using Change = std::function<void(Settings&)>;
+    const std::vector<Change> resources = {
         [](Settings& s) { s.shadow.filter.mode = ShadowFilter::Pcss; },
-        [](Settings& s) { s.shadow.filter.receiver_plane_bias = false; },
-        [](Settings& s) { s.shadow.filter.pcf_radius = 3; },
-        [](Settings& s) { s.shadow.filter.poisson_taps = 32; },
-        [](Settings& s) { s.shadow.filter.poisson_radius = 4.0f; },
-        [](Settings& s) { s.shadow.filter.pcss_blocker_taps = 32; },
-        [](Settings& s) { s.shadow.filter.pcss_quality = PcssQuality::High; },
-        [](Settings& s) { s.shadow.filter.pcss_early_out = true; },
-        [](Settings& s) { s.shadow.filter.pcss_max_penumbra = 16.0f; },
-        [](Settings& s) { s.shadow.filter.light_bleeding_reduction = 0.5f; },
-        [](Settings& s) { s.shadow.filter.blur_radius = 4; },
-        [](Settings& s) { s.shadow.filter.moments_poisson = true; },
-        [](Settings& s) { s.shadow.filter.evsm_positive_exponent = 20.0f; },
-        [](Settings& s) { s.shadow.filter.evsm_negative_exponent = 2.0f; },
         [](Settings& s) { s.shadow.filter.evsm_components = 2; },
-        [](Settings& s) { s.shadow.filter.msm_moment_bias = 1e-4f; },
         [](Settings& s) { s.shadow.filter.msm_optimized_quantization = true; },
+        [](Settings& s) { s.shadow.filter.blur_radius = 4; },
         [](Settings& s) { s.shadow.cascades.count = 2; },
         [](Settings& s) { s.shadow.cascades.resolution = 1024; },
         [](Settings& s) { s.shadow.strategy = ShadowStrategy::Multiview; },
+        [](Settings& s) { s.shadow.technique = ShadowTechnique::Virtual; },
         [](Settings& s) { s.local_shadows.budget = 2; },
         [](Settings& s) { s.local_shadows.resolution = 512; },
         [](Settings& s) { s.local_shadows.sizing = LocalShadowSizing::Fixed; },
     };
-    for (size_t i = 0; i < structural.size(); ++i) {
-        Settings next = base;
-        structural[i](next);
-        EXPECT_TRUE(requires_recreation(base, next)) << "change " << i;
-    }
-    const std::vector<std::function<void(Settings&)>> per_frame = {
+    const std::vector<Change> pipelines = {
+        [](Settings& s) { s.shadow.filter.receiver_plane_bias = false; },
+        [](Settings& s) { s.shadow.filter.poisson_taps = 32; },
+        [](Settings& s) { s.shadow.filter.pcss_blocker_taps = 32; },
+        [](Settings& s) { s.shadow.filter.pcss_quality = PcssQuality::High; },
+        [](Settings& s) { s.shadow.filter.pcss_early_out = true; },
+        [](Settings& s) { s.shadow.filter.moments_poisson = true; },
+    };
+    const std::vector<Change> uniforms = {
         [](Settings& s) { s.shadow.bias.slope = 3.0f; },
         [](Settings& s) { s.shadow.bias.normal_offset = 1.0f; },
         [](Settings& s) { s.shadow.blend_width = 0.2f; },
         [](Settings& s) { s.shadow.cascades.max_distance = 80.0f; },
         [](Settings& s) { s.shadow.cascades.split_lambda = 0.5f; },
+        [](Settings& s) { s.contact.enabled = true; },
+        [](Settings& s) { s.shadow.filter.pcf_radius = 3; },
+        [](Settings& s) { s.shadow.filter.poisson_radius = 4.0f; },
+        [](Settings& s) { s.shadow.filter.pcss_max_penumbra = 16.0f; },
+        [](Settings& s) { s.shadow.filter.light_bleeding_reduction = 0.5f; },
+        [](Settings& s) { s.shadow.filter.evsm_positive_exponent = 20.0f; },
+        [](Settings& s) { s.shadow.filter.evsm_negative_exponent = 2.0f; },
+        [](Settings& s) { s.shadow.filter.msm_moment_bias = 1e-4f; },
     };
-    for (size_t i = 0; i < per_frame.size(); ++i) {
-        Settings next = base;
-        per_frame[i](next);
-        EXPECT_FALSE(requires_recreation(base, next)) << "change " << i;
-    }
+    const auto effect_of = [&](const std::vector<Change>& changes) {
+        std::vector<SettingEffect> effects;
+        for (const Change& change : changes) {
+            Settings next = base;
+            change(next);
+            effects.push_back(settings_change_effect(base, next));
+        }
+        return effects;
+    };
+    using ::testing::Each;
+    EXPECT_THAT(effect_of(resources), Each(SettingEffect::Resource));
+    EXPECT_THAT(effect_of(pipelines), Each(SettingEffect::Pipeline));
+    EXPECT_THAT(effect_of(uniforms), Each(SettingEffect::Live));
+    EXPECT_EQ(settings_change_effect(base, base), SettingEffect::Live);
+    // Several at once: the largest.
+    Settings several = base;
+    several.shadow.bias.slope = 3.0f;
+    several.shadow.filter.poisson_taps = 32;
+    EXPECT_EQ(settings_change_effect(base, several), SettingEffect::Pipeline);
+    several.local_shadows.budget = 2;
+    EXPECT_EQ(settings_change_effect(base, several), SettingEffect::Resource);
 }
 
 // --resolve auto: deferred where a filter takes many taps and the image is large or local

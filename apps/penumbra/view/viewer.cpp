@@ -107,7 +107,7 @@ void Viewer::apply_settings() {
         state_.status = "multiview: this device renders at most " + std::to_string(max_views_) + " views";
         state_.settings.shadow.strategy = ShadowStrategy::PerCascade;
     }
-    if (renderer_ && !renderer::requires_new_renderer(renderer_->settings(), state_.settings)) {
+    if (renderer_ && !renderer_->needs_new_renderer(state_.settings)) {
         renderer_->update_settings(state_.settings);
         return;
     }

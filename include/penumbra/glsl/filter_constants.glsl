@@ -2,6 +2,7 @@
 // pipeline per filter configuration, so the unused paths compile away. Their ids start at
 // PENUMBRA_SPEC_ID_BASE (0 unless the including shader defines it); the values come from
 // ShadowSystem::shader_specialization() (Penumbra's own pipelines use the same values).
+// With PENUMBRA_FILTER_FROM_UNIFORMS defined they are read from the uniforms instead.
 #ifndef PENUMBRA_GLSL_FILTER_CONSTANTS
 #define PENUMBRA_GLSL_FILTER_CONSTANTS
 
@@ -9,6 +10,19 @@
 #define PENUMBRA_SPEC_ID_BASE 0
 #endif
 
+#ifdef PENUMBRA_FILTER_FROM_UNIFORMS
+// One pipeline for every filter: the same values read from the uniforms, a branch per filter
+// that every invocation takes alike (as Filament switches its shadow filters); for callers
+// who never rebuild their pipelines when the filter changes.
+#define kPenumbraFilterMode (penumbra_shadow.filter_mode)
+#define kPenumbraSearchTaps (penumbra_shadow.filter_search_taps)
+#define kPenumbraFilterTaps (penumbra_shadow.filter_taps)
+#define kPenumbraReceiverPlaneBias (penumbra_shadow.filter_receiver_plane_bias != 0u)
+#define kPenumbraPcssEarlyOut (penumbra_shadow.filter_pcss_early_out != 0u)
+#define kPenumbraMomentsPoisson (penumbra_shadow.filter_moments_poisson != 0u)
+#define kPenumbraEvsmComponents (penumbra_shadow.filter_evsm_components)
+#define kPenumbraMsmQuantized (penumbra_shadow.filter_msm_quantized != 0u)
+#else
 layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_FILTER_MODE) const uint kPenumbraFilterMode =
     PENUMBRA_FILTER_HARD;
 layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_SEARCH_TAPS) const uint kPenumbraSearchTaps = 16u;
@@ -18,6 +32,8 @@ layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_PCSS_EARLY_OUT) const
 layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_MOMENTS_POISSON) const bool kPenumbraMomentsPoisson = false;
 layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_EVSM_COMPONENTS) const uint kPenumbraEvsmComponents = 4u;
 layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_MSM_QUANTIZED) const bool kPenumbraMsmQuantized = false;
+
+#endif
 
 // Receiver-plane depth bias applies to the comparison filters that take several taps.
 bool penumbra_uses_receiver_plane_bias() {

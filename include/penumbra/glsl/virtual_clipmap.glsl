@@ -30,7 +30,7 @@ bool penumbra_virtual_window_holds(vec2 texel, float margin_texels) {
 // when none does (penumbra_select_virtual_level).
 int penumbra_select_virtual_level(vec3 world_position, float margin_texels) {
     const float footprint =
-        length(world_position - PENUMBRA_VIRTUAL_CLIPMAP.camera_position.xyz) * PENUMBRA_VIRTUAL_CLIPMAP.camera_position.w * PENUMBRA_VIRTUAL_CLIPMAP.lod_scale;
+        (PENUMBRA_VIRTUAL_CLIPMAP.footprint_base + length(world_position - PENUMBRA_VIRTUAL_CLIPMAP.camera_position.xyz) * PENUMBRA_VIRTUAL_CLIPMAP.camera_position.w) * PENUMBRA_VIRTUAL_CLIPMAP.lod_scale;
     const float finest = PENUMBRA_VIRTUAL_CLIPMAP.levels[0].texel_world_size;
     const int last = int(PENUMBRA_VIRTUAL_CLIPMAP.level_count) - 1;
     const int wanted = footprint > finest ? int(floor(log2(footprint / finest))) : 0;

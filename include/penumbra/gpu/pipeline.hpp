@@ -19,6 +19,7 @@ UniqueShaderModule create_shader_module(const Device& device, std::span<const ui
 struct SpecializationValue {
     uint32_t constant_id;
     uint32_t value;  // 32-bit int/uint/bool (VK_TRUE/VK_FALSE) or float bits
+    bool operator==(const SpecializationValue&) const = default;
 };
 
 struct ShaderStage {
