@@ -310,10 +310,28 @@ struct VisibilityImage {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;  // VK_IMAGE_VIEW_TYPE_2D_ARRAY
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
-    uint32_t width = 0;
+    uint32_t width = 0;  // the pixels written: the ScreenInputs' extent
     uint32_t height = 0;
-    uint32_t layers = 0;
-    uint32_t slots = 0;  // 1 + FrameInfo::local_shadows.size()
+    uint32_t layers = 0;  // the image's layers (a caller's VisibilityTarget may have more than needed)
+    uint32_t slots = 0;   // 1 + FrameInfo::local_shadows.size()
+};
+
+// The layers a visibility image needs for `slots` slots (four slots per RGBA8 layer).
+constexpr uint32_t visibility_layers(uint32_t slots) { return (slots + 3) / 4; }
+
+// An image of the caller's for record_visibility() to write instead of Penumbra's own, so
+// that the caller's descriptors do not change when the screen or the number of shadowed
+// lights does: allocate it once at the largest extent and for the most lights the frame
+// may have. Its contents are replaced by each record_visibility(); the layout and access
+// it is left in are those of VisibilityImage, and its earlier uses must be fragment or
+// compute shader reads (or be ordered before compute shaders by the caller's own barrier).
+struct VisibilityTarget {
+    VkImage image = VK_NULL_HANDLE;              // created with VK_IMAGE_USAGE_STORAGE_BIT, one mip level
+    VkImageView view = VK_NULL_HANDLE;           // VK_IMAGE_VIEW_TYPE_2D_ARRAY over layers [0, layers)
+    VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;  // the only format the resolve writes
+    uint32_t width = 0;  // at least the ScreenInputs' extent; pixels beyond it keep their contents
+    uint32_t height = 0;
+    uint32_t layers = 0;  // at least visibility_layers(1 + FrameInfo::local_shadows.size())
 };
 
 // ---------------------------------------------------------------- the shadow maps
@@ -464,10 +482,13 @@ public:
     void record_shadow_maps(VkCommandBuffer cmd);
 
     // Records the compute resolve: the visibility of the sun and of every shadowed local
-    // light at each pixel of `screen`, with the configured filter, into visibility_image().
-    // Requires record_shadow_maps() earlier in this frame (in this or an earlier submitted
-    // command buffer of the same frame).
+    // light at each pixel of `screen`, with the configured filter, into Penumbra's own
+    // image, or into the caller's `target` (InputError naming the field when its format,
+    // extent or layers do not fit). Requires record_shadow_maps() earlier in this frame (in
+    // this or an earlier submitted command buffer of the same frame).
     void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen);
+    void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target);
+    // The image the last record_visibility() wrote, and where; a UsageError before the first.
     VisibilityImage visibility_image() const;
 
     // For forward shading with penumbra/shadow.glsl: the layout of FrameInfo::descriptor_set

@@ -32,6 +32,7 @@
 #include "passes/shadow_filter_specialization.hpp"
 #include "passes/visibility_resolve_pass.hpp"
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/check.hpp"
 #include "penumbra/gpu/debug_names.hpp"
 #include "penumbra/gpu/device.hpp"
 
@@ -166,6 +167,39 @@ void check_screen(const std::string& call, const ScreenInputs& screen) {
     if (std::abs(glm::determinant(view_projection)) < 1e-30f) reject("ScreenInputs::view_projection is not invertible");
 }
 
+// The frame's place and arguments for record_visibility(), whichever image it writes.
+void check_visibility_call(const library::FrameSlot& slot, VkCommandBuffer cmd, const ScreenInputs& screen) {
+    if (!slot.shadow_maps_recorded) {
+        throw UsageError("ShadowSystem::record_visibility: record_shadow_maps() has not been recorded for this frame");
+    }
+    if (slot.visibility_recorded) {
+        throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame)");
+    }
+    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_visibility: cmd is VK_NULL_HANDLE");
+    check_screen("record_visibility", screen);
+}
+
+void check_visibility_target(const VisibilityTarget& target, const ScreenInputs& screen, uint32_t slot_count) {
+    const auto reject = [](const std::string& problem) {
+        throw InputError("ShadowSystem::record_visibility: VisibilityTarget::" + problem);
+    };
+    if (target.image == VK_NULL_HANDLE) reject("image is VK_NULL_HANDLE");
+    if (target.view == VK_NULL_HANDLE) reject("view is VK_NULL_HANDLE");
+    if (target.format != VK_FORMAT_R8G8B8A8_UNORM) {
+        reject("format is " + gpu::format_name(target.format) + "; the resolve writes VK_FORMAT_R8G8B8A8_UNORM");
+    }
+    if (target.width < screen.width || target.height < screen.height) {
+        reject("width/height: " + std::to_string(target.width) + "x" + std::to_string(target.height) +
+               " is smaller than the screen's " + std::to_string(screen.width) + "x" + std::to_string(screen.height));
+    }
+    if (target.layers < visibility_layers(slot_count)) {
+        reject("layers: " + std::to_string(target.layers) + " hold " + std::to_string(target.layers * 4) +
+               " slots; this frame has " + std::to_string(slot_count) + " (the sun and " +
+               std::to_string(slot_count - 1) +
+               " shadowed local lights): " + std::to_string(visibility_layers(slot_count)) + " layers are needed");
+    }
+}
+
 MapImage map_image(const gpu::Image* image) {
     if (!image) return {};
     return {image->get(), image->view, image->desc.format, image->desc.aspect, image->desc.width, image->desc.layers};
@@ -217,8 +251,8 @@ struct ShadowSystem::Impl {
         std::vector<LocalLayerRange> ranges;
     };
     std::vector<LocalLayerHistory> local_history;
-    std::unique_ptr<gpu::Image> visibility;
-    uint32_t visibility_slots = 0;
+    std::unique_ptr<gpu::Image> visibility;          // Penumbra's own target, made on first use
+    std::optional<VisibilityImage> last_visibility;  // what the last record_visibility() wrote
     // Every specialization shader_specialization() handed out, kept for the system's life
     // (ShaderSpecialization views them); one per distinct content.
     struct Specialization {
@@ -566,8 +600,13 @@ struct ShadowSystem::Impl {
         if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local->generation());
     }
 
+    // Records the resolve of `screen` into `target` and keeps what it wrote for
+    // visibility_image().
+    void record_resolve(VkCommandBuffer cmd, library::FrameSlot& slot, const ScreenInputs& screen,
+                        const passes::ResolveTarget& target);
+
     void ensure_visibility_image(uint32_t width, uint32_t height, uint32_t slot_count) {
-        const uint32_t layers = (slot_count + 3) / 4;
+        const uint32_t layers = visibility_layers(slot_count);
         if (visibility && visibility->desc.width == width && visibility->desc.height == height &&
             visibility->desc.layers == layers) {
             return;
@@ -740,20 +779,29 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
 void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen) {
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
-    if (!slot.shadow_maps_recorded) {
-        throw UsageError("ShadowSystem::record_visibility: record_shadow_maps() has not been recorded for this frame");
-    }
-    if (slot.visibility_recorded) {
-        throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame)");
-    }
-    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_visibility: cmd is VK_NULL_HANDLE");
-    check_screen("record_visibility", screen);
-    const glm::mat4 view_projection = library::to_glm(screen.view_projection);
-
+    check_visibility_call(slot, cmd, screen);
     const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
     impl.ensure_visibility_image(screen.width, screen.height, slot_count);
-    impl.visibility_slots = slot_count;
-    impl.resolve.write_screen_set(slot.screen_set, screen, *impl.visibility);
+    const gpu::Image& own = *impl.visibility;
+    impl.record_resolve(cmd, slot, screen, {own.get(), own.view, own.desc.layers});
+}
+
+void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target) {
+    Impl& impl = *impl_;
+    library::FrameSlot& slot = impl.current_slot("record_visibility");
+    check_visibility_call(slot, cmd, screen);
+    const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
+    check_visibility_target(target, screen, slot_count);
+    // Penumbra's own image is not needed while the caller brings one.
+    if (impl.visibility) impl.retired.retire(std::move(impl.visibility), impl.frame);
+    impl.record_resolve(cmd, slot, screen, {target.image, target.view, target.layers});
+}
+
+void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, library::FrameSlot& slot, const ScreenInputs& screen,
+                                        const passes::ResolveTarget& target) {
+    const auto slot_count = static_cast<uint32_t>(1 + info.local_shadows.size());
+    const glm::mat4 view_projection = library::to_glm(screen.view_projection);
+    resolve.write_screen_set(slot.screen_set, screen, target.view);
     shader::ResolvePushConstants constants{};
     constants.inverse_view_projection = glm::inverse(view_projection);
     constants.width = screen.width;
@@ -763,16 +811,18 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
-    gpu::TimedScope scope(impl.device, impl.timer_of(slot), cmd, "visibility");
-    impl.resolve.record(cmd, slot.sampling_set, slot.screen_set, *impl.visibility, constants);
+    gpu::TimedScope scope(device, timer_of(slot), cmd, "visibility");
+    resolve.record(cmd, slot.sampling_set, slot.screen_set, target, constants);
     slot.visibility_recorded = true;
+    last_visibility = VisibilityImage{target.image,  target.view, VK_FORMAT_R8G8B8A8_UNORM, screen.width, screen.height,
+                                      target.layers, slot_count};
 }
 
 VisibilityImage ShadowSystem::visibility_image() const {
-    const gpu::Image* image = impl_->visibility.get();
-    if (!image) return {};
-    return {image->get(),       image->view,        image->desc.format,     image->desc.width,
-            image->desc.height, image->desc.layers, impl_->visibility_slots};
+    if (!impl_->last_visibility) {
+        throw UsageError("ShadowSystem::visibility_image: record_visibility() has not been recorded yet");
+    }
+    return *impl_->last_visibility;
 }
 
 VkDescriptorSetLayout ShadowSystem::descriptor_set_layout() const { return impl_->layouts.sampling; }

@@ -62,7 +62,7 @@ gpu::UniquePipeline VisibilityResolvePass::respecialize(const FilterSettings& fi
 }
 
 void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, const ScreenInputs& screen,
-                                             const gpu::Image& target) const {
+                                             VkImageView target) const {
     // An absent normal image is bound to the depth again: the shader does not read it.
     const auto write_or_depth = [&](uint32_t binding, VkImageView view, VkImageLayout layout) {
         if (view != VK_NULL_HANDLE) {
@@ -73,21 +73,22 @@ void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, const ScreenIn
     };
     gpu::write_combined_image_sampler(device_, set, 0, screen.depth, nearest_, screen.depth_layout);
     write_or_depth(1, screen.normals, screen.normals_layout);
-    gpu::write_storage_image(device_, set, 2, target.view);
+    gpu::write_storage_image(device_, set, 2, target);
     write_or_depth(3, screen.face_normals, screen.face_normals_layout);
 }
 
 void VisibilityResolvePass::record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set,
-                                   const gpu::Image& target, const shader::ResolvePushConstants& constants) const {
-    gpu::transition(device_, cmd, target, gpu::ImageState::DiscardAfterShaderReads,
-                    gpu::ImageState::ComputeStorageWrite);
+                                   const ResolveTarget& target, const shader::ResolvePushConstants& constants) const {
+    gpu::transition(device_, cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layers,
+                    gpu::ImageState::DiscardAfterShaderReads, gpu::ImageState::ComputeStorageWrite);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     const std::array<VkDescriptorSet, 2> sets{shadow_set, screen_set};
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets.data(), 0, nullptr);
     device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     device_->vkCmdDispatch(cmd, (constants.width + kGroupSize - 1) / kGroupSize,
                            (constants.height + kGroupSize - 1) / kGroupSize, 1);
-    gpu::transition(device_, cmd, target, gpu::ImageState::ComputeStorageWrite, gpu::ImageState::ShaderSampled);
+    gpu::transition(device_, cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layers,
+                    gpu::ImageState::ComputeStorageWrite, gpu::ImageState::ShaderSampled);
 }
 
 }  // namespace penumbra::passes

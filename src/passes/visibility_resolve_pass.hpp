@@ -13,6 +13,13 @@
 
 namespace penumbra::passes {
 
+// The image the resolve writes: Penumbra's own or the caller's (VisibilityTarget).
+struct ResolveTarget {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;  // a 2D array view of every layer
+    uint32_t layers = 0;
+};
+
 class VisibilityResolvePass {
 public:
     // `shadow_set_layout` is the ShadowSystem's descriptor set (set 0 of the pass); the pass's
@@ -25,14 +32,14 @@ public:
     // stay. Returns the replaced pipeline, which recorded frames may still use.
     gpu::UniquePipeline respecialize(const FilterSettings& filter);
     // Writes set 1: the depth, the normals and the face normals (the depth again for those
-    // absent) sampled with a nearest sampler in the given layouts, and `target` as the
-    // storage image.
-    void write_screen_set(VkDescriptorSet set, const ScreenInputs& screen, const gpu::Image& target) const;
+    // absent) sampled with a nearest sampler in the given layouts, and `target` (a 2D array
+    // view) as the storage image.
+    void write_screen_set(VkDescriptorSet set, const ScreenInputs& screen, VkImageView target) const;
 
     // Dispatches one thread per pixel of `constants.width` x `constants.height`; takes
     // `target` from ShaderSampled (or unused) to ComputeStorageWrite and back to ShaderSampled.
-    void record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set, const gpu::Image& target,
-                const shader::ResolvePushConstants& constants) const;
+    void record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set,
+                const ResolveTarget& target, const shader::ResolvePushConstants& constants) const;
 
 private:
     gpu::UniquePipeline create_pipeline(const FilterSettings& filter) const;

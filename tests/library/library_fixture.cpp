@@ -110,14 +110,14 @@ HostBuffer::~HostBuffer() {
 }
 
 TestImage::TestImage(const DeviceDesc& desc, VkFormat format, uint32_t width, uint32_t height, VkImageUsageFlags usage,
-                     VkImageAspectFlags aspect)
+                     VkImageAspectFlags aspect, std::optional<uint32_t> layers)
     : device(desc.device) {
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
     info.extent = {width, height, 1};
     info.mipLevels = 1;
-    info.arrayLayers = 1;
+    info.arrayLayers = layers.value_or(1);
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = usage;
@@ -128,9 +128,9 @@ TestImage::TestImage(const DeviceDesc& desc, VkFormat format, uint32_t width, ui
     TEST_VK(vkBindImageMemory(device, image, memory, 0));
     VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view_info.image = image;
-    view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view_info.viewType = layers ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     view_info.format = format;
-    view_info.subresourceRange = {aspect, 0, 1, 0, 1};
+    view_info.subresourceRange = {aspect, 0, 1, 0, info.arrayLayers};
     TEST_VK(vkCreateImageView(device, &view_info, nullptr, &view));
 }
 

@@ -48,14 +48,15 @@ struct HostBuffer {
     HostBuffer& operator=(const HostBuffer&) = delete;
 };
 
-// A 2D image with one view of `aspect` (the caller's depth or normal buffer).
+// A 2D image with one view of `aspect` (the caller's depth or normal buffer); with
+// `layers`, a 2D array image and a 2D array view of every layer.
 struct TestImage {
     VkDevice device = VK_NULL_HANDLE;
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     TestImage(const DeviceDesc& desc, VkFormat format, uint32_t width, uint32_t height, VkImageUsageFlags usage,
-              VkImageAspectFlags aspect);
+              VkImageAspectFlags aspect, std::optional<uint32_t> layers = std::nullopt);
     ~TestImage();
     TestImage(const TestImage&) = delete;
     TestImage& operator=(const TestImage&) = delete;
