@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/memory.hpp"
+
 namespace penumbra {
 
 // The caller's device. Penumbra never creates, submits to or destroys any of these.
@@ -41,6 +43,10 @@ struct DeviceDesc {
     // The loader entry point the caller uses (e.g. volk's or its own); nullptr = the Vulkan
     // loader that Penumbra links. Every Vulkan function Penumbra calls comes through it.
     PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
+    // Where the ShadowSystem's images and buffers get their device memory (penumbra/memory.hpp):
+    // the caller's allocator, which must outlive the ShadowSystem; nullptr = Penumbra's own,
+    // which sub-allocates from blocks of 64 MiB.
+    DeviceMemoryAllocator* allocator = nullptr;
 };
 
 // What a physical device offers, for choosing one.

@@ -5,6 +5,7 @@
 #include "penumbra/errors.hpp"         // the exceptions Penumbra throws
 #include "penumbra/lights.hpp"         // LightDesc
 #include "penumbra/math.hpp"           // Vec2, Vec3, Mat4, Bounds
+#include "penumbra/memory.hpp"         // DeviceMemoryAllocator: where images and buffers get memory
 #include "penumbra/settings.hpp"       // Settings and their validation
 #include "penumbra/shadow_system.hpp"  // ShadowSystem: meshes, instances, frames
 #include "penumbra/version.hpp"        // PENUMBRA_VERSION_*

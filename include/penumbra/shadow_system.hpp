@@ -380,6 +380,9 @@ struct MemoryStats {
     uint64_t virtual_pool = 0;  // the virtual shadow map's physical pages (Settings::shadow.virtual_maps.pool_mib)
     uint64_t visibility = 0;    // record_visibility()'s image
     uint64_t buffers = 0;       // uniforms, uploaded meshes, staging, culled draws, the page table
+    // VkDeviceMemory blocks that Penumbra's own allocator holds for all of the above (0 with
+    // DeviceDesc::allocator, the caller's): each block serves many images or buffers.
+    uint32_t memory_blocks = 0;
     uint64_t shadow_maps() const { return cascade_maps + local_maps + virtual_pool; }
     uint64_t total() const { return shadow_maps() + visibility + buffers; }
 };

@@ -2,21 +2,37 @@
 
 #include <vector>
 
+#include "block_allocator.hpp"
 #include "penumbra/gpu/check.hpp"
 
 namespace penumbra::gpu {
 
 Device::Device(const DeviceHandles& handles, const EnabledFeatures& features,
-               PFN_vkGetInstanceProcAddr get_instance_proc_addr) {
+               PFN_vkGetInstanceProcAddr get_instance_proc_addr, DeviceMemoryAllocator* allocator) {
     vk_.vkGetInstanceProcAddr = get_instance_proc_addr;
     load_instance_functions(vk_, handles.instance);
     load_device_functions(vk_, handles.device);
-    initialize(handles, features);
+    initialize(handles, features, 0, allocator);
 }
 
-void Device::initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index) {
+// The own allocator's blocks are freed here, after every resource of the Device's users
+// (which destroy theirs before the Device they were made on).
+Device::~Device() = default;
+
+size_t Device::own_memory_blocks() const {
+    return own_allocator_ ? static_cast<const BlockAllocator&>(*own_allocator_).block_count() : 0;
+}
+
+void Device::initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index,
+                        DeviceMemoryAllocator* allocator) {
     handles_ = handles;
     features_ = features;
+    if (allocator) {
+        allocator_ = allocator;
+    } else {
+        own_allocator_ = std::make_unique<BlockAllocator>(*this);
+        allocator_ = own_allocator_.get();
+    }
     vk_.vkGetPhysicalDeviceProperties(handles.physical_device, &properties_);
     vk_.vkGetPhysicalDeviceMemoryProperties(handles.physical_device, &memory_);
     info_ = describe_physical_device(vk_, handles.physical_device, device_index);

@@ -2,7 +2,9 @@
 #include "penumbra/gpu/debug_names.hpp"
 
 #include <cstring>
+#include <string>
 
+#include "penumbra/errors.hpp"
 #include "penumbra/gpu/barriers.hpp"
 #include "penumbra/gpu/check.hpp"
 
@@ -20,15 +22,32 @@ VkMemoryPropertyFlags memory_properties(MemoryKind kind) {
     return 0;
 }
 
-UniqueMemory allocate(const Device& device, const VkMemoryRequirements& requirements,
-                      VkMemoryPropertyFlags properties) {
-    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    info.allocationSize = requirements.size;
-    info.memoryTypeIndex = device.find_memory_type(requirements.memoryTypeBits, properties);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    PENUMBRA_VK_CHECK(device->vkAllocateMemory(device, &info, nullptr, &memory));
-    name_object(device, VK_OBJECT_TYPE_DEVICE_MEMORY, memory, "memory");
-    return UniqueMemory(device, memory);
+// Memory for an image or buffer from the device's allocator, checked as the contract of
+// DeviceMemoryAllocator says.
+BoundMemory allocate(const Device& device, const VkMemoryRequirements& requirements, VkMemoryPropertyFlags properties,
+                     bool host_access, bool linear) {
+    MemoryRequest request;
+    request.requirements = requirements;
+    request.required_properties = properties;
+    request.host_access = host_access;
+    request.linear = linear;
+    request.purpose = device.object_purpose().c_str();
+    const MemoryAllocation allocation = device.allocator().allocate(request);
+    const std::string what = std::to_string(requirements.size) + " bytes for " + device.object_purpose();
+    if (allocation.memory == VK_NULL_HANDLE) {
+        throw DeviceError("DeviceMemoryAllocator::allocate returned no memory (" + what + ")");
+    }
+    BoundMemory bound(device.allocator(), allocation);
+    if (requirements.alignment > 1 && allocation.offset % requirements.alignment != 0) {
+        throw UsageError("DeviceMemoryAllocator::allocate returned offset " + std::to_string(allocation.offset) +
+                         ", not a multiple of the alignment " + std::to_string(requirements.alignment) + " (" + what +
+                         ")");
+    }
+    if (host_access && allocation.mapped == nullptr) {
+        throw UsageError("DeviceMemoryAllocator::allocate returned no host address for memory the host accesses (" +
+                         what + ")");
+    }
+    return bound;
 }
 
 UniqueImageView create_view(const Device& device, VkImage image, const ImageDesc& desc, VkImageViewType type,
@@ -68,11 +87,10 @@ Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags
 
     VkMemoryRequirements requirements{};
     device->vkGetBufferMemoryRequirements(device, buffer, &requirements);
-    result.memory = allocate(device, requirements, memory_properties(kind));
-    PENUMBRA_VK_CHECK(device->vkBindBufferMemory(device, buffer, result.memory, 0));
-    if (kind != MemoryKind::DeviceLocal) {
-        PENUMBRA_VK_CHECK(device->vkMapMemory(device, result.memory, 0, VK_WHOLE_SIZE, 0, &result.mapped));
-    }
+    const bool host_access = kind != MemoryKind::DeviceLocal;
+    result.memory = allocate(device, requirements, memory_properties(kind), host_access, true);
+    PENUMBRA_VK_CHECK(device->vkBindBufferMemory(device, buffer, result.memory.memory(), result.memory.offset()));
+    if (host_access) result.mapped = result.memory.mapped();
     return result;
 }
 
@@ -114,9 +132,9 @@ Image create_image(const Device& device, const ImageDesc& desc) {
 
     VkMemoryRequirements requirements{};
     device->vkGetImageMemoryRequirements(device, image, &requirements);
-    result.memory = allocate(device, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    result.memory = allocate(device, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, false, false);
     result.memory_size = requirements.size;
-    PENUMBRA_VK_CHECK(device->vkBindImageMemory(device, image, result.memory, 0));
+    PENUMBRA_VK_CHECK(device->vkBindImageMemory(device, image, result.memory.memory(), result.memory.offset()));
 
     const bool layered = desc.layers > 1 || desc.array_view;
     result.view =

@@ -55,7 +55,7 @@ PFN_vkGetInstanceProcAddr instance_proc_addr(const DeviceDesc& desc) {
 gpu::Device make_device(const DeviceDesc& desc) {
     const gpu::EnabledFeatures features = library::check_device(desc, instance_proc_addr(desc));
     return gpu::Device({desc.instance, desc.physical_device, desc.device, desc.queue, desc.queue_family}, features,
-                       instance_proc_addr(desc));
+                       instance_proc_addr(desc), desc.allocator);
 }
 
 uint32_t checked_frames_in_flight(uint32_t frames) {
@@ -893,6 +893,7 @@ MemoryStats ShadowSystem::memory() const {
     stats.local_maps = impl.local->memory_bytes();
     stats.visibility = impl.visibility ? impl.visibility->memory_size : 0u;
     stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
+    stats.memory_blocks = static_cast<uint32_t>(impl.device.own_memory_blocks());
     if (impl.virtual_map) {
         stats.virtual_pool = impl.virtual_map->pool_bytes();
         stats.buffers += impl.virtual_map->buffer_bytes();

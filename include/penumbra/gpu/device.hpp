@@ -8,9 +8,11 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "penumbra/gpu/dispatch.hpp"
+#include "penumbra/memory.hpp"
 
 namespace penumbra::gpu {
 
@@ -51,9 +53,11 @@ public:
     // Loads the function table through `get_instance_proc_addr` and reads the device's
     // properties. Checks nothing about features (a ShadowSystem checks what it needs and
     // names what is missing).
+    // Images and buffers get their memory from `allocator` (the caller's, which outlives
+    // the Device), or with nullptr from the Device's own blocks.
     Device(const DeviceHandles& handles, const EnabledFeatures& features,
-           PFN_vkGetInstanceProcAddr get_instance_proc_addr);
-    virtual ~Device() = default;
+           PFN_vkGetInstanceProcAddr get_instance_proc_addr, DeviceMemoryAllocator* allocator = nullptr);
+    virtual ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
 
@@ -76,6 +80,11 @@ public:
 
     // A memory type among `type_bits` with all of `properties`; throws VulkanError if none.
     uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
+    const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
+    // Where images and buffers get their memory (gpu::create_image, gpu::create_buffer).
+    DeviceMemoryAllocator& allocator() const { return *allocator_; }
+    // Blocks of device memory the Device's own allocator holds (0 with the caller's).
+    size_t own_memory_blocks() const;
 
     // VK_EXT_debug_utils is enabled on the instance: objects get names and passes labels
     // (penumbra/gpu/debug_names.hpp).
@@ -88,7 +97,8 @@ protected:
     // For the library's own device context, which creates the handles first and then calls
     // initialize().
     Device() = default;
-    void initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index = 0);
+    void initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index = 0,
+                    DeviceMemoryAllocator* allocator = nullptr);
     VulkanFunctions vk_;
 
 private:
@@ -98,6 +108,8 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     uint32_t max_multiview_views_ = 0;
+    std::unique_ptr<DeviceMemoryAllocator> own_allocator_;  // without the caller's
+    DeviceMemoryAllocator* allocator_ = nullptr;
     // Naming state, not the device's: changed while objects are created, hence mutable
     // (a Device, like a ShadowSystem, is used from one thread at a time).
     mutable std::string object_purpose_ = "penumbra";

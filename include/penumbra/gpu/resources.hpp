@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "penumbra/gpu/device.hpp"
@@ -21,9 +22,46 @@ enum class MemoryKind {
     HostReadback  // host-visible, cached where possible, persistently mapped (readback)
 };
 
+// The device memory an image or buffer is bound to, given back to the allocator it came
+// from (Device::allocator()) when destroyed.
+class BoundMemory {
+public:
+    BoundMemory() = default;
+    BoundMemory(DeviceMemoryAllocator& allocator, const MemoryAllocation& allocation)
+        : allocator_(&allocator), allocation_(allocation) {}
+    ~BoundMemory() { reset(); }
+    BoundMemory(BoundMemory&& other) noexcept
+        : allocator_(std::exchange(other.allocator_, nullptr)), allocation_(other.allocation_) {}
+    BoundMemory& operator=(BoundMemory&& other) noexcept {
+        if (this != &other) {
+            reset();
+            allocator_ = std::exchange(other.allocator_, nullptr);
+            allocation_ = other.allocation_;
+        }
+        return *this;
+    }
+    BoundMemory(const BoundMemory&) = delete;
+    BoundMemory& operator=(const BoundMemory&) = delete;
+
+    VkDeviceMemory memory() const { return allocation_.memory; }
+    VkDeviceSize offset() const { return allocation_.offset; }
+    void* mapped() const { return allocation_.mapped; }
+
+private:
+    void reset() noexcept {
+        if (allocator_) allocator_->free(allocation_);
+        allocator_ = nullptr;
+    }
+
+    DeviceMemoryAllocator* allocator_ = nullptr;
+    MemoryAllocation allocation_;
+};
+
+// Members in this order so that the buffer or image is destroyed before its memory is
+// given back (and possibly bound to something else).
 struct Buffer {
+    BoundMemory memory;
     UniqueBuffer buffer;
-    UniqueMemory memory;
     VkDeviceSize size = 0;
     void* mapped = nullptr;  // non-null for host-visible kinds
 
@@ -52,8 +90,8 @@ struct ImageDesc {
 };
 
 struct Image {
+    BoundMemory memory;
     UniqueImage image;
-    UniqueMemory memory;
     UniqueImageView view;                      // all layers
     std::vector<UniqueImageView> layer_views;  // one 2D view per layer (when layers > 1 or array_view)
     UniqueImageView storage_view;              // with ImageDesc::storage_view_format: a 2D array view in it
