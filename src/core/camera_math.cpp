@@ -54,6 +54,16 @@ float view_distance_at(const glm::mat4& inverse_projection, float z) {
     return -point.z / point.w;
 }
 
+// The view matrix with the eye and forward direction it places the camera at.
+CameraView camera_view_placed_by(const glm::mat4& view) {
+    const glm::mat4 view_to_world = glm::inverse(view);
+    CameraView result;
+    result.view = view;
+    result.eye = glm::vec3(view_to_world[3]);
+    result.forward = glm::normalize(-glm::vec3(view_to_world[2]));
+    return result;
+}
+
 }  // namespace
 
 CameraView make_camera_view(const core::Camera& camera, float aspect) {
@@ -78,11 +88,7 @@ CameraView make_camera_view(const core::Camera& camera, float aspect) {
 
 CameraView make_camera_view(const glm::mat4& view, float fov_y_radians, float aspect, float near_plane,
                             float far_plane) {
-    const glm::mat4 view_to_world = glm::inverse(view);
-    CameraView result;
-    result.view = view;
-    result.eye = glm::vec3(view_to_world[3]);
-    result.forward = glm::normalize(-glm::vec3(view_to_world[2]));
+    CameraView result = camera_view_placed_by(view);
     result.fov_y_radians = fov_y_radians;
     result.aspect = aspect;
     result.near_plane = near_plane;
@@ -94,12 +100,8 @@ CameraView make_camera_view(const glm::mat4& view, float fov_y_radians, float as
 }
 
 CameraView make_camera_view(const glm::mat4& view, const glm::mat4& projection, uint32_t width, uint32_t height) {
-    const glm::mat4 view_to_world = glm::inverse(view);
     const glm::mat4 inverse_projection = glm::inverse(projection);
-    CameraView result;
-    result.view = view;
-    result.eye = glm::vec3(view_to_world[3]);
-    result.forward = glm::normalize(-glm::vec3(view_to_world[2]));
+    CameraView result = camera_view_placed_by(view);
     result.projection = projection;
     result.view_projection = projection * view;
     // Depth 0 and 1 are the near and far planes in either order (reverse or forward Z).

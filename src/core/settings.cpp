@@ -5,6 +5,7 @@
 
 #include <sstream>
 
+#include "core/settings_difference.hpp"
 #include "penumbra/errors.hpp"
 
 namespace penumbra {
@@ -81,11 +82,17 @@ bool is_moment_filter(ShadowFilter filter) {
 }
 
 SettingEffect settings_change_effect(const Settings& current, const Settings& next) {
-    SettingEffect effect = SettingEffect::Live;
+    return core::compare_settings(current, next).effect;
+}
+
+core::SettingsDifference core::compare_settings(const Settings& current, const Settings& next) {
+    SettingsDifference difference;
     for (const SettingDeclaration& setting : kSettingDeclarations) {
-        if (setting.effect > effect && setting.get(current) != setting.get(next)) effect = setting.effect;
+        if (setting.get(current) == setting.get(next)) continue;
+        difference.any = true;
+        if (setting.effect > difference.effect) difference.effect = setting.effect;
     }
-    return effect;
+    return difference;
 }
 
 }  // namespace penumbra

@@ -18,6 +18,7 @@
 #include "core/cascades.hpp"
 #include "core/caster_facing.hpp"
 #include "core/local_lights.hpp"
+#include "core/settings_difference.hpp"
 #include "library/cascade_cache.hpp"
 #include "library/conversions.hpp"
 #include "library/device_checks.hpp"
@@ -133,11 +134,6 @@ void check_view(const ViewDesc& view) {
     if (!(view.far_plane > view.near_plane) || !std::isfinite(view.far_plane)) {
         reject("far_plane", std::to_string(view.far_plane) + " must be finite and > near_plane");
     }
-}
-
-bool any_setting_differs(const Settings& a, const Settings& b) {
-    return std::ranges::any_of(kSettingDeclarations,
-                               [&](const SettingDeclaration& setting) { return setting.get(a) != setting.get(b); });
 }
 
 bool is_virtual(const Settings& settings) { return settings.shadow.technique == ShadowTechnique::Virtual; }
@@ -651,12 +647,13 @@ SettingsChange ShadowSystem::update_settings(const Settings& settings) {
     validate_settings(settings, "ShadowSystem::update_settings");
     Impl& impl = *impl_;
     const Settings& current = impl.pending_settings ? *impl.pending_settings : impl.settings;
+    const core::SettingsDifference difference = core::compare_settings(current, settings);
     SettingsChange change;
-    change.effect = settings_change_effect(current, settings);
+    change.effect = difference.effect;
     change.shader_specialization_changed = passes::shadow_filter_specialization(current.shadow.filter) !=
                                            passes::shadow_filter_specialization(settings.shadow.filter);
     // Biases and culling change the depths the caches hold.
-    if (any_setting_differs(current, settings)) {
+    if (difference.any) {
         impl.cascade_cache.invalidate();
         impl.local_cache.invalidate();
         if (impl.virtual_map) impl.virtual_map->invalidate();

@@ -32,6 +32,10 @@ glm::mat4 to_glm(const Mat4& m);
 Mat4 to_mat4(const glm::mat4& m);
 Mat4 translation(const glm::vec3& offset);
 
+// Makes writes of `src_stage` (copies by default) visible to the host after the fence.
+void host_read_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage = VK_PIPELINE_STAGE_2_COPY_BIT,
+                       VkAccessFlags2 src_access = VK_ACCESS_2_TRANSFER_WRITE_BIT);
+
 // Checks a Vulkan call of the test itself.
 void vk_check(VkResult result, const char* call);
 #define TEST_VK(call) ::penumbra::library_tests::vk_check((call), #call)
