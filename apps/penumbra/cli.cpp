@@ -97,7 +97,9 @@ void convert_raw_options(const RawRenderOptions& raw, RenderJob& job) {
     }
     if (!raw.debug.empty()) {
         job.debug = parse_choice<DebugView>(raw.debug, "--debug",
-                                            {{"cascades", DebugView::Cascades}, {"shadowmap", DebugView::ShadowMap}});
+                                            {{"cascades", DebugView::Cascades},
+                                             {"shadowmap", DebugView::ShadowMap},
+                                             {"virtual-pages", DebugView::VirtualPages}});
     }
 }
 
@@ -209,8 +211,10 @@ Command parse_command_line(int argc, char** argv) {
         "--aov", raw.aov,
         "Write an AOV instead of colour: shadow (16-bit sun visibility) | shadow:N (light N of [[lights]]) | cascade | "
         "contact (16-bit, the sun's contact shadows alone)");
-    render->add_option("--debug", raw.debug,
-                       "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side)");
+    render->add_option(
+        "--debug", raw.debug,
+        "Debug view: cascades (tint by cascade) | shadowmap (write the shadow-map layers side by side) | "
+        "virtual-pages (tint by virtual level, page borders, unserved pages in magenta)");
 
     bench::BenchJob bench_job;
     RawRenderOptions bench_render_raw;

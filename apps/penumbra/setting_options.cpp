@@ -7,6 +7,7 @@
 #include "number_checks.hpp"
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/setting_presentation.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::cli {
@@ -34,7 +35,7 @@ bool on_by_default(const SettingDeclaration& setting) {
 
 std::string help_text(const SettingDeclaration& setting) {
     const SettingValue default_value = setting.get(RenderSettings{});
-    std::string help = setting.help;
+    std::string help = presentation_of(setting).help;
     switch (setting.type) {
         case SettingType::Boolean:
             return help + (on_by_default(setting) ? " (on by default; this flag turns it off)" : " (off by default)");

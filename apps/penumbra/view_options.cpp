@@ -17,7 +17,8 @@ void add_view_options(CLI::App& command, view::ViewJob& job, RawViewOptions& raw
                        "Config file written by F5 / 'Save settings' (default penumbra-view.toml); with --frames, "
                        "also written at exit");
     command.add_flag("--no-ui", raw.no_ui, "Start with the panel hidden (F1 shows it)");
-    command.add_option("--debug", raw.debug, "Debug view: cascades | shadowmap (the layers shown in the panel)");
+    command.add_option("--debug", raw.debug,
+                       "Debug view: cascades | shadowmap (the layers shown in the panel) | virtual-pages");
 }
 
 void convert_view_options(const RawViewOptions& raw, view::ViewJob& job) {
@@ -44,8 +45,10 @@ void convert_view_options(const RawViewOptions& raw, view::ViewJob& job) {
         job.render.debug = DebugView::Cascades;
     } else if (raw.debug == "shadowmap") {
         job.render.debug = DebugView::ShadowMap;
+    } else if (raw.debug == "virtual-pages") {
+        job.render.debug = DebugView::VirtualPages;
     } else if (!raw.debug.empty()) {
-        throw InputError("--debug: unknown value \"" + raw.debug + "\" (expected cascades, shadowmap)");
+        throw InputError("--debug: unknown value \"" + raw.debug + "\" (expected cascades, shadowmap, virtual-pages)");
     }
     if (job.frames && !job.screenshot && job.screenshot_aov != Aov::None) {
         throw InputError("--screenshot-aov: needs --screenshot FILE");

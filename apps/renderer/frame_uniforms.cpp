@@ -52,7 +52,9 @@ shader::FrameUniforms build_frame_uniforms(const ViewDesc& view, const Scene& sc
         frame.sun_radiance = glm::vec4(sun->color * sun->intensity, 0.0f);
     }
     frame.ambient = glm::vec4(scene.ambient, 0.0f);
-    frame.debug_view = settings.debug == DebugView::Cascades ? RENDERER_DEBUG_VIEW_CASCADES : RENDERER_DEBUG_VIEW_NONE;
+    frame.debug_view = settings.debug == DebugView::Cascades       ? RENDERER_DEBUG_VIEW_CASCADES
+                       : settings.debug == DebugView::VirtualPages ? RENDERER_DEBUG_VIEW_VIRTUAL_PAGES
+                                                                   : RENDERER_DEBUG_VIEW_NONE;
     frame.visibility_light = settings.visibility_light == kVisibilityContact
                                  ? RENDERER_VISIBILITY_CONTACT
                                  : visibility_slot(scene.lights, settings.visibility_light);

@@ -78,6 +78,9 @@ PreparedJob prepare_render_job(const RenderJob& job) {
     if (job.aov == Aov::Contact && !(prepared.settings.contact.enabled && prepared.settings.contact.sun)) {
         throw InputError("--aov contact: the sun's contact shadows are off (--contact-shadows turns them on)");
     }
+    if (job.debug == DebugView::VirtualPages && prepared.settings.shadow.technique != ShadowTechnique::Virtual) {
+        throw InputError("--debug virtual-pages: the sun has cascades (--shadow-technique virtual gives it pages)");
+    }
     validate_camera_and_sun(prepared.scene, "command line");
     return prepared;
 }

@@ -1,10 +1,10 @@
 #pragma once
 // How a setting of a ShadowSystem is declared, once (the table is kSettingDeclarations in
-// penumbra/settings.hpp): its name, type, range or choices, help line, the filters it
-// applies to, what a change rebuilds inside a ShadowSystem, and how to read and write it in
-// a Settings. validate_settings(), settings_change_effect() and Penumbra's tools (config files,
-// command-line flags and --help, the viewer's panel, bench reports) read the declarations,
-// so that a setting is defined in one place: its field and its declaration.
+// penumbra/settings.hpp): its name, type, range or choices, the filters it applies to, what
+// a change rebuilds inside a ShadowSystem, and how to read and write it in a Settings.
+// validate_settings(), settings_change_effect() and the tools (which add their own
+// presentation: config keys, labels, help) read the declarations, so that a setting is
+// defined in one place: its field and its declaration.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -45,11 +45,7 @@ using SettingValue = std::variant<bool, int64_t, double, std::string, std::vecto
 inline constexpr uint32_t kEveryFilter = ~0u;
 
 struct SettingDeclaration {
-    const char* name = "";        // the setting's key: config files, error messages, reports
-    const char* config_key = "";  // its key in a config file's [shadow] table, when not `name`
-    const char* group = "";       // the section it belongs to: "cascades", "bias", "filter", "local_shadows"
-    const char* label = "";       // a short label (the viewer's panel)
-    const char* help = "";        // one line; the range and the default are added where shown
+    const char* name = "";  // the setting's name: error messages, reports, the tools' flags and keys
     SettingType type = SettingType::Number;
     // Integer and Number: the inclusive range; with minimum_exclusive, values must exceed minimum.
     double minimum = -std::numeric_limits<double>::infinity();
@@ -57,15 +53,12 @@ struct SettingDeclaration {
     bool minimum_exclusive = false;
     std::span<const int64_t> allowed = {};            // Integer: when not empty, the only values allowed
     std::span<const char* const> choices = {};        // Choice: the names, in the order lists show them
-    bool powers_of_two = false;                       // Integer: a size that interactive controls step by doubling
     SettingEffect effect = SettingEffect::Live;       // what a change rebuilds in a ShadowSystem
     uint32_t filters = kEveryFilter;                  // the filters it applies to (bits by ShadowFilter value)
     bool (*applies_when)(const Settings&) = nullptr;  // and only while this holds (nullptr: always)
     SettingValue (*get)(const Settings&) = nullptr;
     // Stores a value that setting_value_problem() accepts; others are not converted.
     void (*set)(Settings&, const SettingValue&) = nullptr;
-
-    const char* key_in_config() const { return *config_key != '\0' ? config_key : name; }
 };
 
 // "" when `value` is a valid value of the setting, else what is wrong with it, e.g.

@@ -1,3 +1,4 @@
+#include "penumbra/scene/setting_presentation.hpp"
 #include "penumbra/scene/settings_files.hpp"
 
 #include <cstdint>
@@ -17,7 +18,7 @@ namespace {
 // A setting's value as its declaration's type reads from TOML, checked against the
 // declaration (so a message names the table's key and the allowed values).
 std::optional<SettingValue> read_setting(TomlTableReader& reader, const SettingDeclaration& setting) {
-    const char* key = setting.key_in_config();
+    const char* key = presentation_of(setting).key_in_config();
     std::optional<SettingValue> value;
     switch (setting.type) {
         case SettingType::Boolean:

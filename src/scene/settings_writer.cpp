@@ -1,3 +1,4 @@
+#include "penumbra/scene/setting_presentation.hpp"
 #include "penumbra/scene/settings_files.hpp"
 
 #include <cstdio>
@@ -35,7 +36,7 @@ std::string boolean(bool value) { return value ? "true" : "false"; }
 void write_setting(std::ostream& out, const SettingDeclaration& setting, const SettingValue& value) {
     const std::vector<float>* list = std::get_if<std::vector<float>>(&value);
     if (list && list->empty()) return;
-    out << setting.key_in_config() << " = ";
+    out << presentation_of(setting).key_in_config() << " = ";
     if (const bool* flag = std::get_if<bool>(&value)) out << boolean(*flag);
     if (const int64_t* integer = std::get_if<int64_t>(&value)) out << *integer;
     if (const double* number = std::get_if<double>(&value)) out << real(static_cast<float>(*number));

@@ -17,6 +17,7 @@
 #include "cli_runner.hpp"
 #include "image/png_io.hpp"
 #include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/setting_presentation.hpp"
 #include "penumbra/settings.hpp"
 
 namespace fs = std::filesystem;
@@ -347,14 +348,15 @@ TEST_F(Cli, EverySettingsDocRowAgreesWithItsDeclaration) {
     for (const SettingDeclaration& setting : kSettingDeclarations) settings.push_back(&setting);
     for (const SettingDeclaration* declared : settings) {
         const SettingDeclaration& setting = *declared;
-        const size_t help_at = help.out.find(setting.help);
+        const SettingPresentation& presentation = presentation_of(setting);
+        const size_t help_at = help.out.find(presentation.help);
         ASSERT_NE(help_at, std::string::npos) << setting.name << "'s help line is not in --help";
         const size_t flag_at = help.out.rfind("  --", help_at);
         const std::string flag = help.out.substr(flag_at + 2, help.out.find_first_of(" \n", flag_at + 2) - flag_at - 2);
         const std::string row = row_of(flag);
         ASSERT_FALSE(row.empty()) << flag << " has no table row in docs/cli.md or docs/filters.md";
         const SettingValue default_value = setting.get(RenderSettings{});
-        const std::string key = setting.key_in_config();
+        const std::string key = presentation.key_in_config();
         EXPECT_TRUE(docs.find("\n" + key + " = ") != std::string::npos ||
                     docs.find("`" + key + "`") != std::string::npos)
             << key << " (" << flag << ") is in neither the config example nor the filters' key column";

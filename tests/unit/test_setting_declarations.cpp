@@ -6,10 +6,13 @@
 #include <cmath>
 #include <cstddef>
 #include <set>
+#include <span>
+#include <stdexcept>
 #include <string>
 
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/setting_presentation.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra {
@@ -42,17 +45,42 @@ TEST(SettingDeclarations, EveryFieldOfSettingsHasOneDeclaration) {
     EXPECT_EQ(std::size(kSettingDeclarations), leaves);
 }
 
-TEST(SettingDeclarations, NamesAndConfigKeysAreUniqueAndFound) {
-    std::set<std::string> names, keys;
+TEST(SettingDeclarations, NamesAreUniqueAndFound) {
+    std::set<std::string> names;
     for (const SettingDeclaration& setting : kSettingDeclarations) {
         EXPECT_TRUE(names.insert(setting.name).second) << setting.name;
-        EXPECT_TRUE(keys.insert(setting.key_in_config()).second) << setting.key_in_config();
         EXPECT_EQ(find_setting(setting.name), &setting);
-        EXPECT_NE(*setting.help, '\0') << setting.name;
-        EXPECT_NE(*setting.label, '\0') << setting.name;
         EXPECT_EQ(setting_value_problem(setting, setting.get(Settings{})), "") << setting.name << ": invalid default";
     }
     EXPECT_EQ(find_setting("no_such_setting"), nullptr);
+}
+
+// The tools present every setting, the library's and their own output settings, exactly
+// once: a label, a help line, a section, and a config key unique within its table.
+TEST(SettingPresentations, EveryDeclarationHasOneAndEveryOneADeclaration) {
+    std::set<std::string> presented;
+    for (const SettingPresentation& presentation : kSettingPresentations) {
+        EXPECT_TRUE(presented.insert(presentation.name).second) << presentation.name << " is presented twice";
+        EXPECT_TRUE(find_setting(presentation.name) || find_output_setting(presentation.name))
+            << presentation.name << " is presented but declared nowhere";
+        EXPECT_NE(*presentation.help, '\0') << presentation.name;
+        EXPECT_NE(*presentation.label, '\0') << presentation.name;
+        EXPECT_NE(*presentation.group, '\0') << presentation.name;
+    }
+    const auto check_table = [](std::span<const SettingDeclaration> table) {
+        std::set<std::string> keys;
+        for (const SettingDeclaration& setting : table) {
+            ASSERT_NE(find_presentation(setting.name), nullptr) << setting.name << " has no presentation";
+            const SettingPresentation& presentation = presentation_of(setting);
+            EXPECT_TRUE(keys.insert(presentation.key_in_config()).second) << presentation.key_in_config();
+            if (presentation.powers_of_two) {
+                EXPECT_EQ(setting.type, SettingType::Integer) << setting.name;
+            }
+        }
+    };
+    check_table(kSettingDeclarations);
+    check_table(kOutputSettingDeclarations);
+    EXPECT_THROW(presentation_of(SettingDeclaration{.name = "no_such_setting"}), std::logic_error);
 }
 
 // A valid value other than the one in `defaults` (a RenderSettings for output settings).

@@ -13,6 +13,7 @@
 
 #include "panel.hpp"
 #include "penumbra/scene/render_settings.hpp"
+#include "penumbra/scene/setting_presentation.hpp"
 #include "penumbra/settings.hpp"
 
 namespace penumbra::view {
@@ -46,13 +47,15 @@ void manual_splits_control(Settings& settings, const renderer::FrameInfo* frame)
     }
 }
 
+const char* label_of(const SettingDeclaration& setting) { return presentation_of(setting).label; }
+
 void choice_control(const SettingDeclaration& setting, Settings& settings) {
     const SettingValue current = setting.get(settings);
     int index = 0;
     for (size_t i = 0; i < setting.choices.size(); ++i) {
         if (current == SettingValue(std::string(setting.choices[i]))) index = static_cast<int>(i);
     }
-    if (ImGui::Combo(setting.label, &index, setting.choices.data(), static_cast<int>(setting.choices.size()))) {
+    if (ImGui::Combo(label_of(setting), &index, setting.choices.data(), static_cast<int>(setting.choices.size()))) {
         setting.set(settings, std::string(setting.choices[index]));
     }
 }
@@ -68,7 +71,7 @@ void allowed_values_control(const SettingDeclaration& setting, Settings& setting
         names.push_back(std::to_string(value));
     }
     for (const std::string& name : names) items.push_back(name.c_str());
-    if (ImGui::Combo(setting.label, &index, items.data(), static_cast<int>(items.size()))) {
+    if (ImGui::Combo(label_of(setting), &index, items.data(), static_cast<int>(items.size()))) {
         setting.set(settings, setting.allowed[static_cast<size_t>(index)]);
     }
 }
@@ -81,16 +84,17 @@ void power_of_two_control(const SettingDeclaration& setting, Settings& settings)
     const int highest = std::bit_width(static_cast<uint64_t>(setting.maximum)) - 1;
     int exponent = std::clamp(static_cast<int>(std::bit_width(current)) - 1, lowest, highest);
     const std::string label = std::to_string(current) + " texels";
-    if (ImGui::SliderInt(setting.label, &exponent, lowest, highest, label.c_str())) {
+    if (ImGui::SliderInt(label_of(setting), &exponent, lowest, highest, label.c_str())) {
         setting.set(settings, int64_t{1} << exponent);
     }
 }
 
 void integer_control(const SettingDeclaration& setting, Settings& settings) {
     if (!setting.allowed.empty()) return allowed_values_control(setting, settings);
-    if (setting.powers_of_two) return power_of_two_control(setting, settings);
+    if (presentation_of(setting).powers_of_two) return power_of_two_control(setting, settings);
     int value = static_cast<int>(std::get<int64_t>(setting.get(settings)));
-    if (ImGui::SliderInt(setting.label, &value, static_cast<int>(setting.minimum), static_cast<int>(setting.maximum))) {
+    if (ImGui::SliderInt(label_of(setting), &value, static_cast<int>(setting.minimum),
+                         static_cast<int>(setting.maximum))) {
         setting.set(settings, int64_t{value});
     }
 }
@@ -102,13 +106,13 @@ void number_control(const SettingDeclaration& setting, Settings& settings) {
     const bool bounded = std::isfinite(setting.minimum) && std::isfinite(setting.maximum);
     bool changed = false;
     if (bounded && setting.maximum - setting.minimum <= 1000.0 && !setting.minimum_exclusive) {
-        changed = ImGui::SliderFloat(setting.label, &value, static_cast<float>(setting.minimum),
+        changed = ImGui::SliderFloat(label_of(setting), &value, static_cast<float>(setting.minimum),
                                      static_cast<float>(setting.maximum), "%.4g");
     } else {
         const double lowest = setting.minimum_exclusive ? setting.minimum + 0.01 : setting.minimum;
         const double highest = std::isfinite(setting.maximum) ? setting.maximum : 1.0e4;
         const float speed = bounded ? static_cast<float>((highest - lowest) / 1.0e5) : 0.5f;
-        changed = ImGui::DragFloat(setting.label, &value, speed, static_cast<float>(lowest),
+        changed = ImGui::DragFloat(label_of(setting), &value, speed, static_cast<float>(lowest),
                                    static_cast<float>(highest), "%.4g");
     }
     if (changed) setting.set(settings, static_cast<double>(value));
@@ -118,7 +122,7 @@ void setting_control(const SettingDeclaration& setting, Settings& settings, cons
     switch (setting.type) {
         case SettingType::Boolean: {
             bool value = std::get<bool>(setting.get(settings));
-            if (ImGui::Checkbox(setting.label, &value)) setting.set(settings, value);
+            if (ImGui::Checkbox(label_of(setting), &value)) setting.set(settings, value);
             break;
         }
         case SettingType::Choice:
@@ -134,14 +138,16 @@ void setting_control(const SettingDeclaration& setting, Settings& settings, cons
             manual_splits_control(settings, frame);
             break;
     }
-    if (ImGui::IsItemHovered() && *setting.help != '\0') ImGui::SetTooltip("%s", setting.help);
+    const char* help = presentation_of(setting).help;
+    if (ImGui::IsItemHovered() && *help != '\0') ImGui::SetTooltip("%s", help);
 }
 
 }  // namespace
 
 void draw_setting_group(Settings& settings, std::string_view group, const renderer::FrameInfo* frame) {
     for (const SettingDeclaration& setting : kSettingDeclarations) {
-        if (group == setting.group && setting_applies(setting, settings)) setting_control(setting, settings, frame);
+        if (group == presentation_of(setting).group && setting_applies(setting, settings))
+            setting_control(setting, settings, frame);
     }
 }
 
@@ -161,7 +167,8 @@ void draw_shadow_settings(RenderSettings& settings, const renderer::FrameInfo* f
     // automatic resolve traces them in the deferred resolve.
     if (ImGui::CollapsingHeader("Contact shadows")) draw_setting_group(settings, "contact", frame);
     if (ImGui::CollapsingHeader("Debug view", ImGuiTreeNodeFlags_DefaultOpen)) {
-        combo("debug view", settings.debug, std::array<const char*, 3>{"none", "cascade colours", "shadow-map layers"});
+        combo("debug view", settings.debug,
+              std::array<const char*, 4>{"none", "cascade colours", "shadow-map layers", "virtual pages"});
     }
 }
 

@@ -68,6 +68,26 @@ const vec3 kCascadeTints[8] = vec3[](vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25
                                      vec3(1.0, 1.0, 0.25), vec3(1.0, 0.3, 1.0), vec3(0.25, 1.0, 1.0),
                                      vec3(1.0, 0.6, 0.2), vec3(0.7, 0.7, 0.7));
 
+// The virtual shadow map's pages under this pixel (--debug virtual-pages): the level it
+// samples tints it, the borders of that level's 128-texel pages are dark lines, and where
+// the level it wants has no resident page (unserved: the pool is full, or the page is new
+// this frame) magenta stripes mark the coarser fallback or, with none, the missing shadow.
+vec3 virtual_pages_debug(vec3 color) {
+    const int wanted = penumbra_select_virtual_level(in_world_position, penumbra_virtual.mark_radius_texels);
+    const int sampled = penumbra_virtual_receiver_level(in_world_position);
+    // Derivatives before any per-pixel branch.
+    const vec2 page = penumbra_virtual_texel_of(uint(max(sampled, 0)), in_world_position) /
+                      float(kPenumbraVirtualPageTexels);
+    const vec2 line_width = fwidth(page);
+    const bool stripe = fract((gl_FragCoord.x + gl_FragCoord.y) / 8.0) < 0.5;
+    if (sampled < 0) return wanted >= 0 && stripe ? vec3(1.0, 0.0, 1.0) : color;
+    color *= kCascadeTints[sampled % 8];
+    const vec2 to_border = min(fract(page), 1.0 - fract(page));
+    if (any(lessThan(to_border, line_width))) color *= 0.25;
+    if (sampled > wanted && stripe) color = vec3(1.0, 0.0, 1.0);
+    return color;
+}
+
 void main() {
     vec3 normal = normalize(in_world_normal);
     if (!gl_FrontFacing) normal = -normal;  // double-sided materials are lit from both sides
@@ -163,12 +183,19 @@ void main() {
     const int cascade = receiver.cascade;
 #endif
     if (frame.debug_view == RENDERER_DEBUG_VIEW_CASCADES && cascade >= 0) color *= kCascadeTints[cascade];
+    if (frame.debug_view == RENDERER_DEBUG_VIEW_VIRTUAL_PAGES && penumbra_sun_is_virtual()) {
+        color = virtual_pages_debug(color);
+    }
 
 #ifdef RENDERER_CONTACT_SHADOWS
     if (contact_aov) visibility = sun_contact;
 #endif
 
     out_color = vec4(tone_map(color), 1.0);
+    // The debug view's marks are exact colours, whatever the tone mapping does.
+    if (frame.debug_view == RENDERER_DEBUG_VIEW_VIRTUAL_PAGES && color == vec3(1.0, 0.0, 1.0)) {
+        out_color = vec4(1.0, 0.0, 1.0, 1.0);
+    }
     out_visibility = visibility;
     out_cascade = cascade >= 0 ? uint(cascade) : RENDERER_NO_CASCADE;
 }

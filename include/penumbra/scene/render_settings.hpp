@@ -18,6 +18,9 @@ enum class DebugView {
     None,
     Cascades,   // tint the colour image by cascade index
     ShadowMap,  // also read back the shadow map so its layers can be written side by side
+    // Tint the colour image by the virtual shadow map's level, with its page borders and
+    // the pixels whose pages are not resident (the technique must be virtual)
+    VirtualPages,
 };
 
 // Where the tools' renderer evaluates the shadows it shades with (docs/library.md has both
@@ -92,24 +95,9 @@ constexpr SettingDeclaration declare_output_choice(SettingDeclaration setting) {
 }
 
 inline constexpr SettingDeclaration kOutputSettingDeclarations[] = {
-    declare_output<&RenderSettings::width>({.name = "width",
-                                            .group = "output",
-                                            .label = "width",
-                                            .help = "Image width in pixels",
-                                            .minimum = 1,
-                                            .maximum = kMaxImageSize}),
-    declare_output<&RenderSettings::height>({.name = "height",
-                                             .group = "output",
-                                             .label = "height",
-                                             .help = "Image height in pixels",
-                                             .minimum = 1,
-                                             .maximum = kMaxImageSize}),
-    declare_output_choice<kShadowResolveChoices, &RenderSettings::resolve>(
-        {.name = "resolve",
-         .group = "output",
-         .label = "resolve",
-         .help = "Where shadows are evaluated (forward: in the lighting pass per fragment; deferred: a depth and "
-                 "normal pre-pass, then once per pixel in a compute pass)"}),
+    declare_output<&RenderSettings::width>({.name = "width", .minimum = 1, .maximum = kMaxImageSize}),
+    declare_output<&RenderSettings::height>({.name = "height", .minimum = 1, .maximum = kMaxImageSize}),
+    declare_output_choice<kShadowResolveChoices, &RenderSettings::resolve>({.name = "resolve"}),
 };
 
 // The declaration of the tools' setting called `name`, or nullptr.

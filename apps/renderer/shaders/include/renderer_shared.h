@@ -38,6 +38,7 @@
 
 #define RENDERER_DEBUG_VIEW_NONE 0u
 #define RENDERER_DEBUG_VIEW_CASCADES 1u
+#define RENDERER_DEBUG_VIEW_VIRTUAL_PAGES 2u
 #define RENDERER_ALPHA_OPAQUE 0u
 #define RENDERER_ALPHA_MASK 1u
 // Cascade index written where no cascade applies (no geometry, beyond the shadow distance).
