@@ -78,6 +78,9 @@ struct VulkanContextOptions {
     bool validation = false;
     std::shared_ptr<ValidationLog> validation_log = std::make_shared<ValidationLog>();
     std::function<void(const std::string& message)> on_validation_message;
+    // With validation: the layer's best-practices checks as well (valid but wasteful use:
+    // small allocations, redundant barriers, ...), reported the same way.
+    bool best_practices = false;
     // "" = the best usable device (discrete, integrated, virtual, then CPU); otherwise an
     // index from list_physical_devices() or a case-insensitive part of a device name.
     std::string device_selector;

@@ -54,16 +54,17 @@ uint32_t GpuTimer::begin(VkCommandBuffer cmd, std::string name) {
     const auto scope = static_cast<uint32_t>(names_.size());
     names_.push_back(std::move(name));
     ended_.push_back(false);
-    // ALL_COMMANDS at both ends: a timestamp is written once every earlier command has
+    // BOTTOM_OF_PIPE at both ends (for a timestamp the same as ALL_COMMANDS, which the
+    // best-practices layer flags): a timestamp is written once every earlier command has
     // finished, so consecutive scopes measure disjoint intervals that add up to at most
     // the frame (TOP_OF_PIPE begins would let a scope start before the previous one ends).
-    if (supported()) device_->vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope);
+    if (supported()) device_->vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_, 2 * scope);
     return scope;
 }
 
 void GpuTimer::end(VkCommandBuffer cmd, uint32_t scope) {
     ended_.at(scope) = true;
-    if (supported()) device_->vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope + 1);
+    if (supported()) device_->vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_, 2 * scope + 1);
 }
 
 std::optional<std::vector<ScopeTime>> GpuTimer::read() const {

@@ -165,7 +165,7 @@ Context::Context(const ContextOptions& options)
       presentation_(options.presentation) {
     try {
         vk_ = load_global_functions(loader_instance_proc_addr());
-        create_instance(options.validation);
+        create_instance(options.validation, options.best_practices);
         const uint32_t index = pick_physical_device(options.device_selector);
         if (presentation_) pick_present_queue_family();
         const EnabledFeatures features = create_device();
@@ -194,7 +194,7 @@ void Context::release() {
     instance_ = VK_NULL_HANDLE;
 }
 
-void Context::create_instance(bool validation) {
+void Context::create_instance(bool validation, bool best_practices) {
     std::vector<const char*> extensions;
     if (presentation_) {
         for (const std::string& name : presentation_->instance_extensions) extensions.push_back(name.c_str());
@@ -207,10 +207,13 @@ void Context::create_instance(bool validation) {
     require_validation_layer(vk_);
     // Synchronization validation finds missing or wrong barriers (hazards), which the
     // default validation does not check.
-    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    // Best practices (optional) warns of valid but wasteful use: small allocations,
+    // redundant barriers, clears that could be load operations.
+    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
+                                                    VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT};
     VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info(this);
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, &messenger};
-    features.enabledValidationFeatureCount = 1;
+    features.enabledValidationFeatureCount = best_practices ? 2 : 1;
     features.pEnabledValidationFeatures = enables;
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     instance_ = create_bare_instance(vk_, &features, {kValidationLayer}, extensions);

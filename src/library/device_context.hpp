@@ -27,6 +27,7 @@ struct ValidationLog {
 
 struct ContextOptions {
     bool validation = false;      // Khronos validation layer + synchronization validation
+    bool best_practices = false;  // with validation: the layer's best-practices checks too
     std::string device_selector;  // "" = best device; an index or a case-insensitive name substring
     // Where validation messages go; shared so that messages reported while the device and
     // instance are destroyed (leaks) can still be read after the Context is gone.
@@ -61,7 +62,7 @@ public:
     void report_validation_message(std::string message) const;
 
 private:
-    void create_instance(bool validation);
+    void create_instance(bool validation, bool best_practices);
     uint32_t pick_physical_device(const std::string& selector);
     void pick_present_queue_family();
     EnabledFeatures create_device();

@@ -96,6 +96,7 @@ void LocalMaps::fit(const LocalShadowPlan& plan, uint64_t frame) {
     retired_.retire(std::move(moments_), frame);
     layers_ = layers;
     resolution_ = resolution;
+    placeholder_ready_ = false;
     ++generation_;
     map_ = std::make_unique<gpu::Image>(
         passes::create_depth_map(device_, std::max(resolution, kPlaceholderResolution), std::max(layers, 1u)));
@@ -118,8 +119,10 @@ void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const pas
                        const std::vector<passes::LocalShadowLayer>& layers, const LocalShadowPlan& plan,
                        const ShadowSettings& settings, uint64_t frame, gpu::GpuTimer* timer) {
     if (layers_ == 0) {
-        // Nothing samples the placeholder map, but the descriptor set binds it in this layout.
-        pass_.record_placeholder(cmd, *map_);
+        // Nothing samples the placeholder map, but the descriptor set binds it in this
+        // layout: cleared once, then left as it is.
+        if (!placeholder_ready_) pass_.record_placeholder(cmd, *map_);
+        placeholder_ready_ = true;
         return;
     }
     gpu::TimedScope scope(device_, timer, cmd, "shadow_local");

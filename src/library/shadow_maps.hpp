@@ -79,6 +79,7 @@ private:
     std::unique_ptr<gpu::Image> map_;
     std::unique_ptr<passes::MomentsConversion> moments_;  // moment filters with shadowed lights only
     uint32_t layers_ = 0;                                 // 0: the placeholder
+    bool placeholder_ready_ = false;                      // the placeholder cleared and readable
     uint32_t resolution_ = 0;
     uint64_t generation_ = 0;
 };

@@ -16,6 +16,7 @@ PhysicalDeviceInfo to_public(const gpu::DeviceInfo& info) {
 gpu::ContextOptions context_options(const VulkanContextOptions& options) {
     gpu::ContextOptions result;
     result.validation = options.validation;
+    result.best_practices = options.best_practices;
     result.device_selector = options.device_selector;
     result.log = std::make_shared<gpu::ValidationLog>();
     // Messages go to the caller's log and callback; the library prints nothing itself.

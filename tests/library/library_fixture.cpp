@@ -188,6 +188,7 @@ BoxesAndMover add_ground_and_box_mesh(ShadowSystem& shadows) {
 void LibraryTest::SetUp() {
     VulkanContextOptions options;
     options.validation = true;
+    options.best_practices = best_practices();
     log_ = options.validation_log;
     context_ = std::make_unique<VulkanContext>(options);
     device_ = context_->device_desc();
@@ -284,8 +285,7 @@ ScreenInputs LibraryTest::record_ground_depth(VkCommandBuffer cmd, const ViewDes
     vkCmdClearDepthStencilImage(cmd, depth_->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &ground, 1, &range);
     image_barrier(cmd, depth_->image, VK_IMAGE_ASPECT_DEPTH_BIT, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
     ScreenInputs screen = depth_screen(view_projection);
     if (normals) {
         screen.normals = normals->view;
@@ -308,8 +308,7 @@ ScreenInputs LibraryTest::record_depth_image(VkCommandBuffer cmd, const ViewDesc
     vkCmdCopyBufferToImage(cmd, staging.buffer, depth_->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     image_barrier(cmd, depth_->image, VK_IMAGE_ASPECT_DEPTH_BIT, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
     return depth_screen(to_glm(reverse_z_projection(view)) * to_glm(view.view));
 }
 
@@ -342,11 +341,12 @@ VisibilityImage2D LibraryTest::read_visibility(const ShadowSystem& shadows, uint
     HostBuffer readback(device_, VkDeviceSize{visibility.width} * visibility.height * 4,
                         VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     submit([&](VkCommandBuffer cmd) {
-        // The contract: SHADER_READ_ONLY, written by compute; returned to that layout after.
+        // The contract: SHADER_READ_ONLY, its compute writes visible to shader reads, which
+        // this barrier chains from; returned to that layout after.
         image_barrier(cmd, visibility.image, VK_IMAGE_ASPECT_COLOR_BIT, visibility.layers,
                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, slot / 4, 1};
         region.imageExtent = {visibility.width, visibility.height, 1};

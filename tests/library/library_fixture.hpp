@@ -100,6 +100,8 @@ protected:
 
     void SetUp() override;
     void TearDown() override;  // fails the test on any validation message
+    // Whether the validation layer also runs its best-practices checks.
+    virtual bool best_practices() const { return false; }
 
     // The default settings, with 512-texel local maps to stay quick on lavapipe.
     static Settings test_settings();
