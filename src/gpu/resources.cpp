@@ -150,6 +150,23 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     return result;
 }
 
+void record_depth_clear_to_sampled(const Device& device, VkCommandBuffer cmd, const Image& image, float depth) {
+    transition(device, cmd, image, ImageState::Undefined, ImageState::DepthAttachment);
+    VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    attachment.imageView = image.view;
+    attachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attachment.clearValue.depthStencil = {depth, 0};
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {image.desc.width, image.desc.height}};
+    info.layerCount = image.desc.layers;
+    info.pDepthAttachment = &attachment;
+    device->vkCmdBeginRendering(cmd, &info);
+    device->vkCmdEndRendering(cmd);
+    transition(device, cmd, image, ImageState::DepthAttachment, ImageState::ShaderSampled);
+}
+
 Image create_texture_rgba8(const OneTimeCommands& commands, uint32_t width, uint32_t height,
                            std::span<const uint8_t> rgba) {
     const Device& device = commands.device();

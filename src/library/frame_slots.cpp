@@ -81,8 +81,7 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
     gpu::ImageDesc pool;
     pool.format = VK_FORMAT_D32_SFLOAT;
     pool.width = pool.height = 16;
-    pool.usage =
-        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    pool.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     pool.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     placeholder_.pool = gpu::create_image(device, pool);
 
@@ -118,12 +117,7 @@ void FrameSlots::record_placeholder_layout(VkCommandBuffer cmd) {
     if (placeholder_.ready) return;
     // Never sampled (no level reads it), but given defined contents all the same: an image
     // made readable from UNDEFINED is a mistake elsewhere (the best-practices layer says so).
-    gpu::transition(device_, cmd, placeholder_.pool, gpu::ImageState::Undefined, gpu::ImageState::TransferDst);
-    const VkClearDepthStencilValue far{0.0f, 0};
-    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-    device_->vkCmdClearDepthStencilImage(cmd, placeholder_.pool.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &far, 1,
-                                         &range);
-    gpu::transition(device_, cmd, placeholder_.pool, gpu::ImageState::TransferDst, gpu::ImageState::ShaderSampled);
+    gpu::record_depth_clear_to_sampled(device_, cmd, placeholder_.pool, 0.0f);  // reverse-Z: far
     placeholder_.ready = true;
 }
 

@@ -121,7 +121,7 @@ void LocalMaps::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const pas
     if (layers_ == 0) {
         // Nothing samples the placeholder map, but the descriptor set binds it in this
         // layout: cleared once, then left as it is.
-        if (!placeholder_ready_) pass_.record_placeholder(cmd, *map_);
+        if (!placeholder_ready_) gpu::record_depth_clear_to_sampled(device_, cmd, *map_, 0.0f);  // reverse-Z: far
         placeholder_ready_ = true;
         return;
     }

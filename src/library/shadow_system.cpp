@@ -596,6 +596,9 @@ struct ShadowSystem::Impl {
         if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local->generation());
     }
 
+    // The visibility slots of the prepared frame: the sun's and one per shadowed local light.
+    uint32_t visibility_slot_count() const { return static_cast<uint32_t>(1 + info.local_shadows.size()); }
+
     // Records the resolve of `screen` into `target` and keeps what it wrote for
     // visibility_image().
     void record_resolve(VkCommandBuffer cmd, library::FrameSlot& slot, const ScreenInputs& screen,
@@ -777,8 +780,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
     check_visibility_call(slot, cmd, screen);
-    const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
-    impl.ensure_visibility_image(screen.width, screen.height, slot_count);
+    impl.ensure_visibility_image(screen.width, screen.height, impl.visibility_slot_count());
     const gpu::Image& own = *impl.visibility;
     impl.record_resolve(cmd, slot, screen, {own.get(), own.view, own.desc.layers});
 }
@@ -787,8 +789,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
     check_visibility_call(slot, cmd, screen);
-    const auto slot_count = static_cast<uint32_t>(1 + impl.info.local_shadows.size());
-    check_visibility_target(target, screen, slot_count);
+    check_visibility_target(target, screen, impl.visibility_slot_count());
     // Penumbra's own image is not needed while the caller brings one.
     if (impl.visibility) impl.retired.retire(std::move(impl.visibility), impl.frame);
     impl.record_resolve(cmd, slot, screen, {target.image, target.view, target.layers});
@@ -796,7 +797,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
 
 void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, library::FrameSlot& slot, const ScreenInputs& screen,
                                         const passes::ResolveTarget& target) {
-    const auto slot_count = static_cast<uint32_t>(1 + info.local_shadows.size());
+    const uint32_t slot_count = visibility_slot_count();
     const glm::mat4 view_projection = library::to_glm(screen.view_projection);
     resolve.write_screen_set(slot.screen_set, screen, target.view);
     shader::ResolvePushConstants constants{};

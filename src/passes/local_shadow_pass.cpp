@@ -86,22 +86,4 @@ void LocalShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, con
     gpu::transition(device_, cmd, map, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
 }
 
-void LocalShadowPass::record_placeholder(VkCommandBuffer cmd, const gpu::Image& map) const {
-    // Cleared (nothing casts) rather than made readable from undefined contents.
-    gpu::transition(device_, cmd, map, gpu::ImageState::Undefined, gpu::ImageState::DepthAttachment);
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = map.view;
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depth.clearValue.depthStencil = {0.0f, 0};
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {map.desc.width, map.desc.height}};
-    info.layerCount = map.desc.layers;
-    info.pDepthAttachment = &depth;
-    device_->vkCmdBeginRendering(cmd, &info);
-    device_->vkCmdEndRendering(cmd);
-    gpu::transition(device_, cmd, map, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
-}
-
 }  // namespace penumbra::passes

@@ -58,9 +58,6 @@ public:
 
     const GpuCasterCulling* gpu_culling() const { return gpu_culling_.get(); }
 
-    // Without shadowed lights: only moves `map` into the layout the descriptor set names.
-    void record_placeholder(VkCommandBuffer cmd, const gpu::Image& map) const;
-
 private:
     const gpu::Device& device_;
     std::unique_ptr<GpuCasterCulling> gpu_culling_;  // layered strategy only

@@ -312,6 +312,12 @@ ScreenInputs LibraryTest::record_depth_image(VkCommandBuffer cmd, const ViewDesc
     return depth_screen(to_glm(reverse_z_projection(view)) * to_glm(view.view));
 }
 
+void LibraryTest::expect_box_shadow_of_the_sun(const VisibilityImage2D& image) {
+    const FootprintCheck check = check_footprint(image, kBoxCentre, kSunDirection, 0.3f);
+    EXPECT_GT(check.shadowed, 500u);
+    EXPECT_EQ(check.wrong, 0u);
+}
+
 VisibilityImage2D LibraryTest::render_visibility(ShadowSystem& shadows, uint32_t slot, const TestImage* normals,
                                                  NormalEncoding encoding, const TestImage* face_normals) {
     shadows.prepare(top_down_view());

@@ -144,6 +144,10 @@ protected:
     // Every layer of a map (depth, or moments: RG32F, RGBA32F, RGBA16) as its bytes.
     std::vector<uint8_t> read_map(const MapImage& map);
 
+    // The scene's sun shadow of the box in `image`: check_footprint() with a 0.3 m edge
+    // band finds more than 500 shadowed pixels and no wrong one.
+    static void expect_box_shadow_of_the_sun(const VisibilityImage2D& image);
+
     // Compares visibility with the box at `centre` casting along `direction` (a sun), or
     // from `light_position` (a point light) when given. Pixels within `edge_band` metres of
     // the analytic shadow's edge are not judged.

@@ -65,9 +65,7 @@ TEST_F(DeviceMemory, TheCallersAllocatorServesEveryImageAndBufferAndGetsEachBack
         const MeshArrays box = box_mesh();
         const MeshArrays ground = ground_mesh();
         add_scene(shadows, box, ground);
-        const FootprintCheck check = check_footprint(render_visibility(shadows), kBoxCentre, kSunDirection, 0.3f);
-        EXPECT_GT(check.shadowed, 500u);
-        EXPECT_EQ(check.wrong, 0u);
+        expect_box_shadow_of_the_sun(render_visibility(shadows));
         EXPECT_GT(allocator.host_requests, 0) << "uniforms and uploads are host-visible";
         EXPECT_GT(allocator.requests, allocator.host_requests) << "maps and GPU buffers are device-local";
         EXPECT_EQ(shadows.memory().memory_blocks, 0u) << "Penumbra holds no memory of its own";

@@ -156,9 +156,7 @@ TEST_F(VisibilityTargets, UnfitTargetsAreInputErrorsNamingTheField) {
             target_of(image));
     });
     EXPECT_EQ(shadows.visibility_image().slots, 5u);
-    const FootprintCheck check = check_footprint(read_visibility(shadows, 0), kBoxCentre, kSunDirection, 0.3f);
-    EXPECT_GT(check.shadowed, 500u);
-    EXPECT_EQ(check.wrong, 0u);
+    expect_box_shadow_of_the_sun(read_visibility(shadows, 0));
 }
 
 }  // namespace

@@ -104,6 +104,11 @@ struct Image {
 
 Image create_image(const Device& device, const ImageDesc& desc);
 
+// Clears every layer of a depth image with attachment usage (whatever it held) to `depth`
+// and leaves it ShaderSampled: a map that is bound but has nothing drawn into it yet gets
+// defined contents rather than being made readable from undefined ones.
+void record_depth_clear_to_sampled(const Device& device, VkCommandBuffer cmd, const Image& image, float depth);
+
 // An RGBA8 sRGB texture with the given pixels, ready for sampling (SHADER_READ_ONLY).
 Image create_texture_rgba8(const OneTimeCommands& commands, uint32_t width, uint32_t height,
                            std::span<const uint8_t> rgba);
