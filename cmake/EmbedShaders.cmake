@@ -5,7 +5,10 @@
 # header rebuilds its users) and embeds the SPIR-V in a static library as uint32 arrays:
 # `std::span<const uint32_t> <namespace>::<identifier>()` per shader, declared in the
 # generated header <target>.hpp. An entry is "file" or "file:name:DEFINE[,DEFINE...]",
-# the latter compiling `file` with -D<DEFINE> under the identifier of `name`.
+# the latter compiling `file` with -D<DEFINE> under the identifier of `name`. A file named
+# <name>.<stage>.hlsl (forward_probe.comp.hlsl) is HLSL for that stage, compiled by glslang's
+# HLSL front end to SPIR-V 1.3: the front end decorates structured buffers as BufferBlock,
+# which later SPIR-V versions no longer have.
 function(penumbra_embed_shaders)
   cmake_parse_arguments(ARG "" "TARGET;NAMESPACE;SOURCE_DIR;TARGET_ENV" "INCLUDE_DIRS;SHADERS" ${ARGN})
   if(NOT ARG_TARGET_ENV)
@@ -34,11 +37,15 @@ function(penumbra_embed_shaders)
         list(APPEND define_flags -D${define})
       endforeach()
     endif()
+    set(language_flags "")
+    if(file MATCHES "\\.([a-z]+)\\.hlsl$")
+      set(language_flags -x hlsl -fshader-stage=${CMAKE_MATCH_1} --target-spv=spv1.3)
+    endif()
     string(MAKE_C_IDENTIFIER ${name} identifier)
     set(output ${generated_dir}/${name}.inc)
     add_custom_command(
       OUTPUT ${output}
-      COMMAND Vulkan::glslc --target-env=${ARG_TARGET_ENV} -O -Werror ${include_flags} ${define_flags}
+      COMMAND Vulkan::glslc --target-env=${ARG_TARGET_ENV} -O -Werror ${language_flags} ${include_flags} ${define_flags}
               -mfmt=c -MD -MF ${output}.d -o ${output} ${ARG_SOURCE_DIR}/${file}
       DEPENDS ${ARG_SOURCE_DIR}/${file}
       DEPFILE ${output}.d

@@ -12,7 +12,7 @@ install(TARGETS penumbra_library penumbra_passes penumbra_gpu penumbra_core penu
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/penumbra/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/penumbra
-        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "*.glsl" PATTERN "scene" EXCLUDE)
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.hlsl" PATTERN "scene" EXCLUDE)
 install(FILES ${PENUMBRA_GENERATED_INCLUDE}/penumbra/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/penumbra)
 install(EXPORT PenumbraTargets NAMESPACE Penumbra:: DESTINATION ${PENUMBRA_CMAKE_DIR})
 

@@ -40,7 +40,7 @@ else
 fi
 
 expected="$( (cd "$source_dir/include" && find penumbra -path penumbra/scene -prune -o -type f \
-  \( -name '*.hpp' -o -name '*.h' -o -name '*.glsl' \) -print; echo penumbra/version.hpp) | sort)"
+  \( -name '*.hpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.hlsl' \) -print; echo penumbra/version.hpp) | sort)"
 installed="$(cd "$prefix/include" && find . -type f | sed 's|^\./||' | sort)"
 if [[ "$expected" != "$installed" ]]; then
   echo "build_examples: the installed headers differ from the public ones:" >&2

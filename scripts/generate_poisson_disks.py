@@ -40,11 +40,11 @@ def best_candidate_disk(count, seed):
 
 
 def glsl_array(count, points):
-    lines = [f"const vec2 kPenumbraPoisson{count}[{count}] = vec2[]("]
+    lines = [f"PENUMBRA_CONST vec2 kPenumbraPoisson{count}[{count}] = {{"]
     for i in range(0, count, 4):
         row = ", ".join(f"vec2({x:.6f}, {y:.6f})" for x, y in points[i:i + 4])
         lines.append(f"    {row}{',' if i + 4 < count else ''}")
-    lines.append(");")
+    lines.append("};")
     return "\n".join(lines)
 
 
@@ -54,6 +54,8 @@ def main():
         "// unit disk (Mitchell's best candidate, fixed seeds), centred, farthest point at radius 1.",
         "#ifndef PENUMBRA_GLSL_POISSON_DISKS",
         "#define PENUMBRA_GLSL_POISSON_DISKS",
+        "",
+        '#include "penumbra/glsl/dialect.glsl"',
         "",
     ]
     for count in COUNTS:

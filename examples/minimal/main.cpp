@@ -5,14 +5,15 @@
 // its command buffer. Penumbra gets the device, the application's buffers as meshes, the
 // instances, the sun and the camera; per frame it fits and culls (prepare), records its
 // shadow maps into the application's command buffer, and the application's own fragment
-// shader samples them through Penumbra's descriptor set (set 0 here).
+// shader samples them through Penumbra's descriptor set (set 0 here): forward.frag, or with
+// --hlsl the same shader in HLSL, forward.frag.hlsl (Penumbra's HLSL library; same image).
 //
 // Fixed scene: a 2 m box centred at (0, 3, 0) over a 40 x 40 m plane at y = 0, camera at
 // (0, 6, 12) looking at the origin (60 degrees vertically, 640 x 360), sun travelling
 // along (-0.4, -1, -0.3). Writes the sun's visibility as a 16-bit PNG: 65535 lit (and
 // where there is no geometry), 0 in shadow and on faces turned away from the sun.
 //
-//   penumbra_minimal out.png [--validate]
+//   penumbra_minimal out.png [--validate] [--hlsl]
 #include <penumbra/penumbra.hpp>
 
 #include <array>
@@ -35,6 +36,9 @@ const uint32_t kVertexShader[] =
 const uint32_t kFragmentShader[] =
 #include "forward.frag.inc"
     ;
+const uint32_t kHlslFragmentShader[] =
+#include "forward.frag.hlsl.inc"
+    ;
 
 struct PushConstants {
     penumbra::Mat4 view_projection;
@@ -48,7 +52,8 @@ struct ForwardPipeline {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
 
-    ForwardPipeline(const example::Device& owner, const penumbra::ShadowSystem& shadows) : device(owner.device) {
+    ForwardPipeline(const example::Device& owner, const penumbra::ShadowSystem& shadows, bool hlsl)
+        : device(owner.device) {
         const VkDescriptorSetLayout set_layout = shadows.descriptor_set_layout();
         const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(PushConstants)};
         VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -59,7 +64,9 @@ struct ForwardPipeline {
         EXAMPLE_CHECK(vkCreatePipelineLayout(device, &layout_info, nullptr, &layout));
 
         const VkShaderModule vertex = example::shader_module(owner, kVertexShader, sizeof(kVertexShader));
-        const VkShaderModule fragment = example::shader_module(owner, kFragmentShader, sizeof(kFragmentShader));
+        const VkShaderModule fragment =
+            hlsl ? example::shader_module(owner, kHlslFragmentShader, sizeof(kHlslFragmentShader))
+                 : example::shader_module(owner, kFragmentShader, sizeof(kFragmentShader));
         const penumbra::ShaderSpecialization specialization = shadows.shader_specialization(0);
         const VkSpecializationInfo specialization_info = specialization.info();
         std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
@@ -82,7 +89,7 @@ struct ForwardPipeline {
     }
 };
 
-std::vector<uint16_t> render(const example::Device& device) {
+std::vector<uint16_t> render(const example::Device& device, bool hlsl) {
     const example::SceneBuffers scene(device);
     std::vector<uint16_t> visibility;
     {
@@ -101,7 +108,7 @@ std::vector<uint16_t> render(const example::Device& device) {
 
         const penumbra::ViewDesc view = example::camera_view(kWidth, kHeight);
         const penumbra::FrameInfo& frame = shadows.prepare(view);
-        const ForwardPipeline forward(device, shadows);
+        const ForwardPipeline forward(device, shadows, hlsl);
         const example::Image target(device, VK_FORMAT_R16_UNORM, kWidth, kHeight,
                                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                     VK_IMAGE_ASPECT_COLOR_BIT);
@@ -134,11 +141,11 @@ std::vector<uint16_t> render(const example::Device& device) {
     return visibility;
 }
 
-int run(const std::string& output, bool validate) {
+int run(const std::string& output, bool validate, bool hlsl) {
     std::vector<uint16_t> visibility;
     {
         const example::Device device(validate);
-        visibility = render(device);
+        visibility = render(device, hlsl);
     }
     if (example::validation_message_count() > 0) {
         std::fprintf(stderr, "penumbra_minimal: the validation layer reported %u message(s)\n",
@@ -153,13 +160,21 @@ int run(const std::string& output, bool validate) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: penumbra_minimal OUT.png [--validate]\n");
+    bool validate = false;
+    bool hlsl = false;
+    bool usage_error = argc < 2;
+    for (int i = 2; i < argc; ++i) {
+        const std::string flag = argv[i];
+        validate = validate || flag == "--validate";
+        hlsl = hlsl || flag == "--hlsl";
+        usage_error = usage_error || (flag != "--validate" && flag != "--hlsl");
+    }
+    if (usage_error) {
+        std::fprintf(stderr, "usage: penumbra_minimal OUT.png [--validate] [--hlsl]\n");
         return 2;
     }
-    const bool validate = argc > 2 && std::string(argv[2]) == "--validate";
     try {
-        return run(argv[1], validate);
+        return run(argv[1], validate, hlsl);
     } catch (const std::exception& error) {
         std::fprintf(stderr, "penumbra_minimal: %s\n", error.what());
         return 1;

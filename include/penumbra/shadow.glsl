@@ -2,7 +2,7 @@
 // "Forward shading"). Every filter of Settings::shadow.filter, for the sun and for spot
 // and point lights, reading the maps of a ShadowSystem through its descriptor set.
 //
-//   #define PENUMBRA_SHADOW_SET 2      // the set index you bind FrameInfo::descriptor_set at (default 0)
+//   #define PENUMBRA_SHADOW_SET 2      // the set index you bind FrameInfo::descriptor_set at (required)
 //   #define PENUMBRA_SPEC_ID_BASE 100  // first specialization constant id (default 0)
 //   #include "penumbra/shadow.glsl"
 //   #include "penumbra/shadow_fragment.glsl"  // fragment shaders: helpers with derivatives
@@ -38,7 +38,8 @@
 #include "penumbra/shadow_interface.h"
 
 #ifndef PENUMBRA_SHADOW_SET
-#define PENUMBRA_SHADOW_SET 0
+// No default: set 0 is the set most shaders already use for their own resources.
+#error "define PENUMBRA_SHADOW_SET, the descriptor set index the ShadowSystem's set is bound at, before including penumbra/shadow.glsl"
 #endif
 
 layout(std140, set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_SHADOW_UNIFORMS) uniform PenumbraShadowBlock {
@@ -69,6 +70,7 @@ layout(std430, set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_PAG
 layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL) uniform sampler2DShadow penumbra_virtual_pool;
 layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH) uniform sampler2D penumbra_virtual_pool_depth;
 
+#include "penumbra/glsl/reads.glsl"
 #include "penumbra/glsl/filter_constants.glsl"
 #include "penumbra/glsl/poisson_disks.glsl"
 #include "penumbra/glsl/moments.glsl"

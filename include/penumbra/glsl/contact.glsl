@@ -20,6 +20,8 @@
 #ifndef PENUMBRA_GLSL_CONTACT
 #define PENUMBRA_GLSL_CONTACT
 
+#include "penumbra/glsl/dialect.glsl"
+
 // What the trace reads of the caller's depth buffer.
 struct PenumbraContactScreen {
     mat4 view_projection;          // world -> the depth buffer's clip space
@@ -45,7 +47,8 @@ float penumbra_contact_strength(vec3 world_position) {
 // point: dot(row, vec4(point, 1)).
 vec4 penumbra_view_depth_row() {
     const mat4 view = penumbra_shadow.camera_view;
-    return -vec4(view[0][2], view[1][2], view[2][2], view[3][2]);
+    return -vec4(PENUMBRA_MATRIX_ELEMENT(view, 0, 2), PENUMBRA_MATRIX_ELEMENT(view, 1, 2), PENUMBRA_MATRIX_ELEMENT(view, 2, 2),
+                 PENUMBRA_MATRIX_ELEMENT(view, 3, 2));
 }
 
 // View-depth differences across the four texels around a sample, relative to the nearer,
@@ -54,10 +57,10 @@ vec4 penumbra_view_depth_row() {
 // lose. A plane seen at a grazing angle at low resolution changes by more per texel and
 // falls back to the nearest texel too, which there rarely finds the plane itself: seen at
 // a grazing angle, a sample's height above it is magnified along the line of sight.
-const float kPenumbraContactContinuous = 0.01;
+PENUMBRA_CONST float kPenumbraContactContinuous = 0.01;
 
 // Texels from the start (each way) within which the trace interpolates the depth.
-const float kPenumbraContactInterpolated = 4.0;
+PENUMBRA_CONST float kPenumbraContactInterpolated = 4.0;
 
 // The view depth of the surface the depth buffer holds at q = (ndc, depth, 1): with h =
 // inverse_view_projection * q that surface is h.xyz / h.w, so its view depth is
@@ -78,12 +81,12 @@ float penumbra_contact_view_depth(vec2 ndc, float depth, vec4 surface_row, vec4 
 // affine in the depth, so the relative difference of the nearest and farthest of the four is
 // |w_row.z (high - low)| / the larger h.w: no division per sample. (Under an orthographic
 // projection h.w is constant and every four count as continuous.)
-float penumbra_contact_depth(sampler2D depth_buffer, PenumbraContactScreen screen, vec2 ndc, vec4 w_row) {
+float penumbra_contact_depth(PENUMBRA_DEPTH_TEXTURE(depth_buffer), PenumbraContactScreen screen, vec2 ndc, vec4 w_row) {
     const vec2 position = (ndc * 0.5 + 0.5) * screen.size - 0.5;  // texel centres at integers
     const vec2 corner = floor(position);
     const vec2 f = position - corner;
     // x: (i, j + 1), y: (i + 1, j + 1), z: (i + 1, j), w: (i, j), with (i, j) = corner.
-    const vec4 d = textureGather(depth_buffer, (corner + 1.0) / screen.size, 0);
+    const vec4 d = penumbra_depth_quad(PENUMBRA_MAP(depth_buffer), (corner + 1.0) / screen.size);
     const float low = min(min(d.x, d.y), min(d.z, d.w));
     const float high = max(max(d.x, d.y), max(d.z, d.w));
     const bool empty = any(equal(d, vec4(screen.background_depth)));
@@ -97,18 +100,18 @@ float penumbra_contact_depth(sampler2D depth_buffer, PenumbraContactScreen scree
 
 // 0 where a sample of the ray from `start` along `ray` (its whole length) lies behind the
 // depth buffer's surface by less than the thickness, else 1.
-float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 start, vec3 ray, float jitter) {
+float penumbra_contact_trace(PENUMBRA_DEPTH_TEXTURE(depth_buffer), PenumbraContactScreen screen, vec3 start, vec3 ray, float jitter) {
     const uint steps = penumbra_shadow.contact_steps;
     // Clip coordinates and view depth are affine in the world point, so along the ray they
     // advance by constant amounts: the matrix products are per ray, not per sample.
-    const vec4 clip_start = screen.view_projection * vec4(start, 1.0);
-    const vec4 clip_ray = screen.view_projection * vec4(ray, 0.0);
+    const vec4 clip_start = PENUMBRA_MUL(screen.view_projection, vec4(start, 1.0));
+    const vec4 clip_ray = PENUMBRA_MUL(screen.view_projection, vec4(ray, 0.0));
     const vec4 depth_row = penumbra_view_depth_row();
     const float depth_start = dot(depth_row, vec4(start, 1.0));
     const float depth_ray = dot(depth_row.xyz, ray);
     // For penumbra_contact_view_depth().
-    const vec4 surface_row = depth_row * screen.inverse_view_projection;
-    const vec4 w_row = vec4(0.0, 0.0, 0.0, 1.0) * screen.inverse_view_projection;
+    const vec4 surface_row = PENUMBRA_ROW_MUL(depth_row, screen.inverse_view_projection);
+    const vec4 w_row = PENUMBRA_ROW_MUL(vec4(0.0, 0.0, 0.0, 1.0), screen.inverse_view_projection);
     // Samples still inside the start's own texel can only find the surface the ray leaves
     // (at silhouettes, where the depth is not interpolated, it lies up to a texel's depth
     // change in front of them): they are skipped.
@@ -125,8 +128,8 @@ float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen scree
         // Near the start the samples lie little above the surface they left, within the
         // error of a point-sampled depth: interpolate there; farther on, one texel is enough.
         const float stored = all(lessThan(from_start, vec2(kPenumbraContactInterpolated)))
-                                 ? penumbra_contact_depth(depth_buffer, screen, ndc, w_row)
-                                 : texelFetch(depth_buffer, min(ivec2(texel_position), ivec2(screen.size) - 1), 0).r;
+                                 ? penumbra_contact_depth(PENUMBRA_MAP(depth_buffer), screen, ndc, w_row)
+                                 : penumbra_depth_texel(PENUMBRA_MAP(depth_buffer), min(ivec2(texel_position), ivec2(screen.size) - 1));
         if (stored == screen.background_depth) continue;
         // How far the sample lies behind the surface on its own line of sight.
         const float behind =
@@ -138,34 +141,34 @@ float penumbra_contact_trace(sampler2D depth_buffer, PenumbraContactScreen scree
 
 // The contact visibility toward a light, over `ray_length` metres along `to_light` (unit): 1
 // lit, down to 0 where the trace finds an occluder.
-float penumbra_contact_toward(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
+float penumbra_contact_toward(PENUMBRA_DEPTH_TEXTURE(depth_buffer), PenumbraContactScreen screen, vec3 world_position,
                               vec3 geometric_normal, vec3 to_light, float ray_length, vec2 pixel) {
     const float strength = penumbra_contact_strength(world_position);
     if (strength <= 0.0) return 1.0;  // beyond contact_max_distance: no samples
     const vec3 start = world_position + geometric_normal * penumbra_shadow.contact_bias;
     const float lit =
-        penumbra_contact_trace(depth_buffer, screen, start, to_light * ray_length, penumbra_contact_jitter(pixel));
+        penumbra_contact_trace(PENUMBRA_MAP(depth_buffer), screen, start, to_light * ray_length, penumbra_contact_jitter(pixel));
     return 1.0 - (1.0 - lit) * strength;
 }
 
 // The sun's contact visibility (1 when Settings::contact leaves the sun out or there is
 // no sun). `geometric_normal`: the surface's face normal, toward the camera.
-float penumbra_sun_contact(sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
+float penumbra_sun_contact(PENUMBRA_DEPTH_TEXTURE(depth_buffer), PenumbraContactScreen screen, vec3 world_position,
                            vec3 geometric_normal, vec2 pixel) {
     if ((penumbra_shadow.contact_lights & PENUMBRA_CONTACT_SUN) == 0u || penumbra_shadow.to_sun.w == 0.0) return 1.0;
-    return penumbra_contact_toward(depth_buffer, screen, world_position, geometric_normal, penumbra_shadow.to_sun.xyz,
+    return penumbra_contact_toward(PENUMBRA_MAP(depth_buffer), screen, world_position, geometric_normal, penumbra_shadow.to_sun.xyz,
                                    penumbra_shadow.contact_length, pixel);
 }
 
 // Spot or point light `index`'s contact visibility; the ray stops at the light.
-float penumbra_light_contact(uint index, sampler2D depth_buffer, PenumbraContactScreen screen, vec3 world_position,
+float penumbra_light_contact(uint index, PENUMBRA_DEPTH_TEXTURE(depth_buffer), PenumbraContactScreen screen, vec3 world_position,
                              vec3 geometric_normal, vec2 pixel) {
     if ((penumbra_shadow.contact_lights & PENUMBRA_CONTACT_LOCAL) == 0u || index >= penumbra_local.light_count)
         return 1.0;
     const vec3 to_light = penumbra_local.lights[index].position - world_position;
     const float distance = length(to_light);
     if (distance <= 0.0) return 1.0;
-    return penumbra_contact_toward(depth_buffer, screen, world_position, geometric_normal, to_light / distance,
+    return penumbra_contact_toward(PENUMBRA_MAP(depth_buffer), screen, world_position, geometric_normal, to_light / distance,
                                    min(penumbra_shadow.contact_length, distance), pixel);
 }
 

@@ -22,6 +22,17 @@
 #define kPenumbraMomentsPoisson (penumbra_shadow.filter_moments_poisson != 0u)
 #define kPenumbraEvsmComponents (penumbra_shadow.filter_evsm_components)
 #define kPenumbraMsmQuantized (penumbra_shadow.filter_msm_quantized != 0u)
+#elif defined(PENUMBRA_HLSL)
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_FILTER_MODE)]] const uint kPenumbraFilterMode =
+    PENUMBRA_FILTER_HARD;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_SEARCH_TAPS)]] const uint kPenumbraSearchTaps = 16u;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_FILTER_TAPS)]] const uint kPenumbraFilterTaps = 25u;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_RECEIVER_PLANE)]] const bool kPenumbraReceiverPlaneBias = true;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_PCSS_EARLY_OUT)]] const bool kPenumbraPcssEarlyOut = false;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_MOMENTS_POISSON)]] const bool kPenumbraMomentsPoisson = false;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_EVSM_COMPONENTS)]] const uint kPenumbraEvsmComponents = 4u;
+[[vk::constant_id(PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_MSM_QUANTIZED)]] const bool kPenumbraMsmQuantized = false;
+
 #else
 layout(constant_id = PENUMBRA_SPEC_ID_BASE + PENUMBRA_SPEC_FILTER_MODE) const uint kPenumbraFilterMode =
     PENUMBRA_FILTER_HARD;

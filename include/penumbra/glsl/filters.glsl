@@ -12,6 +12,8 @@
 #ifndef PENUMBRA_GLSL_FILTERS
 #define PENUMBRA_GLSL_FILTERS
 
+#include "penumbra/glsl/dialect.glsl"
+
 // A receiver in one shadow map, as the filters see it.
 struct PenumbraShadowView {
     vec2 uv;              // the receiver in the map
@@ -48,7 +50,18 @@ mat2 penumbra_sample_rotation(vec2 pixel) {
     const float angle = 6.28318530718 * fract(noise + frame_offset);
     const float c = cos(angle);
     const float s = sin(angle);
-    return mat2(c, s, -s, c);
+    return PENUMBRA_MAT2_COLUMNS(vec2(c, s), vec2(-s, c));
+}
+
+// The gradient (dz/du, dz/dv) of a plane over a map whose depth changes by `depth_steps`.x
+// over the UV step `step_x` and by .y over `step_y`: with J the matrix of the two steps as
+// columns, the gradient is depth_steps J^-1 (written out for the 2 x 2 case). 0 where the
+// steps are parallel, their determinant below `min_determinant` in magnitude.
+vec2 penumbra_plane_gradient(vec2 depth_steps, vec2 step_x, vec2 step_y, float min_determinant) {
+    const float det = step_x.x * step_y.y - step_y.x * step_x.y;
+    if (abs(det) < min_determinant) return vec2(0.0);
+    return vec2(depth_steps.x * step_y.y - depth_steps.y * step_x.y, depth_steps.y * step_x.x - depth_steps.x * step_y.x) /
+           det;
 }
 
 // The UV of a tap `offset` (UV) away from the receiver, inside the view's bounds, so that
@@ -66,7 +79,7 @@ vec2 penumbra_layer_uv(PenumbraShadowView view, vec2 tap_uv) { return tap_uv + v
 // speckles creases (box-on-plane, one cascade, pcf: mean |error| 0.0008 -> 0.0018), 0.75
 // and 1 let ClearCoatTest's ground light up under its tiles (pcf: 3.1 and 5.2 % false lit
 // outside edges), 0.5 does neither (0.0010; 0.28 %).
-const float kPenumbraReceiverPlaneSlack = 0.5;
+PENUMBRA_CONST float kPenumbraReceiverPlaneSlack = 0.5;
 
 // Bias for the texels a tap actually compares: a bilinear comparison reads texel centres
 // up to one texel away from the tap on each axis, where the receiver's plane has moved
@@ -111,41 +124,41 @@ float penumbra_reference_depth(PenumbraShadowView view, vec2 tap_uv, float stati
 // A bilinear comparison at `uv` of the view's map: one hardware comparison tap, or four
 // texel reads through a virtual shadow map's pages. (One return after an if/else: an early
 // return here crashes the SPIR-V optimizer of Debian 12's glslc, shaderc 2023.2, at -O.)
-float penumbra_compare_at(sampler2DArrayShadow map, PenumbraShadowView view, vec2 uv, float reference) {
+float penumbra_compare_at(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view, vec2 uv, float reference) {
     float lit;
     if (view.virtual_level >= 0) {
         lit = penumbra_virtual_compare(uint(view.virtual_level), uv, reference);
     } else {
-        lit = texture(map, vec4(penumbra_layer_uv(view, uv), view.layer, reference));
+        lit = penumbra_map_compare(PENUMBRA_MAP(map), penumbra_layer_uv(view, uv), view.layer, reference);
     }
     return lit;
 }
 
 // The stored depth under `uv` of the view's map (PCSS's blocker search).
-float penumbra_depth_at(sampler2DArray depth_map, PenumbraShadowView view, vec2 uv) {
+float penumbra_depth_at(PENUMBRA_TEXTURE_ARRAY(depth_map), PenumbraShadowView view, vec2 uv) {
     float depth;
     if (view.virtual_level >= 0) {
         depth = penumbra_virtual_depth(uint(view.virtual_level), uv);
     } else {
-        depth = texture(depth_map, vec3(penumbra_layer_uv(view, uv), view.layer)).r;
+        depth = penumbra_map_read(PENUMBRA_MAP(depth_map), penumbra_layer_uv(view, uv), view.layer).r;
     }
     return depth;
 }
 
 // One comparison tap `offset` (UV) away from the receiver.
-float penumbra_compare_tap(sampler2DArrayShadow map, PenumbraShadowView view, vec2 offset, float static_bias) {
+float penumbra_compare_tap(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view, vec2 offset, float static_bias) {
     const vec2 uv = penumbra_view_tap(view, offset);
-    return penumbra_compare_at(map, view, uv, penumbra_reference_depth(view, uv, static_bias));
+    return penumbra_compare_at(PENUMBRA_MAP(map), view, uv, penumbra_reference_depth(view, uv, static_bias));
 }
 
 // hard: one comparison tap, no receiver-plane bias.
-float penumbra_filter_hard(sampler2DArrayShadow map, PenumbraShadowView view) {
-    return penumbra_compare_at(map, view, penumbra_view_tap(view, vec2(0.0)), view.depth);
+float penumbra_filter_hard(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view) {
+    return penumbra_compare_at(PENUMBRA_MAP(map), view, penumbra_view_tap(view, vec2(0.0)), view.depth);
 }
 
 // pcf: the (2R+1) x (2R+1) grid of comparison taps one texel apart, as (R+1)^2 weighted
 // taps (penumbra/glsl/pcf.glsl).
-float penumbra_filter_pcf(sampler2DArrayShadow map, PenumbraShadowView view) {
+float penumbra_filter_pcf(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view) {
     const int radius = int(penumbra_shadow.pcf_radius);
     const float texel = view.texel_uv;
     const float bias = penumbra_receiver_plane_static_bias(view);
@@ -155,7 +168,7 @@ float penumbra_filter_pcf(sampler2DArrayShadow map, PenumbraShadowView view) {
         const vec2 y = penumbra_pcf_tap(f.y, radius, j);
         for (int i = 0; i <= radius; ++i) {
             const vec2 x = penumbra_pcf_tap(f.x, radius, i);
-            lit += x.y * y.y * penumbra_compare_tap(map, view, vec2(x.x, y.x) * texel, bias);
+            lit += x.y * y.y * penumbra_compare_tap(PENUMBRA_MAP(map), view, vec2(x.x, y.x) * texel, bias);
         }
     }
     const float side = float(2 * radius + 1);
@@ -163,20 +176,20 @@ float penumbra_filter_pcf(sampler2DArrayShadow map, PenumbraShadowView view) {
 }
 
 // The average of comparison taps over a rotated Poisson disk of per-axis radius `radius_uv`.
-float penumbra_poisson_comparisons(sampler2DArrayShadow map, PenumbraShadowView view, uint taps, vec2 radius_uv,
+float penumbra_poisson_comparisons(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view, uint taps, vec2 radius_uv,
                                    mat2 rotation) {
     const float bias = penumbra_receiver_plane_static_bias(view);
     float lit = 0.0;
     for (uint i = 0u; i < taps; ++i) {
-        lit += penumbra_compare_tap(map, view, (rotation * penumbra_poisson_tap(taps, i)) * radius_uv, bias);
+        lit += penumbra_compare_tap(PENUMBRA_MAP(map), view, PENUMBRA_MUL(rotation, penumbra_poisson_tap(taps, i)) * radius_uv, bias);
     }
     return lit / float(taps);
 }
 
 // poisson: 16 or 32 comparison taps on a Poisson disk of poisson_radius texels, rotated per pixel.
-float penumbra_filter_poisson(sampler2DArrayShadow map, PenumbraShadowView view, vec2 pixel) {
+float penumbra_filter_poisson(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view, vec2 pixel) {
     const vec2 radius_uv = vec2(penumbra_shadow.poisson_radius_texels * view.texel_uv);
-    return penumbra_poisson_comparisons(map, view, kPenumbraSearchTaps, radius_uv, penumbra_sample_rotation(pixel));
+    return penumbra_poisson_comparisons(PENUMBRA_MAP(map), view, kPenumbraSearchTaps, radius_uv, penumbra_sample_rotation(pixel));
 }
 
 struct PenumbraBlockerSearch {
@@ -193,13 +206,15 @@ float penumbra_depth_to_distance(PenumbraShadowView view, float depth) {
 
 // PCSS step 1 (Fernando 2005): raw depths nearer the light than the receiver's plane,
 // over a rotated Poisson disk of the search radius.
-PenumbraBlockerSearch penumbra_find_blockers(sampler2DArray depth_map, PenumbraShadowView view, vec2 radius_uv,
+PenumbraBlockerSearch penumbra_find_blockers(PENUMBRA_TEXTURE_ARRAY(depth_map), PenumbraShadowView view, vec2 radius_uv,
                                              mat2 rotation) {
     const float bias = penumbra_receiver_plane_static_bias(view);
-    PenumbraBlockerSearch search = PenumbraBlockerSearch(0.0, 0u);
+    PenumbraBlockerSearch search;
+    search.average_distance = 0.0;
+    search.count = 0u;
     for (uint i = 0u; i < kPenumbraSearchTaps; ++i) {
-        const vec2 uv = penumbra_view_tap(view, (rotation * penumbra_poisson_tap(kPenumbraSearchTaps, i)) * radius_uv);
-        const float stored = penumbra_depth_at(depth_map, view, uv);
+        const vec2 uv = penumbra_view_tap(view, PENUMBRA_MUL(rotation, penumbra_poisson_tap(kPenumbraSearchTaps, i)) * radius_uv);
+        const float stored = penumbra_depth_at(PENUMBRA_MAP(depth_map), view, uv);
         if (stored > penumbra_reference_depth(view, uv, bias)) {  // reverse-Z: larger = nearer the light
             search.average_distance += penumbra_depth_to_distance(view, stored);
             search.count += 1u;
@@ -232,7 +247,7 @@ vec2 penumbra_pcss_disk_radius(vec2 penumbra_radius, float texel) {
 
 // A disk narrower than this fraction of a texel barely moves any tap's bilinear weights:
 // PCSS then makes one comparison at the receiver, without the rotation's noise or its cost.
-const float kPenumbraSingleTapDisk = 0.05;
+PENUMBRA_CONST float kPenumbraSingleTapDisk = 0.05;
 
 bool penumbra_pcss_is_single_tap(vec2 disk_radius, float texel) {
     return max(disk_radius.x, disk_radius.y) < kPenumbraSingleTapDisk * texel;
@@ -240,8 +255,8 @@ bool penumbra_pcss_is_single_tap(vec2 disk_radius, float texel) {
 
 // PCSS's comparison at the receiver itself: the hard filter's, plus the receiver-plane
 // bias's static term when that bias is on (then PCSS's only protection against acne).
-float penumbra_pcss_centre_tap(sampler2DArrayShadow map, PenumbraShadowView view) {
-    return penumbra_compare_tap(map, view, vec2(0.0), penumbra_receiver_plane_centre_bias(view));
+float penumbra_pcss_centre_tap(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view) {
+    return penumbra_compare_tap(PENUMBRA_MAP(map), view, vec2(0.0), penumbra_receiver_plane_centre_bias(view));
 }
 
 // PCSS's comparison at the receiver for a light footprint of radius `penumbra_radius`
@@ -253,7 +268,7 @@ float penumbra_pcss_centre_tap(sampler2DArrayShadow map, PenumbraShadowView view
 // (penumbra_pcss_disk_radius); towards a contact, the nearest texel's comparison. The
 // bilinear ramp made sub-texel penumbrae a texel wide (issue 16: ClearCoatTest's 0.04 px
 // penumbra rendered 0.47 px wide, as the hard filter's).
-float penumbra_pcss_narrow_tap(sampler2DArrayShadow map, PenumbraShadowView view, vec2 penumbra_radius) {
+float penumbra_pcss_narrow_tap(PENUMBRA_COMPARISON_ARRAY(map), PenumbraShadowView view, vec2 penumbra_radius) {
     const float texel = view.texel_uv;
     const vec2 uv = penumbra_view_tap(view, vec2(0.0));
     const vec2 position = penumbra_layer_uv(view, uv) / texel - 0.5;  // in texel centres
@@ -264,7 +279,7 @@ float penumbra_pcss_narrow_tap(sampler2DArrayShadow map, PenumbraShadowView view
     // Gather order: x = (first.x, first.y + 1), y = (+1, +1), z = (+1, first.y), w = first.
     const vec4 lit = view.virtual_level >= 0
                          ? penumbra_virtual_gather(uint(view.virtual_level), ivec2(first), reference)
-                         : textureGather(map, vec3((first + 1.0) * texel, view.layer), reference);
+                         : penumbra_map_compare_quad(PENUMBRA_MAP(map), first, texel, view.layer, reference);
     return mix(mix(lit.w, lit.z, weight.x), mix(lit.x, lit.y, weight.x), weight.y);
 }
 
@@ -272,7 +287,7 @@ float penumbra_pcss_narrow_tap(sampler2DArrayShadow map, PenumbraShadowView view
 // geometry in UV per axis (a cascade whose X and Y extents differ gets an elliptical
 // kernel). Where the penumbra is narrower than the bilinear comparison (the sun's usual
 // case unless the caster is far), it is one comparison at the receiver, as hard is.
-float penumbra_filter_pcss(sampler2DArrayShadow map, sampler2DArray depth_map, PenumbraShadowView view, vec2 pixel) {
+float penumbra_filter_pcss(PENUMBRA_COMPARISON_ARRAY(map), PENUMBRA_TEXTURE_ARRAY(depth_map), PenumbraShadowView view, vec2 pixel) {
     const float texel = view.texel_uv;
     const vec2 max_radius = vec2(texel * penumbra_shadow.pcss_max_penumbra_texels);
     const mat2 rotation = penumbra_sample_rotation(pixel);
@@ -282,8 +297,8 @@ float penumbra_filter_pcss(sampler2DArrayShadow map, sampler2DArray depth_map, P
     //    comparison at the receiver decides; returning lit there made contacts and thin
     //    gaps leak light. Every tap a blocker: the receiver is in the umbra (early out).
     const vec2 search_radius = clamp(view.pcss_search_radius, vec2(texel), max_radius);
-    const PenumbraBlockerSearch blockers = penumbra_find_blockers(depth_map, view, search_radius, rotation);
-    if (blockers.count == 0u) return penumbra_pcss_centre_tap(map, view);
+    const PenumbraBlockerSearch blockers = penumbra_find_blockers(PENUMBRA_MAP(depth_map), view, search_radius, rotation);
+    if (blockers.count == 0u) return penumbra_pcss_centre_tap(PENUMBRA_MAP(map), view);
     if (kPenumbraPcssEarlyOut && blockers.count == kPenumbraSearchTaps) return 0.0;
     // 2. Penumbra from the average blocker, at most the maximum.
     const vec2 penumbra_radius = min(penumbra_pcss_penumbra_radius(view, blockers.average_distance), max_radius);
@@ -291,28 +306,28 @@ float penumbra_filter_pcss(sampler2DArrayShadow map, sampler2DArray depth_map, P
     //    Every blocker found counts: a fade toward lit below 3 blockers (removed) erased
     //    the shadows of thin casters, which only a few search taps hit.
     const vec2 disk_radius = penumbra_pcss_disk_radius(penumbra_radius, texel);
-    if (penumbra_pcss_is_single_tap(disk_radius, texel)) return penumbra_pcss_narrow_tap(map, view, penumbra_radius);
-    return penumbra_poisson_comparisons(map, view, kPenumbraFilterTaps, disk_radius, rotation);
+    if (penumbra_pcss_is_single_tap(disk_radius, texel)) return penumbra_pcss_narrow_tap(PENUMBRA_MAP(map), view, penumbra_radius);
+    return penumbra_poisson_comparisons(PENUMBRA_MAP(map), view, kPenumbraFilterTaps, disk_radius, rotation);
 }
 
 // The smallest depth difference (in distance units, 0..1) that the moment filters
 // resolve: the minimum variance is its square (warped for EVSM). It absorbs float
 // rounding of the second moment (d^2 - mean^2 cancels).
-const float kPenumbraMomentDepthTolerance = 5e-4;
+PENUMBRA_CONST float kPenumbraMomentDepthTolerance = 5e-4;
 
 // Linear filtering (and the optional Poisson taps of poisson_radius texels) average the
 // moments: the average of a moment vector is the moment vector of the mixed
 // distribution, which is why moments can be prefiltered at all.
-vec4 penumbra_fetch_moments(sampler2DArray moments_map, PenumbraShadowView view, vec2 pixel) {
+vec4 penumbra_fetch_moments(PENUMBRA_TEXTURE_ARRAY(moments_map), PenumbraShadowView view, vec2 pixel) {
     if (!kPenumbraMomentsPoisson) {
-        return texture(moments_map, vec3(penumbra_layer_uv(view, penumbra_view_tap(view, vec2(0.0))), view.layer));
+        return penumbra_map_read(PENUMBRA_MAP(moments_map), penumbra_layer_uv(view, penumbra_view_tap(view, vec2(0.0))), view.layer);
     }
     const mat2 rotation = penumbra_sample_rotation(pixel);
     const vec2 radius_uv = vec2(penumbra_shadow.poisson_radius_texels * view.texel_uv);
     vec4 sum = vec4(0.0);
     for (uint i = 0u; i < 16u; ++i) {
-        const vec2 uv = penumbra_view_tap(view, (rotation * penumbra_poisson_tap(16u, i)) * radius_uv);
-        sum += texture(moments_map, vec3(penumbra_layer_uv(view, uv), view.layer));
+        const vec2 uv = penumbra_view_tap(view, PENUMBRA_MUL(rotation, penumbra_poisson_tap(16u, i)) * radius_uv);
+        sum += penumbra_map_read(PENUMBRA_MAP(moments_map), penumbra_layer_uv(view, uv), view.layer);
     }
     return sum / 16.0;
 }
@@ -406,27 +421,27 @@ float penumbra_moments_visibility(vec4 moments, float receiver) {
 }
 
 // vsm, evsm, msm: the filtered moments around the receiver against its own distance.
-float penumbra_filter_moments(sampler2DArray moments_map, PenumbraShadowView view, vec2 pixel) {
-    return penumbra_moments_visibility(penumbra_fetch_moments(moments_map, view, pixel), view.moments_distance);
+float penumbra_filter_moments(PENUMBRA_TEXTURE_ARRAY(moments_map), PenumbraShadowView view, vec2 pixel) {
+    return penumbra_moments_visibility(penumbra_fetch_moments(PENUMBRA_MAP(moments_map), view, pixel), view.moments_distance);
 }
 
 // The visibility of a receiver through one shadow map with the configured filter: the
 // comparison sampler `map` and the raw `depth_map` of the same depth, and `moments_map`.
-float penumbra_filter_shadow(sampler2DArrayShadow map, sampler2DArray depth_map, sampler2DArray moments_map,
+float penumbra_filter_shadow(PENUMBRA_COMPARISON_ARRAY(map), PENUMBRA_TEXTURE_ARRAY(depth_map), PENUMBRA_TEXTURE_ARRAY(moments_map),
                              PenumbraShadowView view, vec2 pixel) {
     switch (kPenumbraFilterMode) {
         case PENUMBRA_FILTER_PCF:
-            return penumbra_filter_pcf(map, view);
+            return penumbra_filter_pcf(PENUMBRA_MAP(map), view);
         case PENUMBRA_FILTER_POISSON:
-            return penumbra_filter_poisson(map, view, pixel);
+            return penumbra_filter_poisson(PENUMBRA_MAP(map), view, pixel);
         case PENUMBRA_FILTER_PCSS:
-            return penumbra_filter_pcss(map, depth_map, view, pixel);
+            return penumbra_filter_pcss(PENUMBRA_MAP(map), PENUMBRA_MAP(depth_map), view, pixel);
         case PENUMBRA_FILTER_VSM:
         case PENUMBRA_FILTER_EVSM:
         case PENUMBRA_FILTER_MSM:
-            return penumbra_filter_moments(moments_map, view, pixel);
+            return penumbra_filter_moments(PENUMBRA_MAP(moments_map), view, pixel);
         default:  // PENUMBRA_FILTER_HARD
-            return penumbra_filter_hard(map, view);
+            return penumbra_filter_hard(PENUMBRA_MAP(map), view);
     }
 }
 

@@ -8,6 +8,8 @@
 #ifndef PENUMBRA_GLSL_LOCAL
 #define PENUMBRA_GLSL_LOCAL
 
+#include "penumbra/glsl/dialect.glsl"
+
 // Cube face of a direction from the light: +X, -X, +Y, -Y, +Z, -Z (src/core/local_lights.hpp).
 int penumbra_cube_face(vec3 direction) {
     const vec3 a = abs(direction);
@@ -28,7 +30,7 @@ float penumbra_local_texel_uv() { return penumbra_local.texel_uv; }
 
 // A world point in `layer`: (u, v) scaled into the light's corner, reverse-Z depth, clip w.
 vec4 penumbra_project_to_layer(int layer, float uv_scale, vec3 world_position) {
-    const vec4 clip = penumbra_local.layer_view_projection[layer] * vec4(world_position, 1.0);
+    const vec4 clip = PENUMBRA_MUL(penumbra_local.layer_view_projection[layer], vec4(world_position, 1.0));
     const vec3 ndc = clip.xyz / clip.w;
     return vec4((ndc.xy * 0.5 + 0.5) * uv_scale, ndc.z, clip.w);
 }
@@ -47,9 +49,9 @@ vec2 penumbra_local_receiver_plane_gradient(PenumbraLocalShadow light, int layer
     const vec3 bitangent = cross(plane_normal, tangent);
     const vec4 a = penumbra_project_to_layer(layer, light.uv_scale, world_position + tangent * step_world);
     const vec4 b = penumbra_project_to_layer(layer, light.uv_scale, world_position + bitangent * step_world);
-    const mat2 uv_jacobian = mat2(a.xy - projected.xy, b.xy - projected.xy);  // columns: the steps in (u, v)
-    if (abs(determinant(uv_jacobian)) < 1e-24) return vec2(0.0);            // the light sees the plane edge-on
-    const vec2 gradient = vec2(a.z - projected.z, b.z - projected.z) * inverse(uv_jacobian);
+    // 0 where the light sees the plane edge-on (the two steps in (u, v) parallel).
+    const vec2 gradient =
+        penumbra_plane_gradient(vec2(a.z - projected.z, b.z - projected.z), a.xy - projected.xy, b.xy - projected.xy, 1e-24);
     const float n = light.near_plane;
     const float f = light.range;
     const float limit =
@@ -67,7 +69,12 @@ PenumbraLocalCoord penumbra_project_to_local_shadow(PenumbraLocalShadow light, v
     const float texel_world = light.fov_scale * texel_uv * length(from_light);
     const vec3 offset_position = world_position + normal * (penumbra_local.normal_offset_texels * texel_world);
     const vec4 projected = penumbra_project_to_layer(layer, light.uv_scale, offset_position);
-    PenumbraLocalCoord coord = PenumbraLocalCoord(projected.xy, projected.z, float(layer), projected.w, vec2(0.0));
+    PenumbraLocalCoord coord;
+    coord.uv = projected.xy;
+    coord.depth = projected.z;
+    coord.layer = float(layer);
+    coord.distance = projected.w;
+    coord.depth_gradient = vec2(0.0);
     if (penumbra_uses_receiver_plane_bias()) {
         coord.depth_gradient =
             penumbra_local_receiver_plane_gradient(light, layer, offset_position, plane_normal, projected, texel_world);
@@ -130,7 +137,8 @@ float penumbra_local_shadow(PenumbraLocalShadow light, vec3 world_position, vec3
     const PenumbraLocalCoord coord = penumbra_project_to_local_shadow(light, world_position, normal, plane_normal);
     if (coord.depth <= 0.0) return 1.0;  // beyond the range
     if (penumbra_outside_spot_map(light, coord)) return 1.0;
-    return penumbra_filter_shadow(penumbra_local_map, penumbra_local_depth, penumbra_local_moments,
+    return penumbra_filter_shadow(PENUMBRA_MAP(penumbra_local_map), PENUMBRA_MAP(penumbra_local_depth),
+                                  PENUMBRA_MAP(penumbra_local_moments),
                                   penumbra_local_view(light, coord), pixel);
 }
 

@@ -14,7 +14,9 @@
 #ifndef PENUMBRA_GLSL_PCF
 #define PENUMBRA_GLSL_PCF
 
-const int kPenumbraMaxPcfRadius = PENUMBRA_MAX_PCF_RADIUS;  // FilterSettings::pcf_radius's upper bound
+#include "penumbra/glsl/dialect.glsl"
+
+PENUMBRA_CONST int kPenumbraMaxPcfRadius = PENUMBRA_MAX_PCF_RADIUS;  // FilterSettings::pcf_radius's upper bound
 
 // Tap `pair` (0..R) of one axis of the kernel: its offset from the receiver in texels (x)
 // and its weight (y; an axis's weights sum to 2R + 1). `f` is the receiver's position past

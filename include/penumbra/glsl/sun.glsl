@@ -10,6 +10,8 @@
 #ifndef PENUMBRA_GLSL_SUN
 #define PENUMBRA_GLSL_SUN
 
+#include "penumbra/glsl/dialect.glsl"
+
 int penumbra_cascade_count() { return int(penumbra_shadow.cascade_count); }
 
 float penumbra_cascade_split_far(int cascade) { return penumbra_shadow.cascades[cascade].split_far; }
@@ -20,7 +22,7 @@ float penumbra_cascade_split_near(int cascade) {
 
 // Distance along the prepared camera's view direction.
 float penumbra_view_depth(vec3 world_position) {
-    return -(penumbra_shadow.camera_view * vec4(world_position, 1.0)).z;
+    return -PENUMBRA_MUL(penumbra_shadow.camera_view, vec4(world_position, 1.0)).z;
 }
 
 // The first cascade whose far split lies beyond the view depth, or -1 past the last one
@@ -52,7 +54,7 @@ struct PenumbraShadowCoord {
 vec3 penumbra_project_to_cascade(int cascade, vec3 world_position, vec3 world_normal) {
     if (penumbra_sun_is_virtual()) return penumbra_project_to_virtual_level(cascade, world_position, world_normal);
     const float offset = penumbra_shadow.normal_offset_texels * penumbra_shadow.cascades[cascade].texel_world_size;
-    const vec4 clip = penumbra_shadow.cascades[cascade].view_projection * vec4(world_position + world_normal * offset, 1.0);
+    const vec4 clip = PENUMBRA_MUL(penumbra_shadow.cascades[cascade].view_projection, vec4(world_position + world_normal * offset, 1.0));
     const vec3 ndc = clip.xyz / clip.w;
     return vec3(ndc.xy * 0.5 + 0.5, ndc.z);
 }
@@ -65,10 +67,7 @@ vec3 penumbra_project_to_cascade(int cascade, vec3 world_position, vec3 world_no
 // (dFdx/dFdy in a fragment shader, differences of neighbours in a compute shader).
 // Clamped to the cascade's limit (grazing receivers, quads straddling a silhouette).
 vec2 penumbra_receiver_plane_gradient(int cascade, vec3 coord_dx, vec3 coord_dy) {
-    const mat2 uv_jacobian = mat2(coord_dx.xy, coord_dy.xy);  // columns: d(u, v)/dx, d(u, v)/dy
-    const float det = determinant(uv_jacobian);
-    if (abs(det) < 1e-30) return vec2(0.0);
-    const vec2 gradient = vec2(coord_dx.z, coord_dy.z) * inverse(uv_jacobian);
+    const vec2 gradient = penumbra_plane_gradient(vec2(coord_dx.z, coord_dy.z), coord_dx.xy, coord_dy.xy, 1e-30);
     const vec2 limit = penumbra_sun_is_virtual() ? penumbra_virtual_max_depth_gradient(cascade)
                                                  : penumbra_shadow.cascades[cascade].max_depth_gradient;
     return clamp(gradient, -limit, limit);
@@ -114,7 +113,9 @@ PenumbraSunReceiver penumbra_sun_receiver(vec3 world_position, vec3 world_normal
     const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
     for (int i = 0; i < 2; ++i) {
         const vec3 coord = penumbra_project_to_cascade(cascades[i], world_position, world_normal);
-        receiver.coords[i] = PenumbraShadowCoord(coord.xy, coord.z, vec2(0.0));
+        receiver.coords[i].uv = coord.xy;
+        receiver.coords[i].depth = coord.z;
+        receiver.coords[i].depth_gradient = vec2(0.0);
     }
     return receiver;
 }
@@ -181,7 +182,8 @@ PenumbraShadowView penumbra_cascade_view(int cascade, PenumbraShadowCoord coord)
 // Visibility through one cascade with the configured filter; lookups outside the map are lit.
 float penumbra_sample_cascade(int cascade, PenumbraShadowCoord coord, vec2 pixel) {
     if (any(lessThan(coord.uv, vec2(0.0))) || any(greaterThan(coord.uv, vec2(1.0)))) return 1.0;
-    return penumbra_filter_shadow(penumbra_cascade_map, penumbra_cascade_depth, penumbra_cascade_moments,
+    return penumbra_filter_shadow(PENUMBRA_MAP(penumbra_cascade_map), PENUMBRA_MAP(penumbra_cascade_depth),
+                                  PENUMBRA_MAP(penumbra_cascade_moments),
                                   penumbra_cascade_view(cascade, coord), pixel);
 }
 

@@ -13,6 +13,8 @@
 #ifndef PENUMBRA_GLSL_VIRTUAL
 #define PENUMBRA_GLSL_VIRTUAL
 
+#include "penumbra/glsl/dialect.glsl"
+
 #include "penumbra/glsl/virtual_clipmap.glsl"
 
 // Whether the sun's shadow is the virtual shadow map (Settings::shadow.technique).
@@ -39,7 +41,7 @@ float penumbra_virtual_texel_depth(uint level, ivec2 texel) {
     const uint physical = value & PENUMBRA_PAGE_PHYSICAL_MASK;
     const uint row = penumbra_virtual.pool_pages_per_row;
     const ivec2 pool_page = ivec2(int(physical % row), int(physical / row));
-    return texelFetch(penumbra_virtual_pool_depth, pool_page * page_texels + clamped % page_texels, 0).r;
+    return penumbra_depth_texel(PENUMBRA_MAP(penumbra_virtual_pool_depth), pool_page * page_texels + clamped % page_texels);
 }
 
 // The four comparisons of the texels around a bilinear tap whose first (lowest) texel is
@@ -76,7 +78,7 @@ float penumbra_virtual_compare(uint level, vec2 uv, float reference) {
         // The hardware reads texels floor(c - 0.5) and the next with weight fract(c - 0.5).
         const vec2 coordinate = pool_page * float(page_texels) + vec2(in_page) + weight + 0.5;
         // An explicit level: implicit derivatives are undefined in this divergent branch.
-        lit = textureLod(penumbra_virtual_pool, vec3(coordinate / pool_texels, reference), 0.0);
+        lit = penumbra_texture_compare(PENUMBRA_MAP(penumbra_virtual_pool), coordinate / pool_texels, reference);
     } else {
         const vec4 taps = penumbra_virtual_gather(level, texel, reference);
         lit = mix(mix(taps.w, taps.z, weight.x), mix(taps.x, taps.y, weight.x), weight.y);
@@ -108,7 +110,7 @@ bool penumbra_virtual_footprint_ready(uint level, vec2 texel) {
 // The level a receiver samples (see the header comment), -1 beyond the shadow distance or
 // where no level holds its pages.
 int penumbra_virtual_receiver_level(vec3 world_position) {
-    const float view_depth = -(penumbra_shadow.camera_view * vec4(world_position, 1.0)).z;
+    const float view_depth = -PENUMBRA_MUL(penumbra_shadow.camera_view, vec4(world_position, 1.0)).z;
     if (view_depth > penumbra_virtual.shadow_distance) return -1;
     const float margin = penumbra_virtual.mark_radius_texels;
     const int level = penumbra_select_virtual_level(world_position, margin);
@@ -130,7 +132,7 @@ vec3 penumbra_project_to_virtual_level(int level, vec3 world_position, vec3 worl
     const float offset = penumbra_shadow.normal_offset_texels * l.texel_world_size;
     const vec3 moved = world_position + world_normal * offset;
     const vec2 uv = penumbra_virtual_texel_of(uint(level), moved) / float(penumbra_virtual_side());
-    const float light_z = (penumbra_virtual.light_view * vec4(moved, 1.0)).z;
+    const float light_z = PENUMBRA_MUL(penumbra_virtual.light_view, vec4(moved, 1.0)).z;
     return vec3(uv, light_z * l.depth_scale + l.depth_offset);
 }
 

@@ -6,16 +6,18 @@
 #ifndef PENUMBRA_GLSL_VIRTUAL_CLIPMAP
 #define PENUMBRA_GLSL_VIRTUAL_CLIPMAP
 
+#include "penumbra/glsl/dialect.glsl"
+
 #ifndef PENUMBRA_VIRTUAL_CLIPMAP
 #define PENUMBRA_VIRTUAL_CLIPMAP penumbra_virtual
 #endif
 
-const uint kPenumbraVirtualPageTexels = 128u;
+PENUMBRA_CONST uint kPenumbraVirtualPageTexels = 128u;
 
 // A receiver's virtual texel in `level`, from the window's corner: the world grid's texel
 // less the window's first texel (a whole number of pages).
 vec2 penumbra_virtual_texel_of(uint level, vec3 world_position) {
-    const vec2 light = (PENUMBRA_VIRTUAL_CLIPMAP.light_view * vec4(world_position, 1.0)).xy;
+    const vec2 light = PENUMBRA_MUL(PENUMBRA_VIRTUAL_CLIPMAP.light_view, vec4(world_position, 1.0)).xy;
     precise vec2 texel = light * PENUMBRA_VIRTUAL_CLIPMAP.levels[level].texels_per_metre;
     return texel - vec2(PENUMBRA_VIRTUAL_CLIPMAP.levels[level].first_page * int(kPenumbraVirtualPageTexels));
 }
