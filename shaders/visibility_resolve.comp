@@ -195,7 +195,10 @@ void main() {
             coord_dx[i] = float(x.step) * (penumbra_project_to_cascade(cascades[i], x.position, normal) - coord);
             coord_dy[i] = float(y.step) * (penumbra_project_to_cascade(cascades[i], y.position, normal) - coord);
         }
-        const bool seam = quad_spans_cascades(pixel, depth, position, face_normal, on_face, receiver.cascade);
+        // Forward shading has no gradient where its quad spans two cascades; the virtual
+        // map's levels break no derivative there (penumbra_sun_receiver_with_derivatives).
+        const bool seam = !penumbra_sun_is_virtual() &&
+                          quad_spans_cascades(pixel, depth, position, face_normal, on_face, receiver.cascade);
         penumbra_set_receiver_plane(receiver, coord_dx, coord_dy, seam);
     }
     // Contact shadows (Settings::contact) trace this depth buffer from the visible side of
