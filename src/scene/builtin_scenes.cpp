@@ -6,6 +6,7 @@
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/loader.hpp"
 #include "scene/forest_scene.hpp"
+#include "scene/terrain_scene.hpp"
 
 namespace penumbra {
 namespace {
@@ -199,7 +200,8 @@ constexpr std::array<BuiltinScene, 2> kBuiltinScenes{{
 std::vector<std::string> builtin_scene_names() {
     std::vector<std::string> names;
     for (const BuiltinScene& scene : kBuiltinScenes) names.emplace_back(scene.name);
-    names.emplace_back("forest");  // procedural; takes ?count=N&spots=N&points=N (scene/forest_scene.hpp)
+    names.emplace_back("forest");   // procedural; takes ?count=N&spots=N&points=N (scene/forest_scene.hpp)
+    names.emplace_back("terrain");  // procedural; takes ?size=N&trees=N (scene/terrain_scene.hpp)
     return names;
 }
 
@@ -210,6 +212,7 @@ Scene builtin_scene(const std::string& name) {
     const std::string base = name.substr(0, query_start);
     const std::string query = query_start == std::string::npos ? "" : name.substr(query_start + 1);
     if (base == "forest") return make_forest_scene(parse_forest_parameters(query, origin));
+    if (base == "terrain") return make_terrain_scene(parse_terrain_parameters(query, origin));
     for (const BuiltinScene& scene : kBuiltinScenes) {
         if (scene.name != base) continue;
         if (query_start != std::string::npos)

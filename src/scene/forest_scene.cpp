@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <set>
-#include <sstream>
 
 #include "penumbra/errors.hpp"
 #include "penumbra/scene/primitives.hpp"
 #include "penumbra/scene/render_settings.hpp"
+#include "scene/procedural_parameters.hpp"
+#include "scene/procedural_random.hpp"
 
 namespace penumbra {
 namespace {
@@ -22,17 +22,9 @@ constexpr uint32_t kCrownSegments = 30;
 constexpr uint32_t kCrownRings = 16;
 constexpr uint32_t kTrunkSegments = 22;
 
-// SplitMix64 (Steele et al. 2014): a tiny stateless hash, so placement depends on the tree
-// index alone and is the same on every platform (std:: distributions are not portable).
-float random01(uint64_t tree, uint64_t stream) {
-    uint64_t z = tree * 0x9E3779B97F4A7C15ull + stream * 0xBF58476D1CE4E5B9ull + 0x94D049BB133111EBull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<float>(z >> 40) / static_cast<float>(1ull << 24);
-}
+float random01(uint64_t tree, uint64_t stream) { return procedural_random01(tree, stream); }
 
-float lerp(float a, float b, float t) { return a + (b - a) * t; }
+float lerp(float a, float b, float t) { return procedural_lerp(a, b, t); }
 
 void add_materials(Scene& scene) {
     const glm::vec4 colors[] = {{0.36f, 0.42f, 0.25f, 1.0f},  // ground
@@ -193,14 +185,7 @@ Scene make_forest_scene(const ForestParameters& parameters) {
 
 namespace {
 
-struct ForestParameterSpec {
-    const char* key;
-    uint32_t min;
-    uint32_t max;
-    uint32_t ForestParameters::*field;
-};
-
-constexpr std::array<ForestParameterSpec, 5> kForestParameterSpecs{{
+constexpr std::array<ProceduralParameter<ForestParameters>, 5> kForestParameterSpecs{{
     {"count", 1, kForestMaxCount, &ForestParameters::count},
     {"spots", 0, kMaxLocalLights, &ForestParameters::spots},
     {"points", 0, kMaxLocalLights, &ForestParameters::points},
@@ -208,44 +193,11 @@ constexpr std::array<ForestParameterSpec, 5> kForestParameterSpecs{{
     {"movers", 0, 1000, &ForestParameters::movers},
 }};
 
-// The keys of kForestParameterSpecs, as error messages name them.
-const std::string kForestParameterList = "count=N, spots=N, points=N, spot_angle=N or movers=N";
-
-uint32_t parse_parameter_value(const ForestParameterSpec& spec, const std::string& digits, const std::string& origin) {
-    const bool numeric =
-        !digits.empty() && digits.size() <= 9 && digits.find_first_not_of("0123456789") == std::string::npos;
-    const unsigned long value = numeric ? std::stoul(digits) : 0;
-    if (!numeric || value < spec.min || value > spec.max) {
-        throw InputError(origin + ": " + spec.key + ": expected an integer from " + std::to_string(spec.min) + " to " +
-                         std::to_string(spec.max) + ", got \"" + digits + "\"");
-    }
-    return static_cast<uint32_t>(value);
-}
-
-const ForestParameterSpec* find_parameter(const std::string& key) {
-    for (const ForestParameterSpec& spec : kForestParameterSpecs) {
-        if (key == spec.key) return &spec;
-    }
-    return nullptr;
-}
-
 }  // namespace
 
 ForestParameters parse_forest_parameters(const std::string& query, const std::string& origin) {
-    ForestParameters parameters;
-    if (query.empty()) return parameters;
-    std::set<std::string> seen;
-    std::istringstream items(query);
-    for (std::string item; std::getline(items, item, '&');) {
-        const size_t equals = item.find('=');
-        const ForestParameterSpec* spec = find_parameter(item.substr(0, equals));
-        if (equals == std::string::npos || !spec) {
-            throw InputError(origin + ": expected " + kForestParameterList + " joined by '&', got \"" + item + "\"");
-        }
-        if (!seen.insert(spec->key).second) throw InputError(origin + ": " + spec->key + ": given twice");
-        parameters.*(spec->field) = parse_parameter_value(*spec, item.substr(equals + 1), origin);
-    }
-    if (query.back() == '&') throw InputError(origin + ": expected " + kForestParameterList + " after the last '&'");
+    const ForestParameters parameters =
+        parse_procedural_parameters<ForestParameters>(query, origin, kForestParameterSpecs, ForestParameters{});
     if (parameters.spots + parameters.points > kMaxLocalLights) {
         throw InputError(origin + ": spots + points: at most " + std::to_string(kMaxLocalLights) +
                          " spot and point lights are lit, got " + std::to_string(parameters.spots) + " + " +

@@ -39,9 +39,9 @@ TEST(BuiltinScenes, EveryBuiltinLoadsThroughLoadScene) {
 }
 
 TEST(BuiltinScenes, UnknownNameListsTheValidOnes) {
-    EXPECT_EQ(
-        input_error_message([] { load_scene("builtin:cathedral"); }),
-        "builtin:cathedral: unknown built-in scene \"cathedral\" (expected one of: default, box-on-plane, forest)");
+    EXPECT_EQ(input_error_message([] { load_scene("builtin:cathedral"); }),
+              "builtin:cathedral: unknown built-in scene \"cathedral\" (expected one of: default, box-on-plane, "
+              "forest, terrain)");
 }
 
 TEST(BuiltinScenes, DefaultCameraAndLighting) {
