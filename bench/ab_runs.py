@@ -130,6 +130,26 @@ def virtual_runs(binary):
     return runs
 
 
+TERRAIN = "builtin:terrain"  # 20 km, 1.1 M triangles: casters from 8 m to 9 km
+
+
+def terrain_runs(binary):
+    """Issue 28's open world: the virtual shadow map against the cascades (both cached) on
+    the terrain at 4K with the shadow distance stretched to 6 km, walking, orbiting and with
+    a sun that turns every frame; the virtual map alone with the camera still."""
+    runs = []
+    far = ["--max-distance", "6000", "--warmup", "10", "--shadow-cache"]
+    for label, extra in (("walk", ["--camera-path", "walk", "--frames", "120"]),
+                         ("orbit", ["--camera-path", "orbit", "--frames", "60"]),
+                         ("rotating sun", ["--camera-path", "still", "--light-path", "rotate", "--frames", "60"])):
+        for technique in ("cascades", "virtual"):
+            runs.append((f"terrain, 4K, {technique}, cache, 6 km, {label}", binary, TERRAIN,
+                         UHD + far + extra + ["--shadow-technique", technique]))
+    runs.append(("terrain, 4K, virtual, cache, 6 km, still", binary, TERRAIN,
+                 UHD + far + ["--camera-path", "still", "--frames", "60", "--shadow-technique", "virtual"]))
+    return runs
+
+
 def median(report, name):
     entry = report["gpu_ms"].get(name)
     return entry["median"] if entry else None
@@ -144,7 +164,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
     parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "goals",
-                                           "virtual", "all"],
+                                           "virtual", "terrain", "all"],
                         default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
     parser.add_argument("--out", required=True)
@@ -171,6 +191,8 @@ def main():
         runs += goal_runs(args.cache_binary or names[0])
     if args.plan in ("virtual", "all"):
         runs += virtual_runs(args.cache_binary or names[0])
+    if args.plan in ("terrain", "all"):
+        runs += terrain_runs(args.cache_binary or names[0])
     os.makedirs(args.out, exist_ok=True)
     rows = ["| run | shadow_sun ms | shadow_local ms | lighting ms | visibility ms | frame ms | texels drawn / frame | texels copied / frame | local layers kept / frame | CPU culling ms | CPU recording ms | virtual mark + allocate ms | virtual cull + raster ms | pages drawn / frame | pages unserved / frame |",
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
