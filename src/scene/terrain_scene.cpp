@@ -12,8 +12,9 @@
 namespace penumbra {
 namespace {
 
-// Mesh (and material) indices of the terrain's object kinds.
-enum TerrainMesh : uint32_t { kGround, kTrunk, kCrown, kBox, kBuilding };
+enum TerrainMaterial : uint32_t { kGroundMaterial, kBark, kFoliage, kWood, kStone };
+// Mesh indices of the terrain's object kinds; the ground's tiles follow.
+enum TerrainMesh : uint32_t { kTrunk, kCrown, kBox, kBuilding, kFirstTile };
 
 constexpr float kTwoPi = 6.2831853f;
 // Hash streams: trees 0..8, buildings 100..106.
@@ -42,23 +43,26 @@ glm::vec3 ground_normal(float x, float z, float size) {
     return glm::normalize(glm::vec3{-dx, 2.0f * step, -dz});
 }
 
-// The height field as a grid of kTerrainCells^2 quads, counter-clockwise seen from above.
-Mesh make_ground(float size) {
+// Tile (tile_x, tile_z) of the height field: kTerrainTileCells^2 of its kTerrainCells^2
+// quads, in world coordinates, counter-clockwise seen from above. The ground is tiles, as
+// open worlds lay out their terrain, so that culling finds the part of it a page or a
+// cascade needs (a page of the virtual map draws whole instances).
+Mesh make_ground_tile(float size, uint32_t tile_x, uint32_t tile_z) {
     Mesh mesh;
-    const uint32_t side = kTerrainCells + 1;
+    const uint32_t side = kTerrainTileCells + 1;
     mesh.vertices.reserve(size_t{side} * side);
     for (uint32_t j = 0; j < side; ++j) {
         for (uint32_t i = 0; i < side; ++i) {
-            const float u = static_cast<float>(i) / kTerrainCells;
-            const float v = static_cast<float>(j) / kTerrainCells;
+            const float u = static_cast<float>(tile_x * kTerrainTileCells + i) / kTerrainCells;
+            const float v = static_cast<float>(tile_z * kTerrainTileCells + j) / kTerrainCells;
             const float x = (u - 0.5f) * size;
             const float z = (0.5f - v) * size;  // row 0 at +Z, as make_plane's UVs
             mesh.vertices.push_back({{x, terrain_height(x, z, size), z}, ground_normal(x, z, size), {u, v}});
         }
     }
-    mesh.indices.reserve(size_t{kTerrainGroundTriangles} * 3);
-    for (uint32_t j = 0; j < kTerrainCells; ++j) {
-        for (uint32_t i = 0; i < kTerrainCells; ++i) {
+    mesh.indices.reserve(size_t{kTerrainTileCells} * kTerrainTileCells * 6);
+    for (uint32_t j = 0; j < kTerrainTileCells; ++j) {
+        for (uint32_t i = 0; i < kTerrainTileCells; ++i) {
             const uint32_t near_left = j * side + i;  // (x0, z1)
             const uint32_t near_right = near_left + 1;
             const uint32_t far_right = near_right + side;  // (x1, z0): the next row lies toward -Z
@@ -67,6 +71,7 @@ Mesh make_ground(float size) {
         }
     }
     mesh.bounds = compute_mesh_bounds(mesh.vertices);
+    mesh.material = kGroundMaterial;
     return mesh;
 }
 
@@ -80,12 +85,19 @@ void add_materials(Scene& scene) {
 }
 
 void add_meshes(Scene& scene, float size) {
-    scene.meshes.push_back(make_ground(size));
-    scene.meshes.push_back(make_cylinder(1.0f, 1.0f, 22));  // 88 triangles
-    scene.meshes.push_back(make_sphere(1.0f, 30, 16));      // 900 triangles
-    scene.meshes.push_back(make_box(glm::vec3{1.0f}));
-    scene.meshes.push_back(make_box(glm::vec3{1.0f}));
-    for (uint32_t kind = 0; kind < scene.meshes.size(); ++kind) scene.meshes[kind].material = kind;
+    const auto with_material = [](Mesh mesh, TerrainMaterial material) {
+        mesh.material = material;
+        return mesh;
+    };
+    scene.meshes.push_back(with_material(make_cylinder(1.0f, 1.0f, 22), kBark));  // 88 triangles
+    scene.meshes.push_back(with_material(make_sphere(1.0f, 30, 16), kFoliage));   // 900 triangles
+    scene.meshes.push_back(with_material(make_box(glm::vec3{1.0f}), kWood));
+    scene.meshes.push_back(with_material(make_box(glm::vec3{1.0f}), kStone));
+    for (uint32_t tile_z = 0; tile_z < kTerrainTiles; ++tile_z) {
+        for (uint32_t tile_x = 0; tile_x < kTerrainTiles; ++tile_x) {
+            scene.meshes.push_back(make_ground_tile(size, tile_x, tile_z));
+        }
+    }
 }
 
 void add_box(Scene& scene, uint32_t mesh, const glm::vec3& centre, const glm::vec3& size, float yaw_degrees = 0.0f) {
@@ -173,8 +185,11 @@ Scene make_terrain_scene(const TerrainParameters& parameters) {
     scene.lights.push_back(sun);
     add_materials(scene);
     add_meshes(scene, size);
-    scene.instances.reserve(1 + kTerrainFencePosts + 2 + size_t{2} * parameters.trees + kTerrainBuildings);
-    scene.instances.push_back({kGround, glm::mat4{1.0f}});
+    scene.instances.reserve(kTerrainTiles * kTerrainTiles + kTerrainFencePosts + 2 + size_t{2} * parameters.trees +
+                            kTerrainBuildings);
+    for (uint32_t tile = 0; tile < kTerrainTiles * kTerrainTiles; ++tile) {
+        scene.instances.push_back({kFirstTile + tile, glm::mat4{1.0f}});
+    }
     add_fence(scene);
     for (uint32_t index = 0; index < parameters.trees; ++index) add_tree(scene, index, parameters.trees, size);
     for (uint32_t index = 0; index < kTerrainBuildings; ++index) add_building(scene, index, size);

@@ -16,7 +16,9 @@
 
 namespace penumbra {
 
-constexpr uint32_t kTerrainCells = 256;  // height field cells per side
+constexpr uint32_t kTerrainCells = 256;     // height field cells per side
+constexpr uint32_t kTerrainTileCells = 16;  // cells per side of one ground tile (an instance)
+constexpr uint32_t kTerrainTiles = kTerrainCells / kTerrainTileCells;  // tiles per side
 constexpr uint32_t kTerrainGroundTriangles = kTerrainCells * kTerrainCells * 2;
 constexpr uint32_t kTerrainTrianglesPerTree = 988;  // crown 900 + trunk 88
 constexpr uint32_t kTerrainFencePosts = 13;

@@ -16,10 +16,10 @@ namespace {
 
 using testing::input_error_message;
 
-// Horizontal distance from the camera to the centre of each instance but the ground.
+// Horizontal distance from the camera to the centre of each instance but the ground's tiles.
 std::vector<float> caster_distances(const Scene& scene) {
     std::vector<float> distances;
-    for (size_t i = 1; i < scene.instances.size(); ++i) {
+    for (size_t i = kTerrainTiles * kTerrainTiles; i < scene.instances.size(); ++i) {
         const glm::vec3 centre = glm::vec3(scene.instances[i].world[3]);
         distances.push_back(glm::length(glm::vec2(centre.x - scene.camera.eye.x, centre.z - scene.camera.eye.z)));
     }
@@ -33,7 +33,8 @@ TEST(TerrainScene, HasTheDocumentedTriangleCount) {
                                           kTerrainTrianglesPerTree * kTerrainDefaultTrees + 12 * kTerrainBuildings);
     EXPECT_EQ(load_scene("builtin:terrain?trees=0").triangle_count(),
               kTerrainGroundTriangles + kTerrainFenceTriangles + 12 * kTerrainBuildings);
-    EXPECT_EQ(scene.instances.size(), 1 + kTerrainFencePosts + 2 + 2 * kTerrainDefaultTrees + kTerrainBuildings);
+    EXPECT_EQ(scene.instances.size(),
+              kTerrainTiles * kTerrainTiles + kTerrainFencePosts + 2 + 2 * kTerrainDefaultTrees + kTerrainBuildings);
 }
 
 TEST(TerrainScene, HasCastersInEveryOctaveOfDistance) {
@@ -64,10 +65,11 @@ TEST(TerrainScene, CastersStandOnTheGroundWhichIsFlatAroundTheCamera) {
     }
     EXPECT_GT(highest, 0.005f * size);  // hills, kilometres away
     EXPECT_LE(highest, 0.012f * size);
-    // A trunk (instance 16 on: fence first) stands on the height field; its mesh is a unit
-    // cylinder centred on its origin, so its foot is half its height below its centre.
+    // Every trunk (after the tiles and the fence) stands on the height field; its mesh is a
+    // unit cylinder centred on its origin, so its foot is half its height below its centre.
     const Scene scene = load_scene("builtin:terrain");
-    for (size_t i = 1 + kTerrainFencePosts + 2; i < 1 + kTerrainFencePosts + 2 + 2 * kTerrainDefaultTrees; i += 2) {
+    const size_t first_trunk = kTerrainTiles * kTerrainTiles + kTerrainFencePosts + 2;
+    for (size_t i = first_trunk; i < first_trunk + 2 * kTerrainDefaultTrees; i += 2) {
         const glm::mat4& trunk = scene.instances[i].world;
         const float foot = trunk[3].y - 0.5f * trunk[1].y;
         EXPECT_NEAR(foot, terrain_height(trunk[3].x, trunk[3].z, size), 1e-3f * std::max(1.0f, std::abs(foot)));
