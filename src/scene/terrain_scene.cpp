@@ -1,8 +1,9 @@
 #include "scene/terrain_scene.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
+
+#include <glm/common.hpp>
 
 #include "penumbra/scene/primitives.hpp"
 #include "scene/mesh_tools.hpp"
@@ -26,14 +27,9 @@ constexpr float kEyeHeight = 1.7f;
 constexpr float kFenceDistance = 8.0f;  // metres in front of the camera
 constexpr float kTreeLane = 0.21f;      // 12 degrees each side of the view's axis without trees
 
-float smoothstep(float edge0, float edge1, float x) {
-    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-
 // Flat ground around the camera, so that the near field is a plain receiver.
 float flat_blend(float x, float z) {
-    return smoothstep(kTerrainFlatRadius, 3.0f * kTerrainFlatRadius, std::sqrt(x * x + z * z));
+    return glm::smoothstep(kTerrainFlatRadius, 3.0f * kTerrainFlatRadius, std::sqrt(x * x + z * z));
 }
 
 glm::vec3 ground_normal(float x, float z, float size) {

@@ -34,21 +34,23 @@ PenumbraSunReceiver penumbra_sun_receiver_with_derivatives(vec3 world_position, 
     const ivec2 cascades = penumbra_receiver_cascades(receiver.cascade);
     vec3 coord_dx[2];
     vec3 coord_dy[2];
-    for (int i = 0; i < 2; ++i) {
-        const vec3 coord = penumbra_project_to_cascade(cascades[i], world_position, normal);
-        coord_dx[i] = dFdx(coord);
-        coord_dy[i] = dFdy(coord);
-    }
-    bool seam = fwidth(float(receiver.cascade)) != 0.0;
-    const vec3 light = PENUMBRA_MUL(penumbra_virtual.light_view, vec4(world_position, 1.0)).xyz;
-    const vec3 light_dx = dFdx(light);
-    const vec3 light_dy = dFdy(light);
+    bool seam = false;
+    // The technique is a uniform: both branches stay in uniform control flow.
     if (penumbra_sun_is_virtual()) {
+        const vec3 light = PENUMBRA_MUL(penumbra_virtual.light_view, vec4(world_position, 1.0)).xyz;
+        const vec3 light_dx = dFdx(light);
+        const vec3 light_dy = dFdy(light);
         for (int i = 0; i < 2; ++i) {
             coord_dx[i] = penumbra_virtual_coord_step(cascades[i], light_dx);
             coord_dy[i] = penumbra_virtual_coord_step(cascades[i], light_dy);
         }
-        seam = false;
+    } else {
+        for (int i = 0; i < 2; ++i) {
+            const vec3 coord = penumbra_project_to_cascade(cascades[i], world_position, normal);
+            coord_dx[i] = dFdx(coord);
+            coord_dy[i] = dFdy(coord);
+        }
+        seam = fwidth(float(receiver.cascade)) != 0.0;
     }
     penumbra_set_receiver_plane(receiver, coord_dx, coord_dy, seam);
     receiver.face_normal = penumbra_geometric_normal(world_position, normal);
