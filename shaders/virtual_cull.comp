@@ -1,18 +1,23 @@
 #version 460
 // Virtual shadow maps, step 3 of a frame: the casters of the pages drawn this frame. One
-// thread per caster instance: per level, the pages its light-space rectangle reaches
+// workgroup per caster instance: per level, the pages its light-space rectangle reaches
 // (shadows fall along the light, so a caster can only change the texels under its own
-// rectangle) that the allocation flagged PENUMBRA_PAGE_RENDER. Each such page gets a
-// VirtualPageDraw, and the instance one indexed indirect command per level whose instances
-// are those page draws (firstInstance: the first of them); the vertex shader
-// (caster.vert, PENUMBRA_VIRTUAL) places each instance in its page of the pool and clips
-// it to the page. Commands go where the layered strategy's culling puts them (one region
-// per level and bucket), so the same indirect draws record them. Pages whose draws do not
-// fit the buffer lose their valid texels and are drawn again the next frame.
+// rectangle) that the allocation flagged PENUMBRA_PAGE_RENDER. The workgroup's threads
+// share the candidates: the rectangle's pages, or, when the rectangle holds more pages than
+// the level draws (a ground tile under a fine level), the level's part of the list of pages
+// drawn, which the allocation grouped by level. Each page found gets a VirtualPageDraw, and
+// the instance one indexed indirect command per level whose instances are those page
+// draws (firstInstance: the first of them; their order does not matter, the depth test
+// keeps the nearest); the vertex shader (caster.vert, PENUMBRA_VIRTUAL) places each
+// instance in its page of the pool and clips it to the page. Commands go where the layered
+// strategy's culling puts them (one region per level and bucket), so the same indirect
+// draws record them. Pages whose draws do not fit the buffer lose their valid texels and
+// are drawn again the next frame.
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
 layout(local_size_x = 64) in;
+const uint kGroupSize = 64u;
 
 layout(std140, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP) uniform ClipmapBlock {
     PenumbraVirtualClipmap clipmap;
@@ -38,10 +43,6 @@ layout(push_constant) uniform PushBlock { VirtualCullPushConstants cull; };
 #define PENUMBRA_VIRTUAL_CLIPMAP clipmap
 #include "penumbra/glsl/virtual_clipmap.glsl"
 
-// A rectangle of world pages larger than this is matched against the list of pages drawn
-// this frame instead of page by page (a ground plane under every page).
-const int kMaxScannedPages = 64;
-
 bool finite(vec2 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 // The box's rectangle in the light view's XY plane (Arvo's method for the affine view).
@@ -56,48 +57,96 @@ void light_rectangle(vec3 box_min, vec3 box_max, out vec2 low, out vec2 high) {
     }
 }
 
-bool drawn(uint entry) { return (page_table[entry] & PENUMBRA_PAGE_RENDER) != 0u; }
+// Per level: the pages the workgroup found, the first of its page draws, and how many of
+// them are written (one slot each; a level's counters are never reused, so no barrier
+// separates one level's reads from the next level's writes).
+shared uint found_pages[PENUMBRA_MAX_VIRTUAL_LEVELS];
+shared uint first_draw[PENUMBRA_MAX_VIRTUAL_LEVELS];
+shared uint written[PENUMBRA_MAX_VIRTUAL_LEVELS];
 
-// What visit_drawn_pages() does with each page drawn this frame that it finds.
-const uint kCountPages = 0u;
-const uint kWritePageDraws = 1u;  // page_draws[base + i] for the i-th page
-const uint kInvalidatePages = 2u;  // drawn again next frame (the draws did not fit)
+// Where a level's candidates come from: the rectangle [first, last) of world pages, or the
+// level's `count` pages drawn, from `list_first` on in the list.
+struct Candidates {
+    uint level;
+    ivec2 window;  // the level's first world page
+    ivec2 first;
+    ivec2 last;
+    bool from_list;
+    uint list_first;
+    uint count;
+};
 
-// Visits the pages drawn this frame among world pages [first, last) of `level`: by the
-// rectangle's pages, or, for a large rectangle, by the list of drawn pages. Returns how many.
-uint visit_drawn_pages(uint level, ivec2 first, ivec2 last, uint action, uint instance, uint base) {
-    const ivec2 window = clipmap.levels[level].first_page;
-    const ivec2 size = last - first;
-    uint found = 0u;
-    if (size.x * size.y <= kMaxScannedPages) {
-        for (int y = first.y; y < last.y; ++y) {
-            for (int x = first.x; x < last.x; ++x) {
-                const uint entry = penumbra_virtual_entry(level, ivec2(x, y) - window);
-                if (!drawn(entry)) continue;
-                if (action == kWritePageDraws) page_draws[base + found] = VirtualPageDraw(instance, entry);
-                if (action == kInvalidatePages) atomicAnd(page_table[entry], ~PENUMBRA_PAGE_VALID);
-                ++found;
-            }
+// The page table entry of candidate `i` if it is drawn this frame and under the rectangle,
+// else PENUMBRA_PAGE_NO_OWNER.
+uint candidate(Candidates c, uint i) {
+    if (c.from_list) {
+        const uint entry = render_entries[c.list_first + i];
+        const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
+        const ivec2 page = penumbra_virtual_world_page_of_slot(c.window, entry % per_level);
+        const bool inside = all(greaterThanEqual(page, c.first)) && all(lessThan(page, c.last));
+        return inside ? entry : PENUMBRA_PAGE_NO_OWNER;
+    }
+    const int width = c.last.x - c.first.x;
+    const ivec2 page = c.first + ivec2(int(i) % width, int(i) / width);
+    const uint entry = penumbra_virtual_entry(c.level, page - c.window);
+    return (page_table[entry] & PENUMBRA_PAGE_RENDER) != 0u ? entry : PENUMBRA_PAGE_NO_OWNER;
+}
+
+// The instance's indexed indirect command for one level: `pages` instances from `base`.
+void write_command(CullInstance instance, uint level, uint pages, uint base) {
+    const uint command = level * cull.instance_count + bucket_first_command[instance.bucket] +
+                         atomicAdd(counts[level * cull.bucket_count + instance.bucket], 1u);
+    commands[5 * command + 0] = instance.index_count;
+    commands[5 * command + 1] = pages;
+    commands[5 * command + 2] = instance.first_index;
+    commands[5 * command + 3] = uint(instance.vertex_offset);
+    commands[5 * command + 4] = base;
+    // The level's statistics after the counts (FrameInfo): page draws and their triangles.
+    const uint statistics = clipmap.level_count * cull.bucket_count + 2u * level;
+    atomicAdd(counts[statistics], pages);
+    atomicAdd(counts[statistics + 1u], pages * (instance.index_count / 3u));
+}
+
+// The workgroup's pass over one level: count the pages, take room for their draws (or
+// invalidate them when there is none), write the draws and the command.
+void cull_level(Candidates c, uint instance_index, CullInstance instance) {
+    const uint thread = gl_LocalInvocationIndex;
+    for (uint i = thread; i < c.count; i += kGroupSize) {
+        if (candidate(c, i) != PENUMBRA_PAGE_NO_OWNER) atomicAdd(found_pages[c.level], 1u);
+    }
+    barrier();
+    const uint pages = found_pages[c.level];
+    if (pages == 0u) return;
+    if (thread == 0u) {
+        const uint base = atomicAdd(counters.page_draws, pages);
+        first_draw[c.level] = base;
+        if (base + pages > cull.draw_capacity) atomicAdd(counters.dropped_page_draws, pages);
+    }
+    barrier();
+    const uint base = first_draw[c.level];
+    const bool fits = base + pages <= cull.draw_capacity;
+    for (uint i = thread; i < c.count; i += kGroupSize) {
+        const uint entry = candidate(c, i);
+        if (entry == PENUMBRA_PAGE_NO_OWNER) continue;
+        if (fits) {
+            page_draws[base + atomicAdd(written[c.level], 1u)] = VirtualPageDraw(instance_index, entry);
+        } else {
+            atomicAnd(page_table[entry], ~PENUMBRA_PAGE_VALID);
         }
-        return found;
     }
-    const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
-    for (uint r = 0u; r < counters.rendered; ++r) {
-        const uint entry = render_entries[r];
-        if (entry / per_level != level) continue;
-        const ivec2 page = penumbra_virtual_world_page_of_slot(window, entry % per_level);
-        if (any(lessThan(page, first)) || any(greaterThanEqual(page, last))) continue;
-        if (action == kWritePageDraws) page_draws[base + found] = VirtualPageDraw(instance, entry);
-        if (action == kInvalidatePages) atomicAnd(page_table[entry], ~PENUMBRA_PAGE_VALID);
-        ++found;
-    }
-    return found;
+    if (fits && thread == 0u) write_command(instance, c.level, pages, base);
 }
 
 void main() {
-    const uint index = gl_GlobalInvocationID.x;
+    // Workgroups beyond the first dimension's limit continue in the second.
+    const uint index = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     // A frame whose pages are all cached (a still or walking camera) draws nothing.
     if (index >= cull.instance_count || counters.rendered == 0u) return;
+    if (gl_LocalInvocationIndex < PENUMBRA_MAX_VIRTUAL_LEVELS) {
+        found_pages[gl_LocalInvocationIndex] = 0u;
+        written[gl_LocalInvocationIndex] = 0u;
+    }
+    barrier();
     const CullInstance instance = instances[index];
     const vec3 box_min = instance.bounds_min.xyz;
     const vec3 box_max = instance.bounds_max.xyz;
@@ -105,37 +154,28 @@ void main() {
     vec2 low, high;
     light_rectangle(box_min, box_max, low, high);
     const bool bounded = finite(low) && finite(high);
+    uint list_first = 0u;
     for (uint level = 0u; level < clipmap.level_count; ++level) {
+        const uint level_pages = counters.level_rendered[level];
+        list_first += level_pages;
+        if (level_pages == 0u) continue;
         const float texel = clipmap.levels[level].texel_world_size;
         const float page_metres = texel * float(kPenumbraVirtualPageTexels);
-        const ivec2 window = clipmap.levels[level].first_page;
-        const ivec2 window_end = window + ivec2(clipmap.pages_per_side);
+        Candidates c;
+        c.level = level;
+        c.window = clipmap.levels[level].first_page;
+        c.first = c.window;
+        c.last = c.window + ivec2(clipmap.pages_per_side);
         // One texel more on each side: the rasteriser's coverage at the rectangle's edges.
-        ivec2 first = window, last = window_end;
         if (bounded) {
-            first = max(ivec2(clamp(floor((low - texel) / page_metres), vec2(-1e9), vec2(1e9))), window);
-            last = min(ivec2(clamp(floor((high + texel) / page_metres) + 1.0, vec2(-1e9), vec2(1e9))), window_end);
+            c.first = max(ivec2(clamp(floor((low - texel) / page_metres), vec2(-1e9), vec2(1e9))), c.first);
+            c.last = min(ivec2(clamp(floor((high + texel) / page_metres) + 1.0, vec2(-1e9), vec2(1e9))), c.last);
         }
-        if (any(greaterThanEqual(first, last))) continue;
-        const uint pages = visit_drawn_pages(level, first, last, kCountPages, index, 0u);
-        if (pages == 0u) continue;
-        const uint base = atomicAdd(counters.page_draws, pages);
-        if (base + pages > cull.draw_capacity) {
-            atomicAdd(counters.dropped_page_draws, pages);
-            visit_drawn_pages(level, first, last, kInvalidatePages, index, 0u);
-            continue;
-        }
-        visit_drawn_pages(level, first, last, kWritePageDraws, index, base);
-        const uint command = level * cull.instance_count + bucket_first_command[instance.bucket] +
-                             atomicAdd(counts[level * cull.bucket_count + instance.bucket], 1u);
-        commands[5 * command + 0] = instance.index_count;
-        commands[5 * command + 1] = pages;
-        commands[5 * command + 2] = instance.first_index;
-        commands[5 * command + 3] = uint(instance.vertex_offset);
-        commands[5 * command + 4] = base;
-        // The level's statistics after the counts (FrameInfo): page draws and their triangles.
-        const uint statistics = clipmap.level_count * cull.bucket_count + 2u * level;
-        atomicAdd(counts[statistics], pages);
-        atomicAdd(counts[statistics + 1u], pages * (instance.index_count / 3u));
+        if (any(greaterThanEqual(c.first, c.last))) continue;
+        const uint area = uint(c.last.x - c.first.x) * uint(c.last.y - c.first.y);
+        c.from_list = area > level_pages;
+        c.list_first = list_first - level_pages;
+        c.count = c.from_list ? level_pages : area;
+        cull_level(c, index, instance);
     }
 }

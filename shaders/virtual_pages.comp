@@ -16,8 +16,9 @@
 //             unserved: the pool is full, and the receiver samples a coarser level instead
 //             (never another page's texels; the marking requests the next coarser level's
 //             pages too, for this fallback).
-//   COUNT     per physical page: resident pages, for the statistics; and the clear pass's
-//             indirect draw (a quad per page to draw).
+//   COUNT     per physical page: resident pages, for the statistics; the list of pages to
+//             draw, grouped by level (the casters' culling scans one level's pages at a
+//             time); and the clear pass's indirect draw (a quad per page to draw).
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
@@ -47,11 +48,30 @@ uint entry_count() { return clipmap.level_count * clipmap.pages_per_side * clipm
 
 bool is_requested(uint entry) { return requests[entry] != 0u; }
 
-// A page drawn this frame: listed for the clear, flagged for the casters' culling, and
+uint level_of(uint entry) { return entry / (clipmap.pages_per_side * clipmap.pages_per_side); }
+
+// A page drawn this frame: counted (COUNT lists it), flagged for the casters' culling, and
 // valid once the frame's draws ran.
 uint queue_render(uint entry, uint value) {
-    render_entries[atomicAdd(counters.rendered, 1u)] = entry;
+    atomicAdd(counters.rendered, 1u);
+    atomicAdd(counters.level_rendered[level_of(entry)], 1u);
     return value | PENUMBRA_PAGE_VALID | PENUMBRA_PAGE_RENDER;
+}
+
+// Lists a page drawn this frame after the finer levels' pages: the list is grouped by level.
+void list_render(uint entry) {
+    const uint level = level_of(entry);
+    uint first = 0u;
+    for (uint finer = 0u; finer < level; ++finer) first += counters.level_rendered[finer];
+    render_entries[first + atomicAdd(counters.level_listed[level], 1u)] = entry;
+}
+
+// COUNT, per physical page: every page drawn this frame holds one physical page.
+void count_page(uint page) {
+    const uint owner = physical[page].owner;
+    if (owner == PENUMBRA_PAGE_NO_OWNER) return;
+    atomicAdd(counters.resident, 1u);
+    if ((page_table[owner] & PENUMBRA_PAGE_RENDER) != 0u) list_render(owner);
 }
 
 bool invalidated(uint level, ivec2 world_page) {
@@ -183,5 +203,5 @@ void main() {
     if (index >= clipmap.pool_pages) return;
     if (step == PENUMBRA_VIRTUAL_STEP_SCAN) scan_page(index);
     else if (step == PENUMBRA_VIRTUAL_STEP_EVICT) evict_page(index);
-    else if (physical[index].owner != PENUMBRA_PAGE_NO_OWNER) atomicAdd(counters.resident, 1u);
+    else count_page(index);
 }

@@ -114,6 +114,7 @@ struct VirtualReport {
     CountSummary pages_resident;
     CountSummary pages_evicted;
     CountSummary page_draws;
+    CountSummary page_draw_triangles;
     uint64_t invalidated_all_frames = 0;
 };
 

@@ -229,14 +229,15 @@ struct VirtualShadowInfo {
     // The GPU's counts of frame `counted_frame`, the last one known complete (this one less
     // frames_in_flight): 0 until there is one. No readback waits for them.
     uint64_t counted_frame = 0;
-    uint32_t pages_requested = 0;     // pages the pixels' filters read (their level's and the next coarser's)
-    uint32_t pages_rendered = 0;      // drawn that frame: new pages and stale ones
-    uint32_t pages_cached = 0;        // requested and still valid: not drawn
-    uint32_t pages_unserved = 0;      // requested, but the pool was full: a coarser level served their pixels
-    uint32_t pages_resident = 0;      // physical pages holding a page after that frame's allocation
-    uint32_t pages_evicted = 0;       // unrequested pages given to others, least recently requested first
-    uint32_t page_draws = 0;          // caster instances drawn into pages
-    uint32_t dropped_page_draws = 0;  // beyond Penumbra's draw buffer: their pages were drawn again the next frame
+    uint32_t pages_requested = 0;      // pages the pixels' filters read (their level's and the next coarser's)
+    uint32_t pages_rendered = 0;       // drawn that frame: new pages and stale ones
+    uint32_t pages_cached = 0;         // requested and still valid: not drawn
+    uint32_t pages_unserved = 0;       // requested, but the pool was full: a coarser level served their pixels
+    uint32_t pages_resident = 0;       // physical pages holding a page after that frame's allocation
+    uint32_t pages_evicted = 0;        // unrequested pages given to others, least recently requested first
+    uint32_t page_draws = 0;           // caster instances drawn into pages
+    uint64_t page_draw_triangles = 0;  // the triangles of those draws (each drawn once per page)
+    uint32_t dropped_page_draws = 0;   // beyond Penumbra's draw buffer: their pages were drawn again the next frame
 };
 
 struct FrameInfo {

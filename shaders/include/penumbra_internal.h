@@ -183,6 +183,11 @@ struct VirtualCounters {
     // receiver whose page is unserved falls back to the next coarser level.
     PENUMBRA_UINT level_needs[PENUMBRA_MAX_VIRTUAL_LEVELS];
     PENUMBRA_UINT age_histogram[PENUMBRA_VIRTUAL_AGE_BUCKETS];
+    // Entries drawn this frame, per level: the list of them is grouped by level, finer
+    // levels first, so that the casters' culling scans only a level's own (listed counts
+    // them while the list is written).
+    PENUMBRA_UINT level_rendered[PENUMBRA_MAX_VIRTUAL_LEVELS];
+    PENUMBRA_UINT level_listed[PENUMBRA_MAX_VIRTUAL_LEVELS];
 };
 
 // One caster instance drawn into one page (gl_InstanceIndex of the virtual caster draws).
@@ -214,7 +219,7 @@ struct VirtualMarkPushConstants {
 #define PENUMBRA_VIRTUAL_STEP_THRESHOLD 2  // one thread: the age threshold of eviction
 #define PENUMBRA_VIRTUAL_STEP_EVICT 3      // per physical page: evict the oldest unrequested
 #define PENUMBRA_VIRTUAL_STEP_ASSIGN 4     // per needed entry: a free page, or unserved
-#define PENUMBRA_VIRTUAL_STEP_COUNT 5      // per physical page: resident pages
+#define PENUMBRA_VIRTUAL_STEP_COUNT 5      // per physical page: resident; the list to draw
 
 struct VirtualStepPushConstants {
     PENUMBRA_UINT step;  // PENUMBRA_VIRTUAL_STEP_*

@@ -187,6 +187,9 @@ VirtualShadowInfo VirtualShadowMap::info(uint64_t counted_frame) const {
         info.page_draws = counters->page_draws;
         info.dropped_page_draws = counters->dropped_page_draws;
     }
+    if (const auto levels = pass_.culled(counted_frame)) {
+        for (const passes::CulledLayer& level : *levels) info.page_draw_triangles += level.triangles;
+    }
     return info;
 }
 

@@ -149,7 +149,11 @@ static_assert(offsetof(VirtualCounters, clear_vertex_count) == 48);
 static_assert(offsetof(VirtualCounters, page_draws) == 64);
 static_assert(offsetof(VirtualCounters, level_needs) == 80);
 static_assert(offsetof(VirtualCounters, age_histogram) == 80 + 4 * PENUMBRA_MAX_VIRTUAL_LEVELS);
-static_assert(sizeof(VirtualCounters) == 80 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
+static_assert(offsetof(VirtualCounters, level_rendered) ==
+              80 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
+static_assert(offsetof(VirtualCounters, level_listed) ==
+              80 + 4 * (2 * PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
+static_assert(sizeof(VirtualCounters) == 80 + 4 * (3 * PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
 static_assert(sizeof(VirtualPageDraw) == 8);
 static_assert(sizeof(VirtualCullPushConstants) == 16);
 static_assert(offsetof(VirtualMarkPushConstants, width) == 64);

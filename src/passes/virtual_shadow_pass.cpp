@@ -13,7 +13,9 @@
 namespace penumbra::passes {
 namespace {
 
-constexpr uint32_t kCullGroupSize = 64;  // local_size_x of virtual_cull.comp
+// virtual_cull.comp runs one workgroup per instance; Vulkan guarantees 65,535 workgroups in
+// each dimension, and the second continues the first.
+constexpr uint32_t kMaxWorkgroupsPerDimension = 65535;
 
 void require_features(const gpu::Device& device, const VirtualPages& pages) {
     if (!device.features().virtual_pages) {
@@ -101,7 +103,8 @@ void VirtualShadowPass::record_cull(VkCommandBuffer cmd, const CasterScene& scen
     constants.draw_capacity = pages.desc().max_page_draws;
     constants.pool_pages_per_row = virtual_pool_pages_per_row(pages.desc().pool_pages);
     device_->vkCmdPushConstants(cmd, cull_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
-    device_->vkCmdDispatch(cmd, (constants.instance_count + kCullGroupSize - 1) / kCullGroupSize, 1, 1);
+    const uint32_t columns = std::clamp(constants.instance_count, 1u, kMaxWorkgroupsPerDimension);
+    device_->vkCmdDispatch(cmd, columns, (constants.instance_count + columns - 1) / columns, 1);
     culling_.finish_commands(cmd, frame);
 }
 

@@ -186,6 +186,25 @@ std::set<uint32_t> requested_entries(const passes::VirtualPageState& state) {
 bool allocated(uint32_t value) { return (value & PENUMBRA_PAGE_ALLOCATED) != 0; }
 uint32_t physical_of(uint32_t value) { return value & PENUMBRA_PAGE_PHYSICAL_MASK; }
 
+// The list of pages drawn this frame holds each of them once, finer levels first, as the
+// casters' culling reads it (each level's pages from the sum of the finer levels' counts).
+void expect_render_list_grouped_by_level(const passes::VirtualPageState& state) {
+    const uint32_t per_level = static_cast<uint32_t>(state.page_table.size()) / test_config().level_count;
+    ASSERT_EQ(state.rendered.size(), state.counters.rendered);
+    EXPECT_EQ(std::set<uint32_t>(state.rendered.begin(), state.rendered.end()).size(), state.rendered.size());
+    uint32_t first = 0;
+    for (uint32_t level = 0; level < PENUMBRA_MAX_VIRTUAL_LEVELS; ++level) {
+        const uint32_t count = state.counters.level_rendered[level];
+        EXPECT_EQ(state.counters.level_listed[level], count) << "level " << level;
+        for (uint32_t i = first; i < first + count && i < state.rendered.size(); ++i) {
+            EXPECT_EQ(state.rendered[i] / per_level, level) << "list position " << i;
+            EXPECT_NE(state.page_table[state.rendered[i]] & PENUMBRA_PAGE_RENDER, 0u) << "entry " << state.rendered[i];
+        }
+        first += count;
+    }
+    EXPECT_EQ(first, state.counters.rendered);
+}
+
 // Every allocated entry holds its own physical page, and that page names it as its owner.
 void expect_consistent(const passes::VirtualPageState& state) {
     std::set<uint32_t> pages;
@@ -207,6 +226,7 @@ void expect_consistent(const passes::VirtualPageState& state) {
         }
     }
     EXPECT_EQ(state.counters.resident, resident);
+    expect_render_list_grouped_by_level(state);
 }
 
 TEST_F(VirtualPages, MarkingRequestsThePagesTheCpuSelects) {

@@ -164,6 +164,12 @@ TEST_F(VirtualShadowMapTest, CachedPagesEqualPagesDrawnEveryFrame) {
                 } else {
                     redrawn_uncached = info.virtual_map->pages_rendered;
                     EXPECT_TRUE(info.virtual_map->invalidated_all);
+                    // Each page draw is a box (12 triangles) or the ground (2).
+                    const VirtualShadowInfo& map = *info.virtual_map;
+                    EXPECT_GE(map.page_draws, map.pages_rendered) << "the ground reaches every page";
+                    EXPECT_GE(map.page_draw_triangles, uint64_t{2} * map.page_draws);
+                    EXPECT_LE(map.page_draw_triangles, uint64_t{12} * map.page_draws);
+                    EXPECT_GT(map.page_draw_triangles, uint64_t{2} * map.page_draws) << "boxes were drawn too";
                 }
             }
             record_frame_without_resolve(*system, view);

@@ -115,7 +115,8 @@ void virtual_map_section(const VirtualShadowInfo& map) {
                 map.pool_pages ? 100.0 * map.pages_resident / map.pool_pages : 0.0);
     ImGui::Text("pages: %u requested, %u drawn, %u cached, %u unserved, %u evicted", map.pages_requested,
                 map.pages_rendered, map.pages_cached, map.pages_unserved, map.pages_evicted);
-    ImGui::Text("caster instances drawn into pages: %u%s", map.page_draws,
+    ImGui::Text("caster instances drawn into pages: %u (%llu triangles)%s", map.page_draws,
+                static_cast<unsigned long long>(map.page_draw_triangles),
                 map.invalidated_all ? " (every page stale this frame)" : "");
     if (map.counted_frame == 0) ImGui::TextDisabled("the GPU's counts arrive after the frames in flight");
     std::string sizes;
