@@ -35,10 +35,19 @@ std::vector<GpuScene::MeshRange> GpuScene::upload_geometry(const AppContext& con
     std::vector<uint32_t> indices;
     std::vector<MeshRange> ranges;
     for (const Mesh& mesh : scene.meshes) {
-        ranges.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(mesh.indices.size()),
-                          static_cast<int32_t>(vertices.size())});
+        MeshRange range{static_cast<uint32_t>(indices.size()),
+                        static_cast<uint32_t>(mesh.indices.size()),
+                        static_cast<int32_t>(vertices.size()),
+                        {}};
         vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
         indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+        // The mesh's triangles in clusters (reordered in place: every pass draws the same
+        // triangles, and the depth test keeps the same nearest surface).
+        std::vector<Vec3> positions(mesh.vertices.size());
+        for (size_t v = 0; v < positions.size(); ++v) positions[v] = to_vec3(mesh.vertices[v].position);
+        range.clusters =
+            build_mesh_clusters(positions, std::span<uint32_t>(indices).subspan(range.first_index, range.index_count));
+        ranges.push_back(std::move(range));
     }
     vertices_ = gpu::create_buffer_with_data(context.one_time(), as_bytes(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     indices_ = gpu::create_buffer_with_data(context.one_time(), as_bytes(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
@@ -279,6 +288,7 @@ void GpuScene::add_shadow_casters(const Scene& scene, const std::vector<MeshRang
         desc.index_count = range.index_count;
         desc.vertex_offset = range.vertex_offset;
         desc.bounds = {to_vec3(scene.meshes[m].bounds.min), to_vec3(scene.meshes[m].bounds.max)};
+        desc.clusters = range.clusters;
         if (material.alpha_masked && material.has_texture) {
             desc.uvs = VertexStream{vertices_.get(), offsetof(Vertex, uv), sizeof(Vertex), VK_FORMAT_R32G32_SFLOAT};
             desc.alpha_mask = AlphaMaskDesc{material.texture_view, material.texture_sampler, material.alpha_cutoff,

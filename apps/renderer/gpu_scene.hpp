@@ -32,6 +32,7 @@ private:
         uint32_t first_index = 0;
         uint32_t index_count = 0;
         int32_t vertex_offset = 0;
+        std::vector<MeshCluster> clusters;  // for the virtual shadow map's culling
     };
 
     std::vector<MeshRange> upload_geometry(const AppContext& context, const Scene& scene);

@@ -65,6 +65,23 @@ struct AlphaMaskDesc {
     float alpha_scale = 1.0f;  // e.g. the material's base colour alpha factor, [0, 1]
 };
 
+// A run of consecutive triangles of a mesh with its own model-space bounds. The virtual
+// shadow map culls clusters, not instances, against the pages it draws: a tree or a ground
+// tile drawn into a fine level's page then sends only the triangles near that page through
+// the rasteriser. build_mesh_clusters() makes them; MeshData meshes get them by themselves.
+struct MeshCluster {
+    uint32_t first_index = 0;  // into the mesh's indices (from MeshDesc::index_offset), a multiple of 3
+    uint32_t index_count = 0;  // a positive multiple of 3
+    Bounds bounds;             // must contain the vertices its indices reach
+};
+
+// Orders the triangles of `indices` (a triangle list; each triangle keeps its corners and
+// winding) so that runs of up to 128 are compact in space, along a Morton curve through their
+// centroids, and returns those runs for MeshDesc::clusters. Throws InputError when the list
+// is not triangles or an index is not below positions.size(). The shadows are the same with
+// or without clusters; only the virtual shadow map's rasterisation gets cheaper.
+std::vector<MeshCluster> build_mesh_clusters(std::span<const Vec3> positions, std::span<uint32_t> indices);
+
 // A triangle list in the caller's buffers: nothing is copied. The buffers must stay valid
 // until the mesh is removed and the frames that used it are complete.
 //   positions: R32G32B32_SFLOAT, R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT or _SNORM / _UNORM
@@ -83,10 +100,15 @@ struct MeshDesc {
     Bounds bounds;
     std::optional<VertexStream> uvs;  // required with alpha_mask
     std::optional<AlphaMaskDesc> alpha_mask;
+    // Empty, or runs that cover [0, index_count) in order, each with its bounds (copied).
+    // Without them the virtual shadow map draws the whole mesh into every page an instance
+    // of it reaches.
+    std::span<const MeshCluster> clusters;
 };
 
 // A triangle list on the CPU that Penumbra uploads into buffers of its own (copied during
-// the next record_shadow_maps()). Bounds are computed from the positions.
+// the next record_shadow_maps()). Bounds and clusters are computed from the positions (the
+// triangles are reordered as build_mesh_clusters() does).
 struct MeshData {
     std::span<const Vec3> positions;    // finite, within kMaxWorldMagnitude
     std::span<const uint32_t> indices;  // a multiple of 3, each < positions.size()

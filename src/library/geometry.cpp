@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/mesh_clusters.hpp"
 #include "library/conversions.hpp"
 #include "library/instance_checks.hpp"
 #include "passes/shader_interface.hpp"
@@ -73,11 +74,58 @@ void check_stream(const gpu::Device& device, const VertexStream& stream, const s
 
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-void check_bounds(const Bounds& bounds, const char* call) {
-    if (!finite(bounds.min) || !finite(bounds.max)) reject(call, "bounds", "must be finite");
+void check_bounds(const Bounds& bounds, const char* call, const std::string& field = "bounds") {
+    if (!finite(bounds.min) || !finite(bounds.max)) reject(call, field, "must be finite");
     if (bounds.min.x > bounds.max.x || bounds.min.y > bounds.max.y || bounds.min.z > bounds.max.z) {
-        reject(call, "bounds", "min exceeds max on an axis");
+        reject(call, field, "min exceeds max on an axis");
     }
+}
+
+// Runs of triangles that cover the index list in order.
+std::vector<core::MeshCluster> checked_clusters(std::span<const MeshCluster> clusters, uint32_t index_count,
+                                                const char* call) {
+    std::vector<core::MeshCluster> result;
+    uint32_t next = 0;
+    for (size_t c = 0; c < clusters.size(); ++c) {
+        const MeshCluster& cluster = clusters[c];
+        const std::string field = "clusters[" + std::to_string(c) + "]";
+        if (cluster.first_index != next) {
+            reject(call, field + ".first_index",
+                   std::to_string(cluster.first_index) + " is not " + std::to_string(next) +
+                       ", where the previous cluster ends (clusters cover the indices in order)");
+        }
+        if (cluster.index_count == 0 || cluster.index_count % 3 != 0 || cluster.index_count > index_count - next) {
+            reject(call, field + ".index_count",
+                   std::to_string(cluster.index_count) + " is not a positive multiple of 3 within index_count " +
+                       std::to_string(index_count));
+        }
+        check_bounds(cluster.bounds, call, field + ".bounds");
+        result.push_back({cluster.first_index, cluster.index_count, to_aabb(cluster.bounds)});
+        next += cluster.index_count;
+    }
+    if (!clusters.empty() && next != index_count) {
+        reject(call, "clusters",
+               "end at index " + std::to_string(next) + ", not at index_count " + std::to_string(index_count));
+    }
+    return result;
+}
+
+// "field: problem" of a list that is not triangles of `positions`; empty when it is.
+std::string triangle_index_problem(std::span<const uint32_t> indices, size_t positions) {
+    if (indices.size() % 3 != 0) return "indices: " + std::to_string(indices.size()) + " is not a multiple of 3";
+    for (size_t i = 0; i < indices.size(); ++i) {
+        if (indices[i] >= positions) {
+            return "indices[" + std::to_string(i) + "]: " + std::to_string(indices[i]) + " is out of range (" +
+                   std::to_string(positions) + " positions)";
+        }
+    }
+    return "";
+}
+
+std::vector<glm::vec3> glm_positions(std::span<const Vec3> positions) {
+    std::vector<glm::vec3> result(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) result[i] = to_glm(positions[i]);
+    return result;
 }
 
 void check_alpha_mask(const AlphaMaskDesc& mask, const char* call) {
@@ -145,6 +193,7 @@ MeshId Geometry::add_mesh(const MeshDesc& desc) {
     mesh.caster.index_count = desc.index_count;
     mesh.caster.vertex_offset = desc.vertex_offset;
     mesh.bounds = to_aabb(desc.bounds);
+    mesh.caster.clusters = checked_clusters(desc.clusters, desc.index_count, call);
     if (desc.alpha_mask) attach_alpha_mask(mesh, *desc.alpha_mask);
     return insert_mesh(std::move(mesh));
 }
@@ -155,12 +204,8 @@ MeshId Geometry::add_mesh(const MeshData& data) {
     if (data.indices.empty() || data.indices.size() % 3 != 0) {
         reject(call, "indices", std::to_string(data.indices.size()) + " is not a positive multiple of 3");
     }
-    for (size_t i = 0; i < data.indices.size(); ++i) {
-        if (data.indices[i] >= data.positions.size()) {
-            reject(call, "indices[" + std::to_string(i) + "]",
-                   std::to_string(data.indices[i]) + " is out of range (" + std::to_string(data.positions.size()) +
-                       " positions)");
-        }
+    if (const std::string problem = triangle_index_problem(data.indices, data.positions.size()); !problem.empty()) {
+        throw InputError(std::string("ShadowSystem::") + call + ": " + problem);
     }
     check_positions(data.positions, call);
     if (!data.uvs.empty() && data.uvs.size() != data.positions.size()) {
@@ -178,7 +223,10 @@ MeshId Geometry::add_mesh(const MeshData& data) {
     if (data.alpha_mask) {
         mesh.caster.uvs = {upload(bytes_of(data.uvs), vertex, mesh), 0, sizeof(Vec2), VK_FORMAT_R32G32_SFLOAT};
     }
-    mesh.caster.index_buffer = upload(bytes_of(data.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, mesh);
+    std::vector<uint32_t> indices(data.indices.begin(), data.indices.end());
+    mesh.caster.clusters = core::cluster_triangles(glm_positions(data.positions), indices);
+    mesh.caster.index_buffer =
+        upload(bytes_of(std::span<const uint32_t>(indices)), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, mesh);
     mesh.caster.index_type = VK_INDEX_TYPE_UINT32;
     mesh.caster.index_count = static_cast<uint32_t>(data.indices.size());
     mesh.bounds = bounds_of(data.positions);
@@ -399,3 +447,20 @@ uint64_t Geometry::buffer_bytes() const {
 }
 
 }  // namespace penumbra::library
+
+namespace penumbra {
+
+std::vector<MeshCluster> build_mesh_clusters(std::span<const Vec3> positions, std::span<uint32_t> indices) {
+    if (const std::string problem = library::triangle_index_problem(indices, positions.size()); !problem.empty()) {
+        throw InputError("build_mesh_clusters: " + problem);
+    }
+    std::vector<MeshCluster> clusters;
+    for (const core::MeshCluster& cluster : core::cluster_triangles(library::glm_positions(positions), indices)) {
+        clusters.push_back({cluster.first_index,
+                            cluster.index_count,
+                            {library::to_public(cluster.bounds.min), library::to_public(cluster.bounds.max)}});
+    }
+    return clusters;
+}
+
+}  // namespace penumbra

@@ -87,6 +87,27 @@ shader::CullInstance cull_instance(const CasterScene& scene, const CasterDraw& d
     return instance;
 }
 
+// Appends the culled draws of `draw`: the instance, or one per cluster of its mesh (its
+// index range, and its bounds in the world, within the instance's).
+void append_cull_units(std::vector<shader::CullInstance>& units, const CasterScene& scene, const CasterDraw& draw,
+                       uint32_t bucket, CullUnit unit) {
+    const shader::CullInstance whole = cull_instance(scene, draw, bucket);
+    const CasterMesh& mesh = scene.meshes[draw.mesh];
+    if (unit == CullUnit::Instances || mesh.clusters.size() < 2) {
+        units.push_back(whole);
+        return;
+    }
+    for (const core::MeshCluster& cluster : mesh.clusters) {
+        shader::CullInstance part = whole;
+        const core::Aabb bounds = core::transform_aabb(cluster.bounds, draw.model);
+        part.bounds_min = glm::vec4(glm::max(bounds.min, draw.world_bounds.min), 0.0f);
+        part.bounds_max = glm::vec4(glm::min(bounds.max, draw.world_bounds.max), 0.0f);
+        part.first_index = whole.first_index + cluster.first_index;
+        part.index_count = cluster.index_count;
+        units.push_back(part);
+    }
+}
+
 gpu::UniqueDescriptorSetLayout create_draws_set_layout(const gpu::Device& device) {
     constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT;
     std::array<VkDescriptorSetLayoutBinding, std::size(kCullBindings)> bindings{};
@@ -159,9 +180,10 @@ void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t la
 }
 
 GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
-                                   uint32_t frames_in_flight)
+                                   uint32_t frames_in_flight, CullUnit unit)
     : device_(device),
       frames_in_flight_(std::max(frames_in_flight, 1u)),
+      unit_(unit),
       draws_set_layout_(create_draws_set_layout(device)),
       layout_(create_cull_layout(device, frame_set_layout, draws_set_layout_)),
       pipeline_(gpu::create_compute_pipeline(device, {VK_SHADER_STAGE_COMPUTE_BIT, shaders::caster_cull_comp(), {}},
@@ -229,7 +251,9 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
             draws_in_bucket.push_back(0);
         }
         draw_bucket[d] = found->second;
-        ++draws_in_bucket[found->second];
+        const CasterMesh& mesh = scene.meshes[scene.draws[d].mesh];
+        const bool split = unit_ == CullUnit::Clusters && mesh.clusters.size() >= 2;
+        draws_in_bucket[found->second] += split ? static_cast<uint32_t>(mesh.clusters.size()) : 1u;
     }
     // Buckets in key order (opaque first), each with its commands after the previous one's
     // within a layer's commands (a layer has room for every draw).
@@ -244,7 +268,12 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     buckets_ = std::move(ordered);
     for (uint32_t& bucket : draw_bucket) bucket = new_index[bucket];
 
-    const auto draws = static_cast<uint32_t>(scene.draws.size());
+    std::vector<shader::CullInstance> units;
+    units.reserve(scene.draws.size());
+    for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+        append_cull_units(units, scene, scene.draws[d], draw_bucket[d], unit_);
+    }
+    const auto draws = static_cast<uint32_t>(units.size());
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
     check_gpu_culling_room(device_, draws, layer_count);
     ensure_capacity(draws, draws * layer_count, bucket_count * layer_count);
@@ -256,10 +285,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
         staging = gpu::create_buffer(device_, instance_bytes + bucket_bytes + instance_bytes / 2,
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryKind::HostUpload);
     }
-    for (uint32_t d = 0; d < draws; ++d) {
-        const shader::CullInstance instance = cull_instance(scene, scene.draws[d], draw_bucket[d]);
-        write(staging.mapped, d * sizeof(instance), &instance, sizeof(instance));
-    }
+    if (draws > 0) write(staging.mapped, 0, units.data(), instance_bytes);
     for (uint32_t b = 0; b < bucket_count; ++b) {
         write(staging.mapped, instance_bytes + b * sizeof(uint32_t), &buckets_[b].first_command, sizeof(uint32_t));
     }
@@ -270,6 +296,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
         device_->vkCmdCopyBuffer(cmd, staging.get(), buffers_->buckets.get(), 1, &firsts);
     }
     draw_count_ = draws;
+    uploaded_draws_ = scene.draws.size();
     layer_count_ = layer_count;
     uploaded_version_ = scene.version;
 }
@@ -313,7 +340,7 @@ bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& sc
                             VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT,
                         VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    if (scene.version != uploaded_version_ || layer_count != layer_count_ || scene.draws.size() != draw_count_) {
+    if (scene.version != uploaded_version_ || layer_count != layer_count_ || scene.draws.size() != uploaded_draws_) {
         upload(cmd, scene, layer_count);
     }
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());

@@ -64,12 +64,17 @@ enum class CullLayers : uint32_t {
     LocalLayers = PENUMBRA_CULL_LOCAL_LAYERS  // PenumbraLocalShadows' lights and layers
 };
 
+// What one culled draw is: a caster instance, or one cluster of its mesh (CasterMesh::clusters;
+// the virtual shadow map draws each cluster only into the pages under it).
+enum class CullUnit { Instances, Clusters };
+
 class GpuCasterCulling {
 public:
     // `frame_set_layout` is set 0 of the culling dispatch (the shadow uniforms and the local
     // shadows); `frames_in_flight`: how many frames may run at once (replaced buffers live
     // that long).
-    GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout, uint32_t frames_in_flight);
+    GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout, uint32_t frames_in_flight,
+                     CullUnit unit = CullUnit::Instances);
 
     // Set PENUMBRA_SET_CASTER_DRAWS of the layered caster pipelines (and of the dispatch).
     VkDescriptorSetLayout draws_set_layout() const { return draws_set_layout_; }
@@ -90,7 +95,7 @@ public:
     bool begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count);
     void finish_commands(VkCommandBuffer cmd, uint64_t frame);
     VkDescriptorSet draws_set() const { return buffers_ ? buffers_->set : VK_NULL_HANDLE; }
-    uint32_t draw_count() const { return draw_count_; }
+    uint32_t draw_count() const { return draw_count_; }  // culled draws: instances or clusters
 
     // Per layer, the draws and triangles the culling recorded for `frame` selected; nullopt
     // once a later frame's culling reused its slot (after frames in flight + 1 frames), or
@@ -132,6 +137,7 @@ private:
 
     const gpu::Device& device_;
     uint32_t frames_in_flight_;
+    CullUnit unit_;
     gpu::UniqueDescriptorSetLayout draws_set_layout_;
     gpu::UniquePipelineLayout layout_;
     gpu::UniquePipeline pipeline_;
@@ -150,6 +156,7 @@ private:
     uint64_t records_ = 0;  // record_cull() calls so far
     std::vector<CasterBucket> buckets_;
     uint32_t draw_count_ = 0;
+    size_t uploaded_draws_ = 0;  // the scene's draws when it was uploaded
     uint32_t layer_count_ = 0;
     uint64_t uploaded_version_ = ~uint64_t{0};
 };

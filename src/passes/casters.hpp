@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/glm_config.hpp"
+#include "core/mesh_clusters.hpp"
 #include "core/shadow_inputs.hpp"
 #include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/pipeline.hpp"
@@ -41,6 +42,9 @@ struct CasterMesh {
     VkDescriptorSet alpha_mask_set = VK_NULL_HANDLE;  // set PENUMBRA_SET_ALPHA_MASK of masked draws
     float alpha_cutoff = 0.5f;
     float alpha_scale = 1.0f;
+    // Runs of its triangles with their own bounds (index_count's whole list, in order;
+    // first_index relative to the mesh's first index); empty: the mesh is one cluster.
+    std::vector<core::MeshCluster> clusters;
 };
 
 struct CasterDraw {

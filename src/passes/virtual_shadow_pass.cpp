@@ -63,7 +63,7 @@ VirtualShadowPass::VirtualShadowPass(const gpu::Device& device, VkDescriptorSetL
                                      VkDescriptorSetLayout alpha_mask_set_layout, const VirtualPages& pages,
                                      uint32_t frames_in_flight)
     : device_((require_features(device, pages), device)),
-      culling_(device, frame_set_layout, frames_in_flight),
+      culling_(device, frame_set_layout, frames_in_flight, CullUnit::Clusters),
       caster_layout_([&] {
           static_assert(PENUMBRA_SET_CASTER_FRAME == 0 && PENUMBRA_SET_ALPHA_MASK == 1 &&
                         PENUMBRA_SET_CASTER_DRAWS == 2 && PENUMBRA_SET_VIRTUAL_PAGES == 3);

@@ -6,6 +6,8 @@
 // the errors of bad settings and calls out of order.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -252,6 +254,135 @@ std::string error_of(const std::function<void()>& call) {
         return error.what();
     }
     return "no error";
+}
+
+// A ground of 32 x 32 quads and 64 thin posts over it, as one mesh: clusters of it are
+// much smaller than its instance.
+MeshArrays ground_and_posts_mesh() {
+    MeshArrays mesh;
+    const auto quad = [&mesh](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+        const auto base = static_cast<uint32_t>(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {a, b, c, d});
+        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    };
+    constexpr int kCells = 32;
+    constexpr float kCell = 40.0f / kCells;
+    for (int z = 0; z < kCells; ++z) {
+        for (int x = 0; x < kCells; ++x) {
+            const float x0 = -20.0f + kCell * static_cast<float>(x), z0 = -20.0f + kCell * static_cast<float>(z);
+            quad({x0, 0, z0}, {x0, 0, z0 + kCell}, {x0 + kCell, 0, z0 + kCell}, {x0 + kCell, 0, z0});
+        }
+    }
+    for (int i = 0; i < 64; ++i) {  // 5 cm posts, 2 m tall, every 1.5 m
+        const float cx = -5.25f + 1.5f * static_cast<float>(i % 8), cz = -5.25f + 1.5f * static_cast<float>(i / 8);
+        const float r = 0.025f;
+        const Vec3 p[8] = {{cx - r, 0, cz + r}, {cx + r, 0, cz + r}, {cx + r, 2, cz + r}, {cx - r, 2, cz + r},
+                           {cx + r, 0, cz - r}, {cx - r, 0, cz - r}, {cx - r, 2, cz - r}, {cx + r, 2, cz - r}};
+        quad(p[0], p[1], p[2], p[3]);  // +Z
+        quad(p[4], p[5], p[6], p[7]);  // -Z
+        quad(p[1], p[4], p[7], p[2]);  // +X
+        quad(p[5], p[0], p[3], p[6]);  // -X
+        quad(p[3], p[2], p[7], p[6]);  // top
+    }
+    return mesh;
+}
+
+// The same mesh in the caller's buffers, with or without clusters (MeshDesc).
+struct CallerMesh {
+    HostBuffer vertices;
+    HostBuffer indices;
+    MeshDesc desc;
+    CallerMesh(const DeviceDesc& device, const MeshArrays& mesh, std::span<const MeshCluster> clusters)
+        : vertices(device, mesh.positions.size() * sizeof(Vec3), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT),
+          indices(device, mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT) {
+        std::memcpy(vertices.mapped, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+        std::memcpy(indices.mapped, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+        desc.positions = {vertices.buffer, 0, sizeof(Vec3), VK_FORMAT_R32G32B32_SFLOAT};
+        desc.index_buffer = indices.buffer;
+        desc.index_count = static_cast<uint32_t>(mesh.indices.size());
+        desc.bounds = {{-20, 0, -20}, {20, 2, 20}};
+        desc.clusters = clusters;
+    }
+};
+
+// Clusters are an optimisation only: a mesh drawn whole into every page its instance
+// reaches, the same mesh clustered by Penumbra (MeshData) and clustered by the caller
+// (build_mesh_clusters, MeshDesc::clusters) cast the same shadows, while the clustered ones
+// send a fraction of the triangles through the rasteriser. The pages' places in the pool
+// may differ between systems (GPU atomics), which moves a rounding in a pixel now and then
+// (see CachedPagesEqualPagesDrawnEveryFrame): a few pixels by one PCF tap at most.
+TEST_F(VirtualShadowMapTest, ClustersCastTheShadowsOfWholeMeshesFromFewerTriangles) {
+    Settings settings = virtual_settings(ShadowFilter::Pcf);
+    settings.shadow.virtual_maps.lod_bias = -2.0f;  // pages of 2 m: dozens in view
+    settings.shadow.cache_static_casters = false;   // every page drawn every frame
+    const MeshArrays mesh = ground_and_posts_mesh();
+    MeshArrays reordered = mesh;
+    const std::vector<MeshCluster> clusters = build_mesh_clusters(reordered.positions, reordered.indices);
+    ASSERT_EQ(clusters.size(), (mesh.indices.size() / 3 + 127) / 128);
+    const CallerMesh whole(device_, mesh, {});
+    const CallerMesh clustered_by_caller(device_, reordered, clusters);
+    ShadowSystem systems[3] = {ShadowSystem(system_desc(settings)), ShadowSystem(system_desc(settings)),
+                               ShadowSystem(system_desc(settings))};
+    const MeshId meshes[3] = {systems[0].add_mesh(whole.desc), systems[1].add_mesh(mesh.data()),
+                              systems[2].add_mesh(clustered_by_caller.desc)};
+    for (int s = 0; s < 3; ++s) {
+        systems[s].add_instance({meshes[s], Mat4{}});
+        add_sun(systems[s]);
+    }
+    uint64_t triangles[3] = {};
+    for (int f = 0; f < 4; ++f) {
+        const ViewDesc view = top_down_at(0.9f * static_cast<float>(f), -0.6f * static_cast<float>(f));
+        VisibilityImage2D images[3];
+        for (int s = 0; s < 3; ++s) {
+            images[s] = render_visibility_from(systems[s], view);
+            const FrameInfo& info = systems[s].prepare(view);
+            if (info.virtual_map->counted_frame > 0) triangles[s] += info.virtual_map->page_draw_triangles;
+            record_frame_without_resolve(systems[s], view);
+        }
+        for (int s = 1; s < 3; ++s) {
+            size_t differ = 0;
+            for (size_t i = 0; i < images[0].values.size(); ++i) {
+                if (images[0].values[i] == images[s].values[i]) continue;
+                ++differ;
+                EXPECT_LE(std::abs(images[0].values[i] - images[s].values[i]), 1.0f / 9.0f + 1e-3f)
+                    << "system " << s << " frame " << f << " pixel " << i;
+            }
+            EXPECT_LE(differ, images[0].values.size() / 5000) << "system " << s << " frame " << f;
+        }
+    }
+    ASSERT_GT(triangles[0], 0u);
+    EXPECT_LT(2 * triangles[1], triangles[0]) << "clusters drew " << triangles[1] << " of " << triangles[0];
+    EXPECT_LT(2 * triangles[2], triangles[0]) << "clusters drew " << triangles[2] << " of " << triangles[0];
+}
+
+TEST_F(VirtualShadowMapTest, BadClustersAreNamed) {
+    ShadowSystem shadows(system_desc(virtual_settings()));
+    MeshArrays mesh = ground_and_posts_mesh();
+    const std::vector<MeshCluster> clusters = build_mesh_clusters(mesh.positions, mesh.indices);
+    const auto message = [&](std::vector<MeshCluster> changed) {
+        const CallerMesh caller(device_, mesh, changed);
+        return error_of([&] { shadows.add_mesh(caller.desc); });
+    };
+    std::vector<MeshCluster> gap = clusters;
+    gap[1].first_index += 3;
+    EXPECT_EQ(message(gap),
+              "ShadowSystem::add_mesh: clusters[1].first_index: 387 is not 384, where the previous cluster ends "
+              "(clusters cover the indices in order)");
+    std::vector<MeshCluster> short_list(clusters.begin(), clusters.end() - 1);
+    EXPECT_NE(message(short_list).find("ShadowSystem::add_mesh: clusters: end at index"), std::string::npos);
+    std::vector<MeshCluster> inverted = clusters;
+    std::swap(inverted[2].bounds.min, inverted[2].bounds.max);
+    EXPECT_EQ(message(inverted), "ShadowSystem::add_mesh: clusters[2].bounds: min exceeds max on an axis");
+    std::vector<MeshCluster> ragged = clusters;
+    ragged[0].index_count = 4;
+    EXPECT_NE(message(ragged).find("clusters[0].index_count: 4 is not a positive multiple of 3"), std::string::npos);
+    std::vector<uint32_t> not_triangles(mesh.indices.begin(), mesh.indices.begin() + 4);
+    EXPECT_EQ(error_of([&] { build_mesh_clusters(mesh.positions, not_triangles); }),
+              "build_mesh_clusters: indices: 4 is not a multiple of 3");
+    std::vector<uint32_t> beyond = {0, 1, 99999};
+    EXPECT_EQ(error_of([&] { build_mesh_clusters(mesh.positions, beyond); }),
+              "build_mesh_clusters: indices[2]: 99999 is out of range (" + std::to_string(mesh.positions.size()) +
+                  " positions)");
 }
 
 TEST_F(VirtualShadowMapTest, BadSettingsAndCallsOutOfOrderAreNamed) {
