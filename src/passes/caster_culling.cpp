@@ -155,27 +155,31 @@ gpu::UniquePipelineLayout create_caster_pipeline_layout(const gpu::Device& devic
     return gpu::create_pipeline_layout(device, set_layouts, {&push_range, 1});
 }
 
-void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers) {
+void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers, CullUnit unit) {
+    // Who culls, what it culls, and what to do instead, for the messages.
+    const bool clusters = unit == CullUnit::Clusters;
+    const std::string who = clusters ? "virtual shadow map: " : "shadow strategy layered: ";
+    const std::string what = clusters ? " caster clusters" : " casting instances";
+    const std::string layer_name = clusters ? " levels" : " layers";
+    const std::string instead = clusters ? "; use the cascades" : "; use the per-cascade strategy";
     const uint64_t commands = uint64_t{draws} * layers;
     if (commands > max_commands(device)) {
-        throw InputError("shadow strategy layered: " + std::to_string(draws) + " casting instances in " +
-                         std::to_string(layers) + " layers need " + std::to_string(commands) +
-                         " indirect commands, more than the " + std::to_string(max_commands(device)) +
-                         " the GPU culling makes room for on this device; use the per-cascade strategy");
+        throw InputError(who + std::to_string(draws) + what + " in " + std::to_string(layers) + layer_name + " need " +
+                         std::to_string(commands) + " indirect commands, more than the " +
+                         std::to_string(max_commands(device)) + " the GPU culling makes room for on this device" +
+                         instead);
     }
     if (draws > max_draws(device)) {
-        throw DeviceError("shadow strategy layered: " + std::to_string(draws) +
-                          " casting instances do not fit one storage buffer of this device (maxStorageBufferRange " +
-                          std::to_string(device.properties().limits.maxStorageBufferRange) +
-                          "); use the per-cascade strategy");
+        throw DeviceError(who + std::to_string(draws) + what +
+                          " do not fit one storage buffer of this device (maxStorageBufferRange " +
+                          std::to_string(device.properties().limits.maxStorageBufferRange) + ")" + instead);
     }
     // A bucket holds at most every draw: one indirect draw must be able to draw them all.
     const uint32_t limit = device.properties().limits.maxDrawIndirectCount;
     if (draws > limit) {
-        throw DeviceError("shadow strategy layered: " + std::to_string(draws) +
-                          " casting instances, more than the device draws in one indirect draw "
-                          "(maxDrawIndirectCount " +
-                          std::to_string(limit) + "); use the per-cascade strategy");
+        throw DeviceError(who + std::to_string(draws) + what +
+                          ", more than the device draws in one indirect draw (maxDrawIndirectCount " +
+                          std::to_string(limit) + ")" + instead);
     }
 }
 
@@ -275,7 +279,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     }
     const auto draws = static_cast<uint32_t>(units.size());
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
-    check_gpu_culling_room(device_, draws, layer_count);
+    check_gpu_culling_room(device_, draws, layer_count, unit_);
     ensure_capacity(draws, draws * layer_count, bucket_count * layer_count);
     const VkDeviceSize instance_bytes = VkDeviceSize{draws} * sizeof(shader::CullInstance);
     const VkDeviceSize bucket_bytes = VkDeviceSize{bucket_count} * sizeof(uint32_t);

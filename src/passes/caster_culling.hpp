@@ -51,22 +51,23 @@ gpu::UniquePipelineLayout create_caster_pipeline_layout(const gpu::Device& devic
                                                         VkDescriptorSetLayout alpha_mask_set_layout,
                                                         const GpuCasterCulling* gpu_culling);
 
+// What one culled draw is: a caster instance, or one cluster of its mesh (CasterMesh::clusters;
+// the virtual shadow map draws each cluster only into the pages under it).
+enum class CullUnit { Instances, Clusters };
+
 // Throws InputError when `draws` casters in `layers` layers need more indirect commands than
 // the GPU culling makes room for (2^26, or what one storage buffer of the device holds),
 // DeviceError when the draws do not fit one storage buffer or one indirect draw
-// (maxStorageBufferRange, maxDrawIndirectCount). ShadowSystem::prepare() checks before
-// anything is recorded.
-void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers);
+// (maxStorageBufferRange, maxDrawIndirectCount); the messages name who culls (`unit`).
+// ShadowSystem::prepare() checks the layered strategy before anything is recorded.
+void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t layers,
+                            CullUnit unit = CullUnit::Instances);
 
 // What a culling dispatch tests the draws against.
 enum class CullLayers : uint32_t {
     Cascades = PENUMBRA_CULL_CASCADES,        // PenumbraShadowUniforms::cascades
     LocalLayers = PENUMBRA_CULL_LOCAL_LAYERS  // PenumbraLocalShadows' lights and layers
 };
-
-// What one culled draw is: a caster instance, or one cluster of its mesh (CasterMesh::clusters;
-// the virtual shadow map draws each cluster only into the pages under it).
-enum class CullUnit { Instances, Clusters };
 
 class GpuCasterCulling {
 public:

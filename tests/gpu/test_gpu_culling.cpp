@@ -268,6 +268,16 @@ TEST_F(GpuCulling, TooManyCastersInTooManyLayersAreRefusedWithTheNumbers) {
         const std::string expected = std::to_string(fits + 1) + " casting instances in 192 layers";
         EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
     }
+    // The virtual shadow map's culling of clusters says so.
+    try {
+        passes::check_gpu_culling_room(context_, fits + 1, kLayers, passes::CullUnit::Clusters);
+        ADD_FAILURE() << "expected an InputError";
+    } catch (const InputError& error) {
+        const std::string expected =
+            "virtual shadow map: " + std::to_string(fits + 1) + " caster clusters in 192 levels";
+        EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("use the cascades"), std::string::npos) << error.what();
+    }
 }
 
 }  // namespace
