@@ -1,7 +1,6 @@
 #include "core/mesh_clusters.hpp"
 
 #include <algorithm>
-#include <array>
 #include <numeric>
 
 namespace penumbra::core {

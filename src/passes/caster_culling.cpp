@@ -87,13 +87,19 @@ shader::CullInstance cull_instance(const CasterScene& scene, const CasterDraw& d
     return instance;
 }
 
-// Appends the culled draws of `draw`: the instance, or one per cluster of its mesh (its
-// index range, and its bounds in the world, within the instance's).
+// How many culled draws an instance of `mesh` is: one, or one per cluster of it.
+uint32_t cull_unit_count(const CasterMesh& mesh, CullUnit unit) {
+    const bool split = unit == CullUnit::Clusters && mesh.clusters.size() >= 2;
+    return split ? static_cast<uint32_t>(mesh.clusters.size()) : 1u;
+}
+
+// Appends the culled draws of `draw` (cull_unit_count() of them): the instance, or one per
+// cluster of its mesh (its index range, and its bounds in the world, within the instance's).
 void append_cull_units(std::vector<shader::CullInstance>& units, const CasterScene& scene, const CasterDraw& draw,
                        uint32_t bucket, CullUnit unit) {
     const shader::CullInstance whole = cull_instance(scene, draw, bucket);
     const CasterMesh& mesh = scene.meshes[draw.mesh];
-    if (unit == CullUnit::Instances || mesh.clusters.size() < 2) {
+    if (cull_unit_count(mesh, unit) == 1) {
         units.push_back(whole);
         return;
     }
@@ -255,9 +261,7 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
             draws_in_bucket.push_back(0);
         }
         draw_bucket[d] = found->second;
-        const CasterMesh& mesh = scene.meshes[scene.draws[d].mesh];
-        const bool split = unit_ == CullUnit::Clusters && mesh.clusters.size() >= 2;
-        draws_in_bucket[found->second] += split ? static_cast<uint32_t>(mesh.clusters.size()) : 1u;
+        draws_in_bucket[found->second] += cull_unit_count(scene.meshes[scene.draws[d].mesh], unit_);
     }
     // Buckets in key order (opaque first), each with its commands after the previous one's
     // within a layer's commands (a layer has room for every draw).
