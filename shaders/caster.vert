@@ -12,8 +12,9 @@
 //                         shaderOutputLayer); a local layer is still one pass per layer
 //   PENUMBRA_VIRTUAL:     the sun's virtual shadow map: draws the commands
 //                         shaders/virtual_cull.comp wrote, one instance per page
-//                         (VirtualPageDraw[gl_InstanceIndex]), into that page of the pool,
-//                         clipped to the page
+//                         (VirtualPageDraw[gl_InstanceIndex]), into that page of the pool:
+//                         its layer and the viewport of its place in the layer, whose
+//                         scissor keeps the caster inside the page
 //   PENUMBRA_MASKED:      also passes the UVs on to the alpha test
 #extension GL_GOOGLE_include_directive : require
 #ifdef PENUMBRA_MULTIVIEW
@@ -22,7 +23,7 @@
 #else
 #define PENUMBRA_VIEW_INDEX 0
 #endif
-#if defined(PENUMBRA_GPU_DRIVEN) && !defined(PENUMBRA_LOCAL_LAYER)
+#if (defined(PENUMBRA_GPU_DRIVEN) && !defined(PENUMBRA_LOCAL_LAYER)) || defined(PENUMBRA_VIRTUAL)
 #define PENUMBRA_WRITES_LAYER
 #extension GL_ARB_shader_viewport_layer_array : require
 #endif
@@ -47,28 +48,29 @@ layout(std430, set = PENUMBRA_SET_VIRTUAL_PAGES, binding = PENUMBRA_BINDING_VIRT
 #define PENUMBRA_VIRTUAL_CLIPMAP clipmap
 #include "penumbra/glsl/virtual_clipmap.glsl"
 mat4 draw_model() { return instances[page_draws[gl_InstanceIndex].instance].model; }
-out float gl_ClipDistance[4];
+ivec3 draw_pool_page() {
+    return penumbra_virtual_pool_page(page_table[page_draws[gl_InstanceIndex].entry] & PENUMBRA_PAGE_PHYSICAL_MASK);
+}
+uint draw_layer() { return uint(draw_pool_page().z); }
+// The page's viewport: one per page of a layer, row by row (VirtualShadowPass).
+int draw_viewport() {
+    const ivec3 pool_page = draw_pool_page();
+    return pool_page.y * int(kPenumbraVirtualPoolLayerPages) + pool_page.x;
+}
 // The page's texels of the level's texel grid fixed in the world (as a cascade's: the world
 // page's first texel is a whole number, so a caster lands on the same texels of its page
 // with the same values in every frame that draws it, and a cached page equals a fresh
-// one), placed at the physical page in the pool and clipped to the page's 128 x 128 texels.
+// one), over the page's viewport. What falls outside the page the scissor discards; the
+// rasteriser's guard band spares the triangles that cross its edges any clipping.
 vec4 layer_position(vec4 world) {
     const VirtualPageDraw draw = page_draws[gl_InstanceIndex];
     const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
     const uint level = draw.entry / per_level;
     const ivec2 world_page = penumbra_virtual_world_page_of_slot(clipmap.levels[level].first_page, draw.entry % per_level);
-    const uint page = page_table[draw.entry] & PENUMBRA_PAGE_PHYSICAL_MASK;
     const vec3 light = (clipmap.light_view * world).xyz;
     precise vec2 texel = light.xy * clipmap.levels[level].texels_per_metre - vec2(world_page * int(kPenumbraVirtualPageTexels));
     texel = round(texel * 256.0) * (1.0 / 256.0);
-    const float side = float(kPenumbraVirtualPageTexels);
-    gl_ClipDistance[0] = texel.x;
-    gl_ClipDistance[1] = side - texel.x;
-    gl_ClipDistance[2] = texel.y;
-    gl_ClipDistance[3] = side - texel.y;
-    const vec2 pool_page = vec2(page % clipmap.pool_pages_per_row, page / clipmap.pool_pages_per_row);
-    const vec2 pool_texels = vec2(clipmap.pool_pages_per_row, clipmap.pool_rows) * side;
-    precise vec2 clip = (pool_page * side + texel) * (2.0 / pool_texels) - 1.0;
+    precise vec2 clip = texel * (2.0 / float(kPenumbraVirtualPageTexels)) - 1.0;
     return vec4(clip, light.z * clipmap.levels[level].depth_scale + clipmap.levels[level].depth_offset, 1.0);
 }
 #elif defined(PENUMBRA_GPU_DRIVEN)
@@ -133,6 +135,9 @@ void main() {
     gl_Position = layer_position(draw_model() * vec4(in_position, 1.0));
 #ifdef PENUMBRA_WRITES_LAYER
     gl_Layer = int(draw_layer());
+#endif
+#ifdef PENUMBRA_VIRTUAL
+    gl_ViewportIndex = draw_viewport();
 #endif
 #ifdef PENUMBRA_MASKED
     out_uv = in_uv;

@@ -1,9 +1,11 @@
 #version 460
 // Virtual shadow maps: clears the pages drawn this frame before their casters are drawn.
 // One instance per page of the frame's list (an indirect draw whose instance count the
-// allocation wrote), a quad over the page's texels of the pool at depth 0 (reverse-Z: the
-// far plane, no caster); the pipeline writes depth with VK_COMPARE_OP_ALWAYS.
+// allocation wrote), a quad over the page's viewport in its layer of the pool at depth 0
+// (reverse-Z: the far plane, no caster); the pipeline writes depth with
+// VK_COMPARE_OP_ALWAYS.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_ARB_shader_viewport_layer_array : require
 #include "penumbra_internal.h"
 
 layout(std140, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP) uniform ClipmapBlock {
@@ -12,12 +14,15 @@ layout(std140, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP) uniform Clip
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE) readonly buffer PageTable { uint page_table[]; };
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_RENDER) readonly buffer Render { uint render_entries[]; };
 
+#define PENUMBRA_VIRTUAL_CLIPMAP clipmap
+#include "penumbra/glsl/virtual_clipmap.glsl"
+
 void main() {
-    const uint page = page_table[render_entries[gl_InstanceIndex]] & PENUMBRA_PAGE_PHYSICAL_MASK;
+    const ivec3 pool_page = penumbra_virtual_pool_page(page_table[render_entries[gl_InstanceIndex]] & PENUMBRA_PAGE_PHYSICAL_MASK);
     // Two triangles: corners (0,0) (1,0) (0,1), (0,1) (1,0) (1,1).
     const uint corner_index = gl_VertexIndex < 3 ? gl_VertexIndex : 6 - gl_VertexIndex;
     const vec2 corner = vec2(float(corner_index & 1u), float(corner_index >> 1u));
-    const vec2 pool_page = vec2(page % clipmap.pool_pages_per_row, page / clipmap.pool_pages_per_row);
-    const vec2 pool_pages = vec2(clipmap.pool_pages_per_row, clipmap.pool_rows);
-    gl_Position = vec4((pool_page + corner) / pool_pages * 2.0 - 1.0, 0.0, 1.0);
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+    gl_Layer = pool_page.z;
+    gl_ViewportIndex = pool_page.y * int(kPenumbraVirtualPoolLayerPages) + pool_page.x;
 }

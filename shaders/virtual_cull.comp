@@ -8,8 +8,8 @@
 // drawn, which the allocation grouped by level. Each page found gets a VirtualPageDraw, and
 // the instance one indexed indirect command per level whose instances are those page
 // draws (firstInstance: the first of them; their order does not matter, the depth test
-// keeps the nearest); the vertex shader (caster.vert, PENUMBRA_VIRTUAL) places each
-// instance in its page of the pool and clips it to the page. Commands go where the layered
+// keeps the nearest); the vertex shader (caster.vert, PENUMBRA_VIRTUAL) sends each
+// instance to its page's layer and viewport of the pool. Commands go where the layered
 // strategy's culling puts them (one region per level and bucket), so the same indirect
 // draws record them. Pages whose draws do not fit the buffer lose their valid texels and
 // are drawn again the next frame.

@@ -67,8 +67,8 @@ layout(std430, set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_PAG
     PenumbraPageTableBlock {
     uint penumbra_page_table[];
 };
-layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL) uniform sampler2DShadow penumbra_virtual_pool;
-layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH) uniform sampler2D penumbra_virtual_pool_depth;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL) uniform sampler2DArrayShadow penumbra_virtual_pool;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH) uniform sampler2DArray penumbra_virtual_pool_depth;
 
 #include "penumbra/glsl/reads.glsl"
 #include "penumbra/glsl/filter_constants.glsl"

@@ -212,10 +212,8 @@ struct PenumbraVirtualClipmap {
     float shadow_distance;         // pixels at a larger view depth mark nothing
     PENUMBRA_UINT invalidate_all;  // 1: every page's texels are stale (the light or the depth bias changed)
     PENUMBRA_UINT invalidation_count;
-    // The pool image: pages of 128^2 texels in rows of pool_pages_per_row, physical page p
-    // at (p % pool_pages_per_row, p / pool_pages_per_row).
-    PENUMBRA_UINT pool_pages_per_row;
-    PENUMBRA_UINT pool_rows;
+    PENUMBRA_UINT padding2;
+    PENUMBRA_UINT padding3;
     float light_tan_half_angle;  // tan of the sun's angular radius (PCSS)
     float max_receiver_slope;    // receiver-plane gradient clamp, metres of depth per metre across
     float fade_start;            // view depth where the shadow starts fading to lit at shadow_distance

@@ -379,7 +379,7 @@ struct ShadowMaps {
     MapImage local;            // D32 reverse-Z depth of every shadowed spot/point light's layers
     MapImage local_moments;    // vsm/evsm/msm with shadowed local lights only
     // The virtual shadow map's physical pages (technique virtual; a placeholder otherwise):
-    // D32 reverse-Z, pages of 128 x 128 texels in rows (penumbra/shadow_interface.h).
+    // D32 reverse-Z, layers of 4 x 4 pages of 128 x 128 texels (penumbra/glsl/virtual_clipmap.glsl).
     MapImage virtual_pool;
 };
 

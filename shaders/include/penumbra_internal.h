@@ -200,8 +200,8 @@ struct VirtualPageDraw {
 struct VirtualCullPushConstants {
     PENUMBRA_UINT instance_count;
     PENUMBRA_UINT bucket_count;
-    PENUMBRA_UINT draw_capacity;       // VirtualPageDraws the buffer holds
-    PENUMBRA_UINT pool_pages_per_row;  // of the pool image: page p lies at (p % row, p / row)
+    PENUMBRA_UINT draw_capacity;  // VirtualPageDraws the buffer holds
+    PENUMBRA_UINT padding;
 };
 
 // The marking pass: the caller's depth buffer as ScreenInputs describes it.

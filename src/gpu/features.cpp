@@ -8,7 +8,7 @@ FeatureChain read_feature_chain(const VkPhysicalDeviceFeatures2& features) {
     chain.depth_bias_clamp = features.features.depthBiasClamp == VK_TRUE;
     chain.multi_draw_indirect = features.features.multiDrawIndirect == VK_TRUE;
     chain.draw_indirect_first_instance = features.features.drawIndirectFirstInstance == VK_TRUE;
-    chain.shader_clip_distance = features.features.shaderClipDistance == VK_TRUE;
+    chain.multi_viewport = features.features.multiViewport == VK_TRUE;
     for (auto* next = static_cast<const VkBaseInStructure*>(features.pNext); next != nullptr; next = next->pNext) {
         switch (next->sType) {
             case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES:
@@ -19,6 +19,7 @@ FeatureChain read_feature_chain(const VkPhysicalDeviceFeatures2& features) {
                 const auto* features12 = reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(next);
                 chain.draw_indirect_count |= features12->drawIndirectCount == VK_TRUE;
                 chain.shader_output_layer |= features12->shaderOutputLayer == VK_TRUE;
+                chain.shader_output_viewport_index |= features12->shaderOutputViewportIndex == VK_TRUE;
                 break;
             }
             case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {

@@ -272,7 +272,8 @@ EnabledFeatures Context::create_device() {
     enabled.gpu_driven = supported.features.multiDrawIndirect == VK_TRUE &&
                          supported.features.drawIndirectFirstInstance == VK_TRUE &&
                          supported12.drawIndirectCount == VK_TRUE && supported12.shaderOutputLayer == VK_TRUE;
-    enabled.virtual_pages = enabled.gpu_driven && supported.features.shaderClipDistance == VK_TRUE;
+    enabled.virtual_pages = enabled.gpu_driven && supported.features.multiViewport == VK_TRUE &&
+                            supported12.shaderOutputViewportIndex == VK_TRUE;
 
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;
@@ -280,6 +281,7 @@ EnabledFeatures Context::create_device() {
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
     features12.drawIndirectCount = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
     features12.shaderOutputLayer = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
+    features12.shaderOutputViewportIndex = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
     VkPhysicalDeviceVulkan11Features features11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &features12};
     features11.multiview = enabled.multiview ? VK_TRUE : VK_FALSE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features11};
@@ -287,7 +289,7 @@ EnabledFeatures Context::create_device() {
     features.features.depthBiasClamp = enabled.depth_bias_clamp ? VK_TRUE : VK_FALSE;
     features.features.multiDrawIndirect = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
     features.features.drawIndirectFirstInstance = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
-    features.features.shaderClipDistance = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
+    features.features.multiViewport = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -83,6 +83,7 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
     pool.width = pool.height = 16;
     pool.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     pool.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    pool.array_view = true;  // the pool's bindings are 2D arrays
     placeholder_.pool = gpu::create_image(device, pool);
 
     slots_.reserve(count);

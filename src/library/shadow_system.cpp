@@ -860,7 +860,7 @@ ShadowMaps ShadowSystem::shadow_maps() const {
     MapImage virtual_pool;
     if (impl_->virtual_map) {
         const gpu::Image& pool = impl_->virtual_map->pool();
-        virtual_pool = {pool.get(), pool.view, pool.desc.format, pool.desc.aspect, pool.desc.width, 1};
+        virtual_pool = {pool.get(), pool.view, pool.desc.format, pool.desc.aspect, pool.desc.width, pool.desc.layers};
     }
     return {map_image(cascades.depth), map_image(cascades.moments), map_image(local.depth), map_image(local.moments),
             virtual_pool};

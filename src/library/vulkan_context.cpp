@@ -50,6 +50,7 @@ struct VulkanContext::State {
         const VkBool32 gpu_driven = enabled.gpu_driven ? VK_TRUE : VK_FALSE;
         features12.drawIndirectCount = gpu_driven;
         features12.shaderOutputLayer = gpu_driven;
+        features12.shaderOutputViewportIndex = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
         features12.pNext = &features13;
         features11.multiview = enabled.multiview ? VK_TRUE : VK_FALSE;
         features11.pNext = &features12;
@@ -58,7 +59,7 @@ struct VulkanContext::State {
         features.features.depthBiasClamp = enabled.depth_bias_clamp ? VK_TRUE : VK_FALSE;
         features.features.multiDrawIndirect = gpu_driven;
         features.features.drawIndirectFirstInstance = gpu_driven;
-        features.features.shaderClipDistance = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
+        features.features.multiViewport = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
         desc = {
             context.instance(),     context.physical_device(), context.device(), context.queue(),
             context.queue_family(), VK_API_VERSION_1_3,        &features,        context.vk().vkGetInstanceProcAddr};

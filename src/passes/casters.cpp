@@ -115,6 +115,7 @@ void CasterPipelines::prepare(const VertexFormats& formats) {
     desc.depth_bias = template_.depth_bias;
     desc.depth_clamp = template_.depth_clamp;
     desc.view_mask = template_.view_mask;
+    desc.viewport_count = template_.viewport_count;
     pipelines_.emplace(formats, gpu::create_graphics_pipeline(device_, desc));
 }
 

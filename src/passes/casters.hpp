@@ -89,6 +89,7 @@ struct CasterPipelineTemplate {
     bool depth_bias = false;
     bool depth_clamp = false;
     uint32_t view_mask = 0;
+    uint32_t viewport_count = 1;
 };
 
 // The pipelines of one pass, one per vertex format combination, created on first use

@@ -133,8 +133,6 @@ static_assert(offsetof(PenumbraVirtualClipmap, camera_position) == 128);
 static_assert(offsetof(PenumbraVirtualClipmap, level_count) == 144);
 static_assert(offsetof(PenumbraVirtualClipmap, lod_scale) == 160);
 static_assert(offsetof(PenumbraVirtualClipmap, invalidation_count) == 176);
-static_assert(offsetof(PenumbraVirtualClipmap, pool_pages_per_row) == 180);
-static_assert(offsetof(PenumbraVirtualClipmap, pool_rows) == 184);
 static_assert(offsetof(PenumbraVirtualClipmap, light_tan_half_angle) == 188);
 static_assert(offsetof(PenumbraVirtualClipmap, fade_start) == 196);
 static_assert(offsetof(PenumbraVirtualClipmap, footprint_base) == 200);

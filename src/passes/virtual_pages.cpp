@@ -63,13 +63,9 @@ void compute_to_compute(const gpu::Device& device, VkCommandBuffer cmd) {
 
 }  // namespace
 
-uint32_t virtual_pool_pages_per_row(uint32_t pool_pages) {
-    return pool_pages <= 4096 ? std::min(pool_pages, 64u) : 128u;
-}
-
-uint32_t virtual_pool_rows(uint32_t pool_pages) {
-    const uint32_t row = virtual_pool_pages_per_row(pool_pages);
-    return (pool_pages + row - 1) / row;
+uint32_t virtual_pool_layers(uint32_t pool_pages) {
+    constexpr uint32_t per_layer = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
+    return (pool_pages + per_layer - 1) / per_layer;
 }
 
 shader::PenumbraVirtualClipmap virtual_clipmap_block(const VirtualClipmap& clipmap, const VirtualClipmap& previous,
@@ -180,8 +176,6 @@ void VirtualPages::prepare(uint64_t frame, shader::PenumbraVirtualClipmap clipma
                            std::span<const shader::VirtualInvalidation> invalidations) {
     FrameSlot& slot = slots_[frame % slots_.size()];
     clipmap.pool_pages = desc_.pool_pages;
-    clipmap.pool_pages_per_row = virtual_pool_pages_per_row(desc_.pool_pages);
-    clipmap.pool_rows = virtual_pool_rows(desc_.pool_pages);
     clipmap.level_count = std::min(clipmap.level_count, desc_.level_count);
     clipmap.pages_per_side = desc_.pages_per_side;
     if (invalidations.size() > desc_.max_invalidations) {

@@ -45,12 +45,21 @@ struct VirtualPageState {
     std::vector<uint32_t> rendered;  // the entries drawn this frame (counters.rendered of them)
 };
 
-// The most physical pages a pool holds: a 16384^2 image of 128^2 pages (1 GiB of D32).
+// The pool image is a 2D array whose layers hold 4 x 4 pages each (512^2 texels): physical
+// page p is page (p % 4, p / 4 % 4) of layer p / 16 (kPenumbraVirtualPoolLayerPages in
+// penumbra/glsl/virtual_clipmap.glsl). A caster drawn into a page goes to its layer
+// (gl_Layer) and to the viewport and scissor of its place in the layer (gl_ViewportIndex),
+// so the rasteriser's guard band and scissor keep it inside the page: clipping every
+// triangle that crosses a page's edge against clip planes cost several times the drawing.
+// Sixteen viewports is what every device with multiViewport has (maxViewports >= 16).
+inline constexpr uint32_t kVirtualPoolLayerPages = 4;
+
+// The most physical pages a pool holds: 1 GiB of D32 in 1,024 layers (maxImageArrayLayers is
+// 2,048 on current desktop GPUs; a device with fewer is refused by name).
 inline constexpr uint32_t kMaxVirtualPoolPages = 128 * 128;
 
-// Pages per row of the pool image (64 up to 4096 pages, then 128), and its rows.
-uint32_t virtual_pool_pages_per_row(uint32_t pool_pages);
-uint32_t virtual_pool_rows(uint32_t pool_pages);
+// Layers of the pool image.
+uint32_t virtual_pool_layers(uint32_t pool_pages);
 
 // What the marking needs of the frame's camera and filter, beside the clipmap.
 struct VirtualFrameView {

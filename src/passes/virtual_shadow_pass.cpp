@@ -21,29 +21,47 @@ void require_features(const gpu::Device& device, const VirtualPages& pages) {
     if (!device.features().virtual_pages) {
         throw DeviceError(
             "shadow technique virtual: the device was not created with the features virtual shadow maps need "
-            "(VkPhysicalDeviceFeatures::multiDrawIndirect, drawIndirectFirstInstance and shaderClipDistance, "
-            "VkPhysicalDeviceVulkan12Features::drawIndirectCount and shaderOutputLayer)");
+            "(VkPhysicalDeviceFeatures::multiDrawIndirect, drawIndirectFirstInstance and multiViewport, "
+            "VkPhysicalDeviceVulkan12Features::drawIndirectCount, shaderOutputLayer and shaderOutputViewportIndex)");
     }
     const uint32_t pool_pages = pages.desc().pool_pages;
-    const uint32_t width = virtual_pool_pages_per_row(pool_pages) * kVirtualPageTexels;
-    const uint32_t height = virtual_pool_rows(pool_pages) * kVirtualPageTexels;
-    const uint32_t limit = device.properties().limits.maxImageDimension2D;
-    if (std::max(width, height) > limit) {
-        throw DeviceError("shadow technique virtual: a pool of " + std::to_string(pool_pages) + " pages needs a " +
-                          std::to_string(width) + " x " + std::to_string(height) + " image; " + device.info().name +
-                          " allows " + std::to_string(limit) + " texels per side");
+    const uint32_t layers = virtual_pool_layers(pool_pages);
+    const VkPhysicalDeviceLimits& limits = device.properties().limits;
+    const uint32_t layer_limit = std::min(limits.maxImageArrayLayers, limits.maxFramebufferLayers);
+    if (layers > layer_limit) {
+        throw DeviceError("shadow technique virtual: a pool of " + std::to_string(pool_pages) + " pages needs " +
+                          std::to_string(layers) + " image layers; " + device.info().name + " allows " +
+                          std::to_string(layer_limit) + " (maxImageArrayLayers, maxFramebufferLayers)");
     }
 }
 
 gpu::Image create_pool(const gpu::Device& device, uint32_t pool_pages) {
     gpu::ImageDesc desc;
     desc.format = VK_FORMAT_D32_SFLOAT;
-    desc.width = virtual_pool_pages_per_row(pool_pages) * kVirtualPageTexels;
-    desc.height = virtual_pool_rows(pool_pages) * kVirtualPageTexels;
+    desc.width = kVirtualPoolLayerPages * kVirtualPageTexels;
+    desc.height = desc.width;
+    desc.layers = virtual_pool_layers(pool_pages);
+    desc.array_view = true;
     desc.usage =
         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
     return gpu::create_image(device, desc);
+}
+
+// One viewport and scissor per page of a pool layer, page i at (i % 4, i / 4).
+void set_page_viewports(const gpu::Device& device, VkCommandBuffer cmd) {
+    constexpr uint32_t count = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
+    constexpr float side = static_cast<float>(kVirtualPageTexels);
+    std::array<VkViewport, count> viewports{};
+    std::array<VkRect2D, count> scissors{};
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t x = i % kVirtualPoolLayerPages * kVirtualPageTexels;
+        const uint32_t y = i / kVirtualPoolLayerPages * kVirtualPageTexels;
+        viewports[i] = {static_cast<float>(x), static_cast<float>(y), side, side, 0.0f, 1.0f};
+        scissors[i] = {{static_cast<int32_t>(x), static_cast<int32_t>(y)}, {kVirtualPageTexels, kVirtualPageTexels}};
+    }
+    device->vkCmdSetViewport(cmd, 0, count, viewports.data());
+    device->vkCmdSetScissor(cmd, 0, count, scissors.data());
 }
 
 CasterPipelineTemplate virtual_template(const gpu::Device& device, VkPipelineLayout layout) {
@@ -54,6 +72,7 @@ CasterPipelineTemplate virtual_template(const gpu::Device& device, VkPipelineLay
     pipelines.layout = layout;
     pipelines.depth_bias = true;
     pipelines.depth_clamp = device.depth_clamp_supported();
+    pipelines.viewport_count = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
     return pipelines;
 }
 
@@ -87,6 +106,7 @@ VirtualShadowPass::VirtualShadowPass(const gpu::Device& device, VkDescriptorSetL
     clear.depth_format = VK_FORMAT_D32_SFLOAT;
     clear.depth_compare = VK_COMPARE_OP_ALWAYS;
     clear.cull_mode = VK_CULL_MODE_NONE;
+    clear.viewport_count = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
     clear_pipeline_ = gpu::create_graphics_pipeline(device, clear);
 }
 
@@ -101,7 +121,6 @@ void VirtualShadowPass::record_cull(VkCommandBuffer cmd, const CasterScene& scen
     constants.instance_count = culling_.draw_count();
     constants.bucket_count = static_cast<uint32_t>(culling_.buckets().size());
     constants.draw_capacity = pages.desc().max_page_draws;
-    constants.pool_pages_per_row = virtual_pool_pages_per_row(pages.desc().pool_pages);
     device_->vkCmdPushConstants(cmd, cull_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     const uint32_t columns = std::clamp(constants.instance_count, 1u, kMaxWorkgroupsPerDimension);
     device_->vkCmdDispatch(cmd, columns, (constants.instance_count + columns - 1) / columns, 1);
@@ -124,10 +143,10 @@ void VirtualShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, c
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {pool_.desc.width, pool_.desc.height}};
-    info.layerCount = 1;
+    info.layerCount = pool_.desc.layers;
     info.pDepthAttachment = &depth;
     device_->vkCmdBeginRendering(cmd, &info);
-    set_viewport_and_scissor(device_, cmd, pool_.desc.width, pool_.desc.height);
+    set_page_viewports(device_, cmd);
     const VkDescriptorSet pages_set = pages.pages_set(frame);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, clear_pipeline_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, clear_layout_, 0, 1, &pages_set, 0, nullptr);

@@ -1,14 +1,14 @@
 #pragma once
-// The sun's virtual shadow map, drawn: the physical page pool (one D32 image of 128^2-texel
-// pages) and the pass that fills the pages the allocation listed this frame
+// The sun's virtual shadow map, drawn: the physical page pool (one D32 2D array image whose
+// layers hold 4 x 4 pages of 128^2 texels) and the pass that fills the pages the allocation listed this frame
 // (passes/virtual_pages.hpp). Three steps, all on the GPU:
 //   1. culling (shaders/virtual_cull.comp): every caster instance against the pages drawn
 //      this frame, per clipmap level, into indexed indirect commands (the layered strategy's
 //      buffers: one region per level and bucket) whose instances are its pages;
 //   2. clearing those pages (an indirect draw of one quad per page at depth 0);
 //   3. drawing: one vkCmdDrawIndexedIndirectCount per level and bucket; the vertex shader
-//      places each instance in its page and clips it there (gl_ClipDistance), with the
-//      cascades' depth bias, depth clamp, face culling and alpha test.
+//      sends each instance to its page's layer and viewport (the viewport's scissor keeps it
+//      in the page), with the cascades' depth bias, depth clamp, face culling and alpha test.
 // Cached pages keep their texels: the pool is never cleared as a whole.
 #include <vulkan/vulkan.h>
 
@@ -32,7 +32,7 @@ class VirtualShadowPass {
 public:
     // `frame_set_layout` and `alpha_mask_set_layout` as the other caster passes'; the pages'
     // set layout comes from `pages`. Throws DeviceError when the device lacks the features
-    // (EnabledFeatures::virtual_pages) or cannot hold the pool in one image.
+    // (EnabledFeatures::virtual_pages) or cannot hold the pool's layers in one image.
     VirtualShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                       VkDescriptorSetLayout alpha_mask_set_layout, const VirtualPages& pages,
                       uint32_t frames_in_flight);

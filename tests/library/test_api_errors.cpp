@@ -110,6 +110,27 @@ TEST_F(DeviceChecks, LayeredStrategyWithoutTheGpuDrivenFeaturesIsNamed) {
     expect_refused_with_required_features_only(system_desc(settings), "drawIndirectCount and shaderOutputLayer");
 }
 
+// The virtual shadow map draws each caster into its page's layer and viewport of the pool:
+// a chain with the GPU-driven features but without multiViewport and
+// shaderOutputViewportIndex names those two.
+TEST_F(DeviceChecks, VirtualTechniqueWithoutItsViewportFeaturesIsNamed) {
+    Settings settings = test_settings();
+    settings.shadow.technique = ShadowTechnique::Virtual;
+    ShadowSystemDesc desc = system_desc(settings);
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    features13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
+    features12.drawIndirectCount = VK_TRUE;
+    features12.shaderOutputLayer = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features12};
+    features.features.multiDrawIndirect = VK_TRUE;
+    features.features.drawIndirectFirstInstance = VK_TRUE;
+    desc.device.enabled_features = &features;
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "multiViewport");
+    expect_error<DeviceError>([&] { ShadowSystem shadows(desc); }, "shaderOutputViewportIndex");
+}
+
 TEST_F(DeviceChecks, FramesInFlightOutOfRange) {
     expect_error<InputError>([&] { ShadowSystem shadows(system_desc(test_settings(), 0)); }, "frames_in_flight");
     expect_error<InputError>([&] { ShadowSystem shadows(system_desc(test_settings(), 9)); }, "frames_in_flight");

@@ -23,7 +23,6 @@
 // image samplers are one parameter, HLSL's textures and samplers two.
 #define PENUMBRA_COMPARISON_ARRAY(name) sampler2DArrayShadow name  // layered depth, comparison sampler
 #define PENUMBRA_TEXTURE_ARRAY(name) sampler2DArray name           // layered depth or moments
-#define PENUMBRA_COMPARISON_TEXTURE(name) sampler2DShadow name     // depth, comparison sampler
 #define PENUMBRA_DEPTH_TEXTURE(name) sampler2D name                // depth, read as floats
 #define PENUMBRA_MAP(name) name
 

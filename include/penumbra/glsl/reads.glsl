@@ -20,9 +20,10 @@ vec4 penumbra_map_compare_quad(PENUMBRA_COMPARISON_ARRAY(map), vec2 first, float
 // What the sampler of a layered map reads at `uv`: the stored depth, or the moments.
 vec4 penumbra_map_read(PENUMBRA_TEXTURE_ARRAY(map), vec2 uv, float layer) { return texture(map, vec3(uv, layer)); }
 
-// One bilinear comparison tap of a single-layer map, at its first mip level.
-float penumbra_texture_compare(PENUMBRA_COMPARISON_TEXTURE(map), vec2 uv, float reference) {
-    return textureLod(map, vec3(uv, reference), 0.0);
+// penumbra_map_compare at the first mip level, where implicit derivatives are undefined
+// (divergent control flow); GLSL has no textureLod for array comparison samplers.
+float penumbra_map_compare_level_zero(PENUMBRA_COMPARISON_ARRAY(map), vec2 uv, float layer, float reference) {
+    return textureGrad(map, vec4(uv, layer, reference), vec2(0.0), vec2(0.0));
 }
 
 // The depths of the four texels around `uv`, in textureGather's order (above).
@@ -30,5 +31,10 @@ vec4 penumbra_depth_quad(PENUMBRA_DEPTH_TEXTURE(map), vec2 uv) { return textureG
 
 // The depth of one texel.
 float penumbra_depth_texel(PENUMBRA_DEPTH_TEXTURE(map), ivec2 texel) { return texelFetch(map, texel, 0).r; }
+
+// The stored depth of one texel of a layered map.
+float penumbra_map_texel(PENUMBRA_TEXTURE_ARRAY(map), ivec2 texel, int layer) {
+    return texelFetch(map, ivec3(texel, layer), 0).r;
+}
 
 #endif

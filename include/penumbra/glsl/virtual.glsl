@@ -1,7 +1,7 @@
 // The sun's virtual shadow map (included by penumbra/shadow.glsl before the filters): the
 // level a receiver samples, its coordinates there, and the texel reads every filter makes
 // through the page table. A level's texels live in 128^2-texel pages scattered over the
-// pool image, so a bilinear comparison is four texel reads, each through its own page
+// pool image's layers, so a bilinear comparison is four texel reads, each through its own page
 // (neighbouring texels may lie in different pages); the filters (penumbra/glsl/
 // filters.glsl) call these instead of the cascades' hardware taps when a view is virtual.
 //
@@ -38,10 +38,9 @@ float penumbra_virtual_texel_depth(uint level, ivec2 texel) {
     const uint value = penumbra_page_table[penumbra_virtual_entry(level, clamped / page_texels)];
     const uint ready = PENUMBRA_PAGE_ALLOCATED | PENUMBRA_PAGE_VALID;
     if ((value & ready) != ready) return 0.0;
-    const uint physical = value & PENUMBRA_PAGE_PHYSICAL_MASK;
-    const uint row = penumbra_virtual.pool_pages_per_row;
-    const ivec2 pool_page = ivec2(int(physical % row), int(physical / row));
-    return penumbra_depth_texel(PENUMBRA_MAP(penumbra_virtual_pool_depth), pool_page * page_texels + clamped % page_texels);
+    const ivec3 pool_page = penumbra_virtual_pool_page(value & PENUMBRA_PAGE_PHYSICAL_MASK);
+    return penumbra_map_texel(PENUMBRA_MAP(penumbra_virtual_pool_depth), pool_page.xy * page_texels + clamped % page_texels,
+                              pool_page.z);
 }
 
 // The four comparisons of the texels around a bilinear tap whose first (lowest) texel is
@@ -71,14 +70,13 @@ float penumbra_virtual_compare(uint level, vec2 uv, float reference) {
     float lit;
     if (all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(in_page, ivec2(page_texels - 1))) &&
         (value & ready) == ready) {
-        const uint physical = value & PENUMBRA_PAGE_PHYSICAL_MASK;
-        const uint row = penumbra_virtual.pool_pages_per_row;
-        const vec2 pool_page = vec2(float(physical % row), float(physical / row));
-        const vec2 pool_texels = vec2(float(row), float(penumbra_virtual.pool_rows)) * float(page_texels);
+        const ivec3 pool_page = penumbra_virtual_pool_page(value & PENUMBRA_PAGE_PHYSICAL_MASK);
+        const float layer_texels = float(kPenumbraVirtualPoolLayerPages * kPenumbraVirtualPageTexels);
         // The hardware reads texels floor(c - 0.5) and the next with weight fract(c - 0.5).
-        const vec2 coordinate = pool_page * float(page_texels) + vec2(in_page) + weight + 0.5;
+        const vec2 coordinate = vec2(pool_page.xy * page_texels + in_page) + weight + 0.5;
         // An explicit level: implicit derivatives are undefined in this divergent branch.
-        lit = penumbra_texture_compare(PENUMBRA_MAP(penumbra_virtual_pool), coordinate / pool_texels, reference);
+        lit = penumbra_map_compare_level_zero(PENUMBRA_MAP(penumbra_virtual_pool), coordinate / layer_texels,
+                                              float(pool_page.z), reference);
     } else {
         const vec4 taps = penumbra_virtual_gather(level, texel, reference);
         lit = mix(mix(taps.w, taps.z, weight.x), mix(taps.x, taps.y, weight.x), weight.y);

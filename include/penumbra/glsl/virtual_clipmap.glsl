@@ -13,6 +13,17 @@
 #endif
 
 PENUMBRA_CONST uint kPenumbraVirtualPageTexels = 128u;
+// The pool image is a 2D array whose layers hold 4 x 4 pages (512^2 texels).
+PENUMBRA_CONST uint kPenumbraVirtualPoolLayerPages = 4u;
+
+// Where physical page `physical` lies in the pool: xy its page in the layer, z the layer
+// (pages fill a layer row by row).
+ivec3 penumbra_virtual_pool_page(uint physical) {
+    const uint per_layer = kPenumbraVirtualPoolLayerPages * kPenumbraVirtualPoolLayerPages;
+    const uint in_layer = physical % per_layer;
+    return ivec3(int(in_layer % kPenumbraVirtualPoolLayerPages), int(in_layer / kPenumbraVirtualPoolLayerPages),
+                 int(physical / per_layer));
+}
 
 // A receiver's virtual texel in `level`, from the window's corner: the world grid's texel
 // less the window's first texel (a whole number of pages).

@@ -34,8 +34,9 @@ struct EnabledFeatures {
     // and drawIndirectFirstInstance, VkPhysicalDeviceVulkan12Features::drawIndirectCount and
     // shaderOutputLayer, all four.
     bool gpu_driven = false;
-    // The sun's virtual shadow maps: gpu_driven and VkPhysicalDeviceFeatures::shaderClipDistance
-    // (each caster is clipped to the page it is drawn into).
+    // The sun's virtual shadow maps: gpu_driven, VkPhysicalDeviceFeatures::multiViewport and
+    // VkPhysicalDeviceVulkan12Features::shaderOutputViewportIndex (each caster is drawn into
+    // its page's layer and viewport of the pool).
     bool virtual_pages = false;
 };
 

@@ -15,13 +15,15 @@ struct FeatureChain {
     bool draw_indirect_first_instance = false;  // VkPhysicalDeviceFeatures
     bool draw_indirect_count = false;           // Vulkan12Features
     bool shader_output_layer = false;           // Vulkan12Features
-    bool shader_clip_distance = false;          // VkPhysicalDeviceFeatures
+    bool multi_viewport = false;                // VkPhysicalDeviceFeatures
+    bool shader_output_viewport_index = false;  // Vulkan12Features
     // Everything the layered strategy's GPU-driven culling needs (EnabledFeatures::gpu_driven).
     bool gpu_driven() const {
         return multi_draw_indirect && draw_indirect_first_instance && draw_indirect_count && shader_output_layer;
     }
-    // The virtual shadow maps' page drawing: GPU-driven, each caster clipped to its page.
-    bool virtual_pages() const { return gpu_driven() && shader_clip_distance; }
+    // The virtual shadow maps' page drawing: GPU-driven, each caster sent to its page's layer
+    // and viewport of the pool.
+    bool virtual_pages() const { return gpu_driven() && multi_viewport && shader_output_viewport_index; }
 };
 
 // Walks the pNext chain; structures it does not know are skipped.

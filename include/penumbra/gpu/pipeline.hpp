@@ -50,6 +50,7 @@ struct GraphicsPipelineDesc {
     bool depth_clamp = false;      // flatten geometry in front of the near plane onto it
     uint32_t view_mask = 0;        // multiview: one bit per rendered layer
     bool dynamic_culling = false;  // cull mode and front face set at draw time (vkCmdSetCullMode/FrontFace)
+    uint32_t viewport_count = 1;   // viewports and scissors (set at draw time); more than one needs multiViewport
 };
 
 UniquePipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDesc& desc);

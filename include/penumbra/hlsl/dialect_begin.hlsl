@@ -40,6 +40,5 @@
 // A map is a texture and its sampler, bound together at one combined-image-sampler binding.
 #define PENUMBRA_COMPARISON_ARRAY(name) Texture2DArray name, SamplerComparisonState name##_sampler
 #define PENUMBRA_TEXTURE_ARRAY(name) Texture2DArray name, SamplerState name##_sampler
-#define PENUMBRA_COMPARISON_TEXTURE(name) Texture2D<float> name, SamplerComparisonState name##_sampler
 #define PENUMBRA_DEPTH_TEXTURE(name) Texture2D<float> name, SamplerState name##_sampler
 #define PENUMBRA_MAP(name) name, name##_sampler

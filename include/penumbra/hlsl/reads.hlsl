@@ -32,12 +32,16 @@ float4 penumbra_map_read(PENUMBRA_TEXTURE_ARRAY(map), float2 uv, float layer) {
     return map.SampleLevel(map_sampler, float3(uv, layer), 0.0);
 }
 
-float penumbra_texture_compare(PENUMBRA_COMPARISON_TEXTURE(map), float2 uv, float reference) {
-    return map.SampleCmpLevelZero(map_sampler, uv, reference);
+float penumbra_map_compare_level_zero(PENUMBRA_COMPARISON_ARRAY(map), float2 uv, float layer, float reference) {
+    return map.SampleCmpLevelZero(map_sampler, float3(uv, layer), reference);
 }
 
 float4 penumbra_depth_quad(PENUMBRA_DEPTH_TEXTURE(map), float2 uv) { return map.GatherRed(map_sampler, uv); }
 
 float penumbra_depth_texel(PENUMBRA_DEPTH_TEXTURE(map), int2 texel) { return map.Load(int3(texel, 0)); }
+
+float penumbra_map_texel(PENUMBRA_TEXTURE_ARRAY(map), int2 texel, int layer) {
+    return map.Load(int4(texel, layer, 0)).r;
+}
 
 #endif
