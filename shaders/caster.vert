@@ -64,9 +64,9 @@ int draw_viewport() {
 // rasteriser's guard band spares the triangles that cross its edges any clipping.
 vec4 layer_position(vec4 world) {
     const VirtualPageDraw draw = page_draws[gl_InstanceIndex];
-    const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
-    const uint level = draw.entry / per_level;
-    const ivec2 world_page = penumbra_virtual_world_page_of_slot(clipmap.levels[level].first_page, draw.entry % per_level);
+    const uint level = penumbra_virtual_level_of_entry(draw.entry);
+    const ivec2 world_page =
+        penumbra_virtual_world_page_of_slot(clipmap.levels[level].first_page, penumbra_virtual_slot_of_entry(draw.entry));
     const vec3 light = (clipmap.light_view * world).xyz;
     precise vec2 texel = light.xy * clipmap.levels[level].texels_per_metre - vec2(world_page * int(kPenumbraVirtualPageTexels));
     texel = round(texel * 256.0) * (1.0 / 256.0);

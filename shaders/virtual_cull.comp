@@ -81,8 +81,7 @@ struct Candidates {
 uint candidate(Candidates c, uint i) {
     if (c.from_list) {
         const uint entry = render_entries[c.list_first + i];
-        const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
-        const ivec2 page = penumbra_virtual_world_page_of_slot(c.window, entry % per_level);
+        const ivec2 page = penumbra_virtual_world_page_of_slot(c.window, penumbra_virtual_slot_of_entry(entry));
         const bool inside = all(greaterThanEqual(page, c.first)) && all(lessThan(page, c.last));
         return inside ? entry : PENUMBRA_PAGE_NO_OWNER;
     }

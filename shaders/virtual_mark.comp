@@ -1,6 +1,6 @@
 #version 460
 // Virtual shadow maps, step 1 of a frame: page marking (UE5's "mark pages" pass). One
-// thread per pixel of the caller's depth buffer: the pixel's world position selects the
+// thread per 2 x 2 pixels of the caller's depth buffer: each pixel's world position selects the
 // clipmap level whose texel matches its footprint (virtual_clipmap.glsl), and every page
 // its filter reads around it (the filter's reach plus the normal offset, in that level's
 // texels) is requested. Nothing is read back: the allocation passes take the requests
@@ -26,9 +26,10 @@ vec3 world_position(ivec2 pixel, float depth) {
     return world.xyz / world.w;
 }
 
-// Every page of `level` that a filter reading `radius` texels around the receiver touches.
-void request_pages(uint level, vec3 position, float radius) {
-    const vec2 texel = penumbra_virtual_texel_of(level, position);
+// Every page of `level` that a filter reading `radius` texels around the receiver (across
+// the light at `light_xy`) touches.
+void request_pages(uint level, vec2 light_xy, float radius) {
+    const vec2 texel = penumbra_virtual_texel_at(level, light_xy);
     const ivec2 limit = ivec2(clipmap.pages_per_side);
     const float page = float(kPenumbraVirtualPageTexels);
     const ivec2 first = clamp(ivec2(floor((texel - radius) / page)), ivec2(0), limit);
@@ -42,8 +43,8 @@ void request_pages(uint level, vec3 position, float radius) {
     }
 }
 
-void main() {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+// The requests of one pixel.
+void mark_pixel(ivec2 pixel) {
     if (pixel.x >= int(mark.width) || pixel.y >= int(mark.height)) return;
     const float depth = texelFetch(screen_depth, pixel, 0).r;
     if (depth == mark.background_depth) return;
@@ -52,7 +53,19 @@ void main() {
     const float radius = clipmap.mark_radius_texels;
     const int level = penumbra_select_virtual_level(position, radius);
     if (level < 0) return;
-    request_pages(uint(level), position, radius);
+    const vec2 light_xy = penumbra_virtual_light_xy(position);
+    request_pages(uint(level), light_xy, radius);
     // The next coarser level too: a receiver whose page the pool cannot serve samples it.
-    if (level + 1 < int(clipmap.level_count)) request_pages(uint(level + 1), position, radius);
+    if (level + 1 < int(clipmap.level_count)) request_pages(uint(level + 1), light_xy, radius);
+}
+
+// Each thread marks a block of kPixelsPerThread^2 pixels: what a pixel costs is small next to
+// starting a workgroup, and a 4K screen of one pixel per thread is 130,000 workgroups.
+const int kPixelsPerThread = 2;
+
+void main() {
+    const ivec2 first = ivec2(gl_GlobalInvocationID.xy) * kPixelsPerThread;
+    for (int y = 0; y < kPixelsPerThread; ++y) {
+        for (int x = 0; x < kPixelsPerThread; ++x) mark_pixel(first + ivec2(x, y));
+    }
 }

@@ -44,23 +44,21 @@ layout(push_constant) uniform PushBlock { VirtualStepPushConstants pages; };
 #define PENUMBRA_VIRTUAL_CLIPMAP clipmap
 #include "penumbra/glsl/virtual_clipmap.glsl"
 
-uint entry_count() { return clipmap.level_count * clipmap.pages_per_side * clipmap.pages_per_side; }
+uint entry_count() { return clipmap.level_count * penumbra_virtual_slots_per_level(); }
 
 bool is_requested(uint entry) { return requests[entry] != 0u; }
-
-uint level_of(uint entry) { return entry / (clipmap.pages_per_side * clipmap.pages_per_side); }
 
 // A page drawn this frame: counted (COUNT lists it), flagged for the casters' culling, and
 // valid once the frame's draws ran.
 uint queue_render(uint entry, uint value) {
     atomicAdd(counters.rendered, 1u);
-    atomicAdd(counters.level_rendered[level_of(entry)], 1u);
+    atomicAdd(counters.level_rendered[penumbra_virtual_level_of_entry(entry)], 1u);
     return value | PENUMBRA_PAGE_VALID | PENUMBRA_PAGE_RENDER;
 }
 
 // Lists a page drawn this frame after the finer levels' pages: the list is grouped by level.
 void list_render(uint entry) {
-    const uint level = level_of(entry);
+    const uint level = penumbra_virtual_level_of_entry(entry);
     uint first = 0u;
     for (uint finer = 0u; finer < level; ++finer) first += counters.level_rendered[finer];
     render_entries[first + atomicAdd(counters.level_listed[level], 1u)] = entry;
@@ -87,9 +85,9 @@ bool invalidated(uint level, ivec2 world_page) {
 }
 
 void update_entry(uint entry) {
-    const uint per_level = clipmap.pages_per_side * clipmap.pages_per_side;
-    const uint level = entry / per_level;
-    const uint slot = entry % per_level;
+    const uint per_level = penumbra_virtual_slots_per_level();
+    const uint level = penumbra_virtual_level_of_entry(entry);
+    const uint slot = penumbra_virtual_slot_of_entry(entry);
     const bool requested = is_requested(entry);
     if (requested) atomicAdd(counters.requested, 1u);
     uint value = page_table[entry] & ~PENUMBRA_PAGE_RENDER;  // last frame's
@@ -166,7 +164,7 @@ void evict_page(uint page) {
 // `index`: the level's need number `index % per_level` of level `index / per_level`. Its
 // rank among all needs counts the coarser levels' first: they are served first.
 void assign_page(uint index) {
-    const uint per_level = PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side * PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side;
+    const uint per_level = penumbra_virtual_slots_per_level();
     const uint level = index / per_level;
     const uint need = index % per_level;
     if (need >= counters.level_needs[level]) return;

@@ -13,7 +13,9 @@
 namespace penumbra::passes {
 namespace {
 
-constexpr uint32_t kMarkGroupSize = 8;    // local_size_x and _y of virtual_mark.comp
+constexpr uint32_t kMarkGroupSize = 8;        // local_size_x and _y of virtual_mark.comp
+constexpr uint32_t kMarkPixelsPerThread = 2;  // kPixelsPerThread of virtual_mark.comp, per axis
+constexpr uint32_t kMarkGroupPixels = kMarkGroupSize * kMarkPixelsPerThread;
 constexpr uint32_t kPagesGroupSize = 64;  // local_size_x of virtual_pages.comp
 
 constexpr VkShaderStageFlags kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -232,8 +234,8 @@ void VirtualPages::record_marking(VkCommandBuffer cmd, uint64_t frame, VkImageVi
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_layout_, 0, 2, mark_sets.data(), 0,
                                      nullptr);
     device_->vkCmdPushConstants(cmd, mark_layout_, kCompute, 0, sizeof(screen), &screen);
-    device_->vkCmdDispatch(cmd, (screen.width + kMarkGroupSize - 1) / kMarkGroupSize,
-                           (screen.height + kMarkGroupSize - 1) / kMarkGroupSize, 1);
+    device_->vkCmdDispatch(cmd, (screen.width + kMarkGroupPixels - 1) / kMarkGroupPixels,
+                           (screen.height + kMarkGroupPixels - 1) / kMarkGroupPixels, 1);
     compute_to_compute(device_, cmd);
 }
 

@@ -114,8 +114,9 @@ int penumbra_virtual_receiver_level(vec3 world_position) {
     const int level = penumbra_select_virtual_level(world_position, margin);
     if (level < 0) return -1;
     const int last = int(penumbra_virtual.level_count) - 1;
+    const vec2 light_xy = penumbra_virtual_light_xy(world_position);
     for (int candidate = level; candidate <= last; ++candidate) {
-        const vec2 texel = penumbra_virtual_texel_of(uint(candidate), world_position);
+        const vec2 texel = penumbra_virtual_texel_at(uint(candidate), light_xy);
         if (!penumbra_virtual_window_holds(texel, margin)) continue;
         if (penumbra_virtual_footprint_ready(uint(candidate), texel)) return candidate;
     }

@@ -25,12 +25,21 @@ ivec3 penumbra_virtual_pool_page(uint physical) {
                  int(physical / per_layer));
 }
 
-// A receiver's virtual texel in `level`, from the window's corner: the world grid's texel
-// less the window's first texel (a whole number of pages).
-vec2 penumbra_virtual_texel_of(uint level, vec3 world_position) {
-    const vec2 light = PENUMBRA_MUL(PENUMBRA_VIRTUAL_CLIPMAP.light_view, vec4(world_position, 1.0)).xy;
-    precise vec2 texel = light * PENUMBRA_VIRTUAL_CLIPMAP.levels[level].texels_per_metre;
+// A point's position across the light (metres; every level's texel grid is a scale of it).
+vec2 penumbra_virtual_light_xy(vec3 world_position) {
+    return PENUMBRA_MUL(PENUMBRA_VIRTUAL_CLIPMAP.light_view, vec4(world_position, 1.0)).xy;
+}
+
+// The virtual texel in `level` of a point across the light at `light_xy`, from the window's
+// corner: the world grid's texel less the window's first texel (a whole number of pages).
+vec2 penumbra_virtual_texel_at(uint level, vec2 light_xy) {
+    precise vec2 texel = light_xy * PENUMBRA_VIRTUAL_CLIPMAP.levels[level].texels_per_metre;
     return texel - vec2(PENUMBRA_VIRTUAL_CLIPMAP.levels[level].first_page * int(kPenumbraVirtualPageTexels));
+}
+
+// A receiver's virtual texel in `level` (penumbra_virtual_texel_at).
+vec2 penumbra_virtual_texel_of(uint level, vec3 world_position) {
+    return penumbra_virtual_texel_at(level, penumbra_virtual_light_xy(world_position));
 }
 
 bool penumbra_virtual_window_holds(vec2 texel, float margin_texels) {
@@ -47,8 +56,9 @@ int penumbra_select_virtual_level(vec3 world_position, float margin_texels) {
     const float finest = PENUMBRA_VIRTUAL_CLIPMAP.levels[0].texel_world_size;
     const int last = int(PENUMBRA_VIRTUAL_CLIPMAP.level_count) - 1;
     const int wanted = footprint > finest ? int(floor(log2(footprint / finest))) : 0;
+    const vec2 light_xy = penumbra_virtual_light_xy(world_position);
     for (int level = min(wanted, last); level <= last; ++level) {
-        if (penumbra_virtual_window_holds(penumbra_virtual_texel_of(uint(level), world_position), margin_texels)) return level;
+        if (penumbra_virtual_window_holds(penumbra_virtual_texel_at(uint(level), light_xy), margin_texels)) return level;
     }
     return -1;
 }
@@ -58,12 +68,19 @@ int penumbra_floor_mod(int value, int modulus) {
     return remainder < 0 ? remainder + modulus : remainder;
 }
 
+// The page table holds every level's slots in turn: entry = level * slots per level + slot.
+uint penumbra_virtual_slots_per_level() {
+    return PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side * PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side;
+}
+uint penumbra_virtual_level_of_entry(uint entry) { return entry / penumbra_virtual_slots_per_level(); }
+uint penumbra_virtual_slot_of_entry(uint entry) { return entry % penumbra_virtual_slots_per_level(); }
+
 // The page table entry of a window page (toroidal: the world page modulo the window's side).
 uint penumbra_virtual_entry(uint level, ivec2 window_page) {
     const int side = int(PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side);
     const ivec2 world_page = PENUMBRA_VIRTUAL_CLIPMAP.levels[level].first_page + window_page;
     const uint slot = uint(penumbra_floor_mod(world_page.x, side) + penumbra_floor_mod(world_page.y, side) * side);
-    return level * PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side * PENUMBRA_VIRTUAL_CLIPMAP.pages_per_side + slot;
+    return level * penumbra_virtual_slots_per_level() + slot;
 }
 
 // The world page a slot holds for a window starting at `first_page`.
