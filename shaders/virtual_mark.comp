@@ -60,7 +60,7 @@ void mark_pixel(ivec2 pixel) {
 }
 
 // Each thread marks a block of kPixelsPerThread^2 pixels: what a pixel costs is small next to
-// starting a workgroup, and a 4K screen of one pixel per thread is 130,000 workgroups.
+// starting a workgroup (a 4K screen at one pixel per thread is 130,000 workgroups).
 const int kPixelsPerThread = 2;
 
 void main() {

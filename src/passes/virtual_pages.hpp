@@ -49,8 +49,8 @@ struct VirtualPageState {
 // page p is page (p % 4, p / 4 % 4) of layer p / 16 (kPenumbraVirtualPoolLayerPages in
 // penumbra/glsl/virtual_clipmap.glsl). A caster drawn into a page goes to its layer
 // (gl_Layer) and to the viewport and scissor of its place in the layer (gl_ViewportIndex),
-// so the rasteriser's guard band and scissor keep it inside the page: clipping every
-// triangle that crosses a page's edge against clip planes cost several times the drawing.
+// so the rasteriser's guard band and scissor keep it inside the page instead of clip planes
+// at the page's edges, which clip every triangle crossing them (docs/PERFORMANCE.md).
 // Sixteen viewports is what every device with multiViewport has (maxViewports >= 16).
 inline constexpr uint32_t kVirtualPoolLayerPages = 4;
 
