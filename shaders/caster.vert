@@ -48,15 +48,10 @@ layout(std430, set = PENUMBRA_SET_VIRTUAL_PAGES, binding = PENUMBRA_BINDING_VIRT
 #define PENUMBRA_VIRTUAL_CLIPMAP clipmap
 #include "penumbra/glsl/virtual_clipmap.glsl"
 mat4 draw_model() { return instances[page_draws[gl_InstanceIndex].instance].model; }
-ivec3 draw_pool_page() {
-    return penumbra_virtual_pool_page(page_table[page_draws[gl_InstanceIndex].entry] & PENUMBRA_PAGE_PHYSICAL_MASK);
-}
-uint draw_layer() { return uint(draw_pool_page().z); }
-// The page's viewport: one per page of a layer, row by row (VirtualShadowPass).
-int draw_viewport() {
-    const ivec3 pool_page = draw_pool_page();
-    return pool_page.y * int(kPenumbraVirtualPoolLayerPages) + pool_page.x;
-}
+uint draw_physical_page() { return page_table[page_draws[gl_InstanceIndex].entry] & PENUMBRA_PAGE_PHYSICAL_MASK; }
+uint draw_layer() { return uint(penumbra_virtual_pool_page(draw_physical_page()).z); }
+// The page's viewport: one per place in a layer (VirtualShadowPass).
+int draw_viewport() { return int(penumbra_virtual_pool_place(draw_physical_page())); }
 // The page's texels of the level's texel grid fixed in the world (as a cascade's: the world
 // page's first texel is a whole number, so a caster lands on the same texels of its page
 // with the same values in every frame that draws it, and a cached page equals a fresh

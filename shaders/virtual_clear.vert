@@ -18,11 +18,11 @@ layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_RENDER) readonly buff
 #include "penumbra/glsl/virtual_clipmap.glsl"
 
 void main() {
-    const ivec3 pool_page = penumbra_virtual_pool_page(page_table[render_entries[gl_InstanceIndex]] & PENUMBRA_PAGE_PHYSICAL_MASK);
+    const uint physical = page_table[render_entries[gl_InstanceIndex]] & PENUMBRA_PAGE_PHYSICAL_MASK;
     // Two triangles: corners (0,0) (1,0) (0,1), (0,1) (1,0) (1,1).
     const uint corner_index = gl_VertexIndex < 3 ? gl_VertexIndex : 6 - gl_VertexIndex;
     const vec2 corner = vec2(float(corner_index & 1u), float(corner_index >> 1u));
     gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-    gl_Layer = pool_page.z;
-    gl_ViewportIndex = pool_page.y * int(kPenumbraVirtualPoolLayerPages) + pool_page.x;
+    gl_Layer = penumbra_virtual_pool_page(physical).z;
+    gl_ViewportIndex = int(penumbra_virtual_pool_place(physical));
 }

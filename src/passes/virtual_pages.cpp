@@ -66,8 +66,7 @@ void compute_to_compute(const gpu::Device& device, VkCommandBuffer cmd) {
 }  // namespace
 
 uint32_t virtual_pool_layers(uint32_t pool_pages) {
-    constexpr uint32_t per_layer = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
-    return (pool_pages + per_layer - 1) / per_layer;
+    return (pool_pages + kVirtualPagesPerPoolLayer - 1) / kVirtualPagesPerPoolLayer;
 }
 
 shader::PenumbraVirtualClipmap virtual_clipmap_block(const VirtualClipmap& clipmap, const VirtualClipmap& previous,

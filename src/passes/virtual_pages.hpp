@@ -53,6 +53,7 @@ struct VirtualPageState {
 // at the page's edges, which clip every triangle crossing them (docs/PERFORMANCE.md).
 // Sixteen viewports is what every device with multiViewport has (maxViewports >= 16).
 inline constexpr uint32_t kVirtualPoolLayerPages = 4;
+inline constexpr uint32_t kVirtualPagesPerPoolLayer = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
 
 // The most physical pages a pool holds: 1 GiB of D32 in 1,024 layers (maxImageArrayLayers is
 // 2,048 on current desktop GPUs; a device with fewer is refused by name).

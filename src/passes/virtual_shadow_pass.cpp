@@ -50,7 +50,7 @@ gpu::Image create_pool(const gpu::Device& device, uint32_t pool_pages) {
 
 // One viewport and scissor per page of a pool layer, page i at (i % 4, i / 4).
 void set_page_viewports(const gpu::Device& device, VkCommandBuffer cmd) {
-    constexpr uint32_t count = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
+    constexpr uint32_t count = kVirtualPagesPerPoolLayer;
     constexpr float side = static_cast<float>(kVirtualPageTexels);
     std::array<VkViewport, count> viewports{};
     std::array<VkRect2D, count> scissors{};
@@ -72,7 +72,7 @@ CasterPipelineTemplate virtual_template(const gpu::Device& device, VkPipelineLay
     pipelines.layout = layout;
     pipelines.depth_bias = true;
     pipelines.depth_clamp = device.depth_clamp_supported();
-    pipelines.viewport_count = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
+    pipelines.viewport_count = kVirtualPagesPerPoolLayer;
     return pipelines;
 }
 
@@ -106,7 +106,7 @@ VirtualShadowPass::VirtualShadowPass(const gpu::Device& device, VkDescriptorSetL
     clear.depth_format = VK_FORMAT_D32_SFLOAT;
     clear.depth_compare = VK_COMPARE_OP_ALWAYS;
     clear.cull_mode = VK_CULL_MODE_NONE;
-    clear.viewport_count = kVirtualPoolLayerPages * kVirtualPoolLayerPages;
+    clear.viewport_count = kVirtualPagesPerPoolLayer;
     clear_pipeline_ = gpu::create_graphics_pipeline(device, clear);
 }
 

@@ -16,13 +16,17 @@ PENUMBRA_CONST uint kPenumbraVirtualPageTexels = 128u;
 // The pool image is a 2D array whose layers hold 4 x 4 pages (512^2 texels).
 PENUMBRA_CONST uint kPenumbraVirtualPoolLayerPages = 4u;
 
-// Where physical page `physical` lies in the pool: xy its page in the layer, z the layer
-// (pages fill a layer row by row).
+PENUMBRA_CONST uint kPenumbraVirtualPagesPerPoolLayer = kPenumbraVirtualPoolLayerPages * kPenumbraVirtualPoolLayerPages;
+
+// A physical page's place in its pool layer: pages fill a layer row by row (the place is also
+// the viewport the page is drawn through).
+uint penumbra_virtual_pool_place(uint physical) { return physical % kPenumbraVirtualPagesPerPoolLayer; }
+
+// Where physical page `physical` lies in the pool: xy its page in the layer, z the layer.
 ivec3 penumbra_virtual_pool_page(uint physical) {
-    const uint per_layer = kPenumbraVirtualPoolLayerPages * kPenumbraVirtualPoolLayerPages;
-    const uint in_layer = physical % per_layer;
-    return ivec3(int(in_layer % kPenumbraVirtualPoolLayerPages), int(in_layer / kPenumbraVirtualPoolLayerPages),
-                 int(physical / per_layer));
+    const uint place = penumbra_virtual_pool_place(physical);
+    return ivec3(int(place % kPenumbraVirtualPoolLayerPages), int(place / kPenumbraVirtualPoolLayerPages),
+                 int(physical / kPenumbraVirtualPagesPerPoolLayer));
 }
 
 // A point's position across the light (metres; every level's texel grid is a scale of it).
