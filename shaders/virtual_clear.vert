@@ -1,7 +1,8 @@
 #version 460
 // Virtual shadow maps: clears the pages drawn this frame before their casters are drawn.
-// One instance per page of the frame's list (an indirect draw whose instance count the
-// allocation wrote), a quad over the page's viewport in its layer of the pool at depth 0
+// One indirect draw per level whose instances are the level's places in the list of pages
+// drawn (the allocation wrote their count and first place), a quad per page over the page's
+// viewport in its layer of the pool at depth 0
 // (reverse-Z: the far plane, no caster); the pipeline writes depth with
 // VK_COMPARE_OP_ALWAYS.
 #extension GL_GOOGLE_include_directive : require

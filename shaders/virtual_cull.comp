@@ -5,14 +5,16 @@
 // rectangle) that the allocation flagged PENUMBRA_PAGE_RENDER. The workgroup's threads
 // share the candidates: the rectangle's pages, or, when the rectangle holds more pages than
 // the level draws (a ground tile under a fine level), the level's part of the list of pages
-// drawn, which the allocation grouped by level. Each page found gets a VirtualPageDraw, and
+// drawn (the allocation lists them by level). Each page found gets a VirtualPageDraw, and
 // the instance one indexed indirect command per level whose instances are those page
 // draws (firstInstance: the first of them; their order does not matter, the depth test
 // keeps the nearest); the vertex shader (caster.vert, PENUMBRA_VIRTUAL) sends each
-// instance to its page's layer and viewport of the pool. Commands go where the layered
-// strategy's culling puts them (one region per level and bucket), so the same indirect
-// draws record them. Pages whose draws do not fit the buffer lose their valid texels and
-// are drawn again the next frame.
+// instance to its page's layer and viewport of the pool. Commands go into the layered
+// strategy's buffers, but a bucket's commands of every level lie together (from
+// bucket_first_command * level_count on) and count together: one indirect draw per bucket
+// draws every level's. Pages whose draws do not fit the buffer lose their valid texels and
+// are drawn again the next frame. The allocation sizes this dispatch: no workgroup runs in
+// a frame that draws no page.
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
@@ -93,15 +95,15 @@ uint candidate(Candidates c, uint i) {
 
 // The instance's indexed indirect command for one level: `pages` instances from `base`.
 void write_command(CullInstance instance, uint level, uint pages, uint base) {
-    const uint command = level * cull.instance_count + bucket_first_command[instance.bucket] +
-                         atomicAdd(counts[level * cull.bucket_count + instance.bucket], 1u);
+    const uint command =
+        bucket_first_command[instance.bucket] * cull.level_count + atomicAdd(counts[instance.bucket], 1u);
     commands[5 * command + 0] = instance.index_count;
     commands[5 * command + 1] = pages;
     commands[5 * command + 2] = instance.first_index;
     commands[5 * command + 3] = uint(instance.vertex_offset);
     commands[5 * command + 4] = base;
-    // The level's statistics after the counts (FrameInfo): page draws and their triangles.
-    const uint statistics = clipmap.level_count * cull.bucket_count + 2u * level;
+    // The level's statistics after the counts' room (FrameInfo): page draws and their triangles.
+    const uint statistics = cull.level_count * cull.bucket_count + 2u * level;
     atomicAdd(counts[statistics], pages);
     atomicAdd(counts[statistics + 1u], pages * (instance.index_count / 3u));
 }
@@ -153,10 +155,8 @@ void main() {
     vec2 low, high;
     light_rectangle(box_min, box_max, low, high);
     const bool bounded = finite(low) && finite(high);
-    uint list_first = 0u;
     for (uint level = 0u; level < clipmap.level_count; ++level) {
-        const uint level_pages = counters.level_rendered[level];
-        list_first += level_pages;
+        const uint level_pages = counters.level_clears[level].instance_count;
         if (level_pages == 0u) continue;
         const float texel = clipmap.levels[level].texel_world_size;
         const float page_metres = texel * float(kPenumbraVirtualPageTexels);
@@ -173,7 +173,7 @@ void main() {
         if (any(greaterThanEqual(c.first, c.last))) continue;
         const uint area = uint(c.last.x - c.first.x) * uint(c.last.y - c.first.y);
         c.from_list = area > level_pages;
-        c.list_first = list_first - level_pages;
+        c.list_first = level * clipmap.pool_pages;
         c.count = c.from_list ? level_pages : area;
         cull_level(c, index, instance);
     }

@@ -34,11 +34,13 @@ void request_pages(uint level, vec2 light_xy, float radius) {
     const float page = float(kPenumbraVirtualPageTexels);
     const ivec2 first = clamp(ivec2(floor((texel - radius) / page)), ivec2(0), limit);
     const ivec2 last = clamp(ivec2(floor((texel + radius) / page)) + 1, ivec2(0), limit);
+    const uint stamp = PENUMBRA_VIRTUAL_REQUEST_STAMP(clipmap.frame);
     for (int y = first.y; y < last.y; ++y) {
         for (int x = first.x; x < last.x; ++x) {
             const uint entry = penumbra_virtual_entry(level, ivec2(x, y));
-            // Many pixels request one page: a plain store of the same value (no atomic).
-            if (requests[entry] == 0u) requests[entry] = 1u;
+            // Many pixels request one page: a plain store of the same value (no atomic),
+            // the frame's stamp (no clearing of the requests between frames).
+            if (requests[entry] != stamp) requests[entry] = stamp;
         }
     }
 }

@@ -2,27 +2,30 @@
 // Virtual shadow maps, step 2 of a frame: physical page allocation on the GPU, without a
 // readback (UE5's page allocation; Frogfood's and EEVEE-Next's follow the same order). Run
 // as a sequence of dispatches, one per step (VirtualStepPushConstants::step):
-//   UPDATE    per page table entry: an entry whose window page changed (its level moved by
-//             whole pages, toroidal addressing) or whose texels are stale (invalidations)
-//             loses its contents; unrequested, it gives its physical page back; requested,
-//             it is drawn again in place. A requested entry with valid texels is cached.
-//             Requested entries without a page are queued as needs.
-//   SCAN      per physical page: free pages are listed; pages whose entry nobody requested
-//             this frame are evictable and counted by age (frames since their last request).
-//   THRESHOLD one thread: how many evictable pages must go, oldest first, for the needs
-//             that the free pages do not cover (least recently used).
-//   EVICT     per physical page: evicts the oldest evictable pages up to that number.
-//   ASSIGN    per need, coarser levels first: a free page (to be drawn this frame), or
-//             unserved: the pool is full, and the receiver samples a coarser level instead
-//             (never another page's texels; the marking requests the next coarser level's
-//             pages too, for this fallback).
-//   COUNT     per physical page: resident pages, for the statistics; the list of pages to
-//             draw, grouped by level (the casters' culling scans one level's pages at a
-//             time); and the clear pass's indirect draw (a quad per page to draw).
+//   UPDATE  per page table entry: an entry whose window page changed (its level moved by
+//           whole pages, toroidal addressing) or whose texels are stale (invalidations)
+//           loses its contents; unrequested, it gives its physical page back; requested,
+//           it is drawn again in place. A requested entry with valid texels is cached.
+//           Requested entries without a page are queued as needs.
+//   SCAN    per physical page: free pages are listed; pages whose entry nobody requested
+//           this frame are evictable and counted by age (frames since their last request).
+//   PLAN    one thread: how many evictable pages must go, oldest first, for the needs that
+//           the free pages do not cover (least recently used); from the counts alone, what
+//           the frame will assign and draw, so that the next dispatches (eviction,
+//           assignment, the casters' culling) are indirect and empty when there is nothing
+//           to do, and the clear pass's draws.
+//   EVICT   per physical page: evicts the oldest evictable pages up to that number.
+//   ASSIGN  per level and need, coarser levels first: a free page (to be drawn this
+//           frame), or unserved: the pool is full, and the receiver samples a coarser level
+//           instead (never another page's texels; the marking requests the next coarser
+//           level's pages too, for this fallback).
+// A page drawn this frame is listed as it is found, in its level's part of the list (the
+// casters' culling scans one level's pages at a time).
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
 layout(local_size_x = 64) in;
+const uint kGroupSize = 64u;
 
 layout(std140, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP) uniform ClipmapBlock {
     PenumbraVirtualClipmap clipmap;
@@ -46,30 +49,16 @@ layout(push_constant) uniform PushBlock { VirtualStepPushConstants pages; };
 
 uint entry_count() { return clipmap.level_count * penumbra_virtual_slots_per_level(); }
 
-bool is_requested(uint entry) { return requests[entry] != 0u; }
+bool is_requested(uint entry) { return requests[entry] == PENUMBRA_VIRTUAL_REQUEST_STAMP(clipmap.frame); }
 
-// A page drawn this frame: counted (COUNT lists it), flagged for the casters' culling, and
-// valid once the frame's draws ran.
+// A page drawn this frame: counted, listed in its level's part of the list (each level has
+// room for the whole pool), flagged for the casters' culling, and valid once the frame's
+// draws ran.
 uint queue_render(uint entry, uint value) {
-    atomicAdd(counters.rendered, 1u);
-    atomicAdd(counters.level_rendered[penumbra_virtual_level_of_entry(entry)], 1u);
-    return value | PENUMBRA_PAGE_VALID | PENUMBRA_PAGE_RENDER;
-}
-
-// Lists a page drawn this frame after the finer levels' pages: the list is grouped by level.
-void list_render(uint entry) {
     const uint level = penumbra_virtual_level_of_entry(entry);
-    uint first = 0u;
-    for (uint finer = 0u; finer < level; ++finer) first += counters.level_rendered[finer];
-    render_entries[first + atomicAdd(counters.level_listed[level], 1u)] = entry;
-}
-
-// COUNT, per physical page: every page drawn this frame holds one physical page.
-void count_page(uint page) {
-    const uint owner = physical[page].owner;
-    if (owner == PENUMBRA_PAGE_NO_OWNER) return;
-    atomicAdd(counters.resident, 1u);
-    if ((page_table[owner] & PENUMBRA_PAGE_RENDER) != 0u) list_render(owner);
+    atomicAdd(counters.rendered, 1u);
+    render_entries[level * clipmap.pool_pages + atomicAdd(counters.level_clears[level].instance_count, 1u)] = entry;
+    return value | PENUMBRA_PAGE_VALID | PENUMBRA_PAGE_RENDER;
 }
 
 bool invalidated(uint level, ivec2 world_page) {
@@ -134,8 +123,8 @@ void scan_page(uint page) {
     }
 }
 
-void choose_threshold() {
-    const uint deficit = counters.needed > counters.free ? counters.needed - counters.free : 0u;
+// The oldest age bucket whose pages go, and how many of its own, for `deficit` pages.
+void choose_threshold(uint deficit) {
     counters.threshold_bucket = uint(PENUMBRA_VIRTUAL_AGE_BUCKETS);  // none
     counters.take_at_threshold = 0u;
     if (deficit == 0u) return;
@@ -147,6 +136,33 @@ void choose_threshold() {
         if (older + here >= deficit) return;
         older += here;
     }
+}
+
+VirtualDispatch dispatch_if(bool work, uint x, uint y) {
+    return work ? VirtualDispatch(x, y, 1u) : VirtualDispatch(0u, 1u, 1u);
+}
+
+// What eviction and assignment will do follows from the counts: eviction takes exactly
+// min(deficit, evictable) pages (choose_threshold), assignment min(needed, free pages), the
+// rest of the needs stay unserved.
+void plan() {
+    const uint deficit = counters.needed > counters.free ? counters.needed - counters.free : 0u;
+    choose_threshold(deficit);
+    const uint evicting = min(deficit, counters.evictable);
+    const uint assigned = min(counters.needed, counters.free + evicting);
+    counters.resident = clipmap.pool_pages - counters.free - evicting + assigned;
+    counters.unserved = counters.needed - assigned;
+    uint most_needs = 0u;
+    for (uint level = 0u; level < clipmap.level_count; ++level) {
+        most_needs = max(most_needs, counters.level_needs[level]);
+        counters.level_clears[level].vertex_count = 6u;
+        counters.level_clears[level].first_instance = level * clipmap.pool_pages;
+    }
+    const uint pool_groups = (clipmap.pool_pages + kGroupSize - 1u) / kGroupSize;
+    counters.evict_groups = dispatch_if(evicting > 0u, pool_groups, 1u);
+    counters.assign_groups =
+        dispatch_if(assigned > 0u, (most_needs + kGroupSize - 1u) / kGroupSize, clipmap.level_count);
+    counters.cull_groups = dispatch_if(counters.rendered + assigned > 0u, pages.cull_columns, pages.cull_rows);
 }
 
 void evict_page(uint page) {
@@ -161,20 +177,14 @@ void evict_page(uint page) {
     atomicAdd(counters.evicted, 1u);
 }
 
-// `index`: the level's need number `index % per_level` of level `index / per_level`. Its
-// rank among all needs counts the coarser levels' first: they are served first.
-void assign_page(uint index) {
-    const uint per_level = penumbra_virtual_slots_per_level();
-    const uint level = index / per_level;
-    const uint need = index % per_level;
-    if (need >= counters.level_needs[level]) return;
+// Need number `need` of `level`. Its rank among all needs counts the coarser levels' first:
+// they are served first.
+void assign_page(uint level, uint need) {
+    if (level >= clipmap.level_count || need >= counters.level_needs[level]) return;
     uint rank = need;
     for (uint coarser = level + 1u; coarser < clipmap.level_count; ++coarser) rank += counters.level_needs[coarser];
-    const uint entry = needs[index];
-    if (rank >= counters.free) {
-        atomicAdd(counters.unserved, 1u);
-        return;
-    }
+    const uint entry = needs[level * penumbra_virtual_slots_per_level() + need];
+    if (rank >= counters.free) return;  // unserved (counted by the plan)
     const uint page = free_pages[rank];
     page_table[entry] = queue_render(entry, PENUMBRA_PAGE_ALLOCATED | page);
     physical[page] = VirtualPhysicalPage(entry, clipmap.frame);
@@ -183,23 +193,14 @@ void assign_page(uint index) {
 void main() {
     const uint index = gl_GlobalInvocationID.x;
     const uint step = pages.step;
-    if (step == PENUMBRA_VIRTUAL_STEP_THRESHOLD) {
-        if (index == 0u) choose_threshold();
-        return;
+    if (step == PENUMBRA_VIRTUAL_STEP_PLAN) {
+        if (index == 0u) plan();
+    } else if (step == PENUMBRA_VIRTUAL_STEP_UPDATE) {
+        if (index < entry_count()) update_entry(index);
+    } else if (step == PENUMBRA_VIRTUAL_STEP_ASSIGN) {
+        assign_page(gl_WorkGroupID.y, index);
+    } else if (index < clipmap.pool_pages) {
+        if (step == PENUMBRA_VIRTUAL_STEP_SCAN) scan_page(index);
+        else evict_page(index);
     }
-    if (step == PENUMBRA_VIRTUAL_STEP_UPDATE || step == PENUMBRA_VIRTUAL_STEP_ASSIGN) {
-        if (index >= entry_count()) return;
-        if (step == PENUMBRA_VIRTUAL_STEP_UPDATE) update_entry(index);
-        else assign_page(index);
-        return;
-    }
-    if (step == PENUMBRA_VIRTUAL_STEP_COUNT && index == 0u) {
-        // The clear pass's indirect draw: a quad per page to draw.
-        counters.clear_vertex_count = 6u;
-        counters.clear_instance_count = counters.rendered;
-    }
-    if (index >= clipmap.pool_pages) return;
-    if (step == PENUMBRA_VIRTUAL_STEP_SCAN) scan_page(index);
-    else if (step == PENUMBRA_VIRTUAL_STEP_EVICT) evict_page(index);
-    else count_page(index);
 }

@@ -118,16 +118,20 @@ struct ResolvePushConstants {
 // Least-recently-used eviction sorts unrequested pages by age in frames, the last bucket
 // holding every older page.
 #define PENUMBRA_VIRTUAL_AGE_BUCKETS 64
+// A page is requested in a frame when its request word holds that frame's stamp: the
+// marking writes the stamp, and nothing clears the requests between frames. Frame numbers
+// start at 0 in tests, 1 in the library; the stamp is never 0, the buffer's first contents.
+#define PENUMBRA_VIRTUAL_REQUEST_STAMP(frame) ((frame) + 1u)
 
 // Set 0 of the virtual page passes.
 #define PENUMBRA_BINDING_VIRTUAL_CLIPMAP 0        // PenumbraVirtualClipmap (uniform buffer)
 #define PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE 1     // uint per level and slot
-#define PENUMBRA_BINDING_VIRTUAL_REQUESTS 2       // uint per level and slot: 1 where a pixel reads the page
+#define PENUMBRA_BINDING_VIRTUAL_REQUESTS 2       // uint per level and slot: stamp of the last frame reading it
 #define PENUMBRA_BINDING_VIRTUAL_PHYSICAL 3       // VirtualPhysicalPage per page of the pool
 #define PENUMBRA_BINDING_VIRTUAL_COUNTERS 4       // VirtualCounters
 #define PENUMBRA_BINDING_VIRTUAL_NEEDS 5          // per level, its entries requested without a page
 #define PENUMBRA_BINDING_VIRTUAL_FREE 6           // physical pages free for them, in any order
-#define PENUMBRA_BINDING_VIRTUAL_RENDER 7         // entries whose page is drawn this frame
+#define PENUMBRA_BINDING_VIRTUAL_RENDER 7         // per level, pool_pages places: its entries drawn this frame
 #define PENUMBRA_BINDING_VIRTUAL_INVALIDATIONS 8  // VirtualInvalidation per rectangle of stale pages
 #define PENUMBRA_BINDING_VIRTUAL_DRAWS 9          // VirtualPageDraw per caster instance drawn into a page
 // The virtual casters' pipelines: set 3 is the pages set (vertex shaders read the table,
@@ -152,6 +156,25 @@ struct VirtualPhysicalPage {
     PENUMBRA_UINT last_used;  // the last frame a pixel requested it
 };
 
+// A VkDispatchIndirectCommand the allocation writes: no workgroups for a step with
+// nothing to do (a walking camera's frame evicts, assigns and draws nothing).
+struct VirtualDispatch {
+    PENUMBRA_UINT x;
+    PENUMBRA_UINT y;
+    PENUMBRA_UINT z;
+};
+
+// A VkDrawIndirectCommand of the pass that clears the pages drawn this frame: one per level,
+// a quad (6 vertices) per page, whose instances are the level's places in the list of pages
+// drawn (first_instance = level * pool_pages). instance_count counts the level's pages
+// drawn while the allocation lists them.
+struct VirtualClearDraw {
+    PENUMBRA_UINT vertex_count;
+    PENUMBRA_UINT instance_count;
+    PENUMBRA_UINT first_vertex;
+    PENUMBRA_UINT first_instance;
+};
+
 // What the allocation found this frame (the host reads a copy, FrameInfo's statistics).
 struct VirtualCounters {
     PENUMBRA_UINT needed;     // requested entries without a page
@@ -168,26 +191,22 @@ struct VirtualCounters {
     PENUMBRA_UINT take_at_threshold;
     PENUMBRA_UINT taken;
     PENUMBRA_UINT evictable;  // unrequested pages held by an entry
-    // VkDrawIndirectCommand of the pass that clears the pages to draw: 6 vertices per page.
-    PENUMBRA_UINT clear_vertex_count;
-    PENUMBRA_UINT clear_instance_count;
-    PENUMBRA_UINT clear_first_vertex;
-    PENUMBRA_UINT clear_first_instance;
+    // The dispatches of eviction, assignment and the casters' culling, sized by the plan.
+    VirtualDispatch evict_groups;
+    VirtualDispatch assign_groups;
+    VirtualDispatch cull_groups;
     // The casters' culling: VirtualPageDraws written, and the ones beyond the buffer's
     // room (their pages lose VALID and are drawn again next frame).
     PENUMBRA_UINT page_draws;
     PENUMBRA_UINT dropped_page_draws;
     PENUMBRA_UINT padding0;
-    PENUMBRA_UINT padding1;
     // Requested entries without a page, per level: coarser levels are served first, since a
     // receiver whose page is unserved falls back to the next coarser level.
     PENUMBRA_UINT level_needs[PENUMBRA_MAX_VIRTUAL_LEVELS];
     PENUMBRA_UINT age_histogram[PENUMBRA_VIRTUAL_AGE_BUCKETS];
-    // Entries drawn this frame, per level: the list of them is grouped by level, finer
-    // levels first, so that the casters' culling scans only a level's own (listed counts
-    // them while the list is written).
-    PENUMBRA_UINT level_rendered[PENUMBRA_MAX_VIRTUAL_LEVELS];
-    PENUMBRA_UINT level_listed[PENUMBRA_MAX_VIRTUAL_LEVELS];
+    // Per level, the clear pass's draw; its instance_count is the level's pages drawn, which
+    // the casters' culling scans level by level.
+    VirtualClearDraw level_clears[PENUMBRA_MAX_VIRTUAL_LEVELS];
 };
 
 // One caster instance drawn into one page (gl_InstanceIndex of the virtual caster draws).
@@ -201,7 +220,9 @@ struct VirtualCullPushConstants {
     PENUMBRA_UINT instance_count;
     PENUMBRA_UINT bucket_count;
     PENUMBRA_UINT draw_capacity;  // VirtualPageDraws the buffer holds
-    PENUMBRA_UINT padding;
+    // The levels the commands have room for: a bucket's commands of every level lie together,
+    // from bucket_first_command * level_count on, and one indirect draw draws them.
+    PENUMBRA_UINT level_count;
 };
 
 // The marking pass: the caller's depth buffer as ScreenInputs describes it.
@@ -214,15 +235,19 @@ struct VirtualMarkPushConstants {
 };
 
 // The allocation passes (shaders/virtual_pages.comp): which step a dispatch runs.
-#define PENUMBRA_VIRTUAL_STEP_UPDATE 0     // per entry: scrolled out, stale, requested
-#define PENUMBRA_VIRTUAL_STEP_SCAN 1       // per physical page: free or evictable (ages)
-#define PENUMBRA_VIRTUAL_STEP_THRESHOLD 2  // one thread: the age threshold of eviction
-#define PENUMBRA_VIRTUAL_STEP_EVICT 3      // per physical page: evict the oldest unrequested
-#define PENUMBRA_VIRTUAL_STEP_ASSIGN 4     // per needed entry: a free page, or unserved
-#define PENUMBRA_VIRTUAL_STEP_COUNT 5      // per physical page: resident; the list to draw
+#define PENUMBRA_VIRTUAL_STEP_UPDATE 0  // per entry: scrolled out, stale, requested
+#define PENUMBRA_VIRTUAL_STEP_SCAN 1    // per physical page: free or evictable (ages)
+#define PENUMBRA_VIRTUAL_STEP_PLAN 2    // one thread: eviction's age threshold, the next dispatches
+#define PENUMBRA_VIRTUAL_STEP_EVICT 3   // per physical page: evict the oldest unrequested
+#define PENUMBRA_VIRTUAL_STEP_ASSIGN 4  // per level and needed entry: a free page, or unserved
 
 struct VirtualStepPushConstants {
     PENUMBRA_UINT step;  // PENUMBRA_VIRTUAL_STEP_*
+    // The casters' culling dispatch when pages are drawn (VirtualCounters::cull_groups):
+    // workgroups in x and y, one per culled instance.
+    PENUMBRA_UINT cull_columns;
+    PENUMBRA_UINT cull_rows;
+    PENUMBRA_UINT padding;
 };
 
 #endif

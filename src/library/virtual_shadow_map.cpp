@@ -133,7 +133,11 @@ void VirtualShadowMap::prepare(const VirtualFrameInputs& inputs, const ShadowSet
     block.fade_start = inputs.shadow_distance * (1.0f - settings.blend_width);
     // A sun that casts no shadow: no level, the shaders see the sun unshadowed.
     if (!inputs.casts) block.level_count = 0;
-    pages_.prepare(inputs.frame, block, rects);
+    if (inputs.scene->version != culled_version_) {
+        cull_workgroups_ = passes::VirtualShadowPass::cull_workgroups(*inputs.scene);
+        culled_version_ = inputs.scene->version;
+    }
+    pages_.prepare(inputs.frame, block, rects, cull_workgroups_);
     invalidation_count_ = static_cast<uint32_t>(rects.size());
     invalidated_all_ = stale;
     invalidate_all_ = false;

@@ -95,6 +95,10 @@ private:
     bool casts_ = false;
     uint32_t invalidation_count_ = 0;
     bool invalidated_all_ = false;
+    // The culling's workgroups for the scene of version culled_version_ (counted again only
+    // when the scene changes).
+    glm::uvec2 cull_workgroups_{0, 0};
+    uint64_t culled_version_ = ~uint64_t{0};
 };
 
 }  // namespace penumbra::library

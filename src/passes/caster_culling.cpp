@@ -4,6 +4,7 @@
 #include <array>
 #include <compare>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -93,6 +94,16 @@ uint32_t cull_unit_count(const CasterMesh& mesh, CullUnit unit) {
     return split ? static_cast<uint32_t>(mesh.clusters.size()) : 1u;
 }
 
+}  // namespace
+
+uint32_t cull_unit_total(const CasterScene& scene, CullUnit unit) {
+    uint64_t total = 0;
+    for (const CasterDraw& draw : scene.draws) total += cull_unit_count(scene.meshes[draw.mesh], unit);
+    return static_cast<uint32_t>(std::min<uint64_t>(total, std::numeric_limits<uint32_t>::max()));
+}
+
+namespace {
+
 // Appends the culled draws of `draw` (cull_unit_count() of them): the instance, or one per
 // cluster of its mesh (its index range, and its bounds in the world, within the instance's).
 void append_cull_units(std::vector<shader::CullInstance>& units, const CasterScene& scene, const CasterDraw& draw,
@@ -180,10 +191,12 @@ void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t la
                           " do not fit one storage buffer of this device (maxStorageBufferRange " +
                           std::to_string(device.properties().limits.maxStorageBufferRange) + ")" + instead);
     }
-    // A bucket holds at most every draw: one indirect draw must be able to draw them all.
+    // A bucket holds at most every draw (the virtual shadow map's: in every level at once):
+    // one indirect draw must be able to draw them all.
     const uint32_t limit = device.properties().limits.maxDrawIndirectCount;
-    if (draws > limit) {
-        throw DeviceError(who + std::to_string(draws) + what +
+    const uint64_t per_indirect_draw = clusters ? commands : draws;
+    if (per_indirect_draw > limit) {
+        throw DeviceError(who + std::to_string(per_indirect_draw) + (clusters ? " cluster draws" : what) +
                           ", more than the device draws in one indirect draw (maxDrawIndirectCount " +
                           std::to_string(limit) + ")" + instead);
     }
@@ -403,6 +416,15 @@ void GpuCasterCulling::record_draws(VkCommandBuffer cmd, const CasterPipelines& 
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
     record_indirect_caster_draws(device_, cmd, pipelines, scene, buckets_, buffers_->commands.get(),
                                  layer * draw_count_, buffers_->counts.get(), layer * bucket_count, culling);
+}
+
+void GpuCasterCulling::record_draws_of_every_layer(VkCommandBuffer cmd, const CasterPipelines& pipelines,
+                                                   const CasterScene& scene, const CasterFaceCulling& culling) const {
+    if (buckets_.empty() || layer_count_ == 0) return;
+    device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
+                                     PENUMBRA_SET_CASTER_DRAWS, 1, &buffers_->set, 0, nullptr);
+    record_indirect_caster_draws(device_, cmd, pipelines, scene, buckets_, buffers_->commands.get(), 0,
+                                 buffers_->counts.get(), 0, culling, layer_count_);
 }
 
 uint64_t GpuCasterCulling::buffer_bytes() const {

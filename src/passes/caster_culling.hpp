@@ -55,6 +55,9 @@ gpu::UniquePipelineLayout create_caster_pipeline_layout(const gpu::Device& devic
 // the virtual shadow map draws each cluster only into the pages under it).
 enum class CullUnit { Instances, Clusters };
 
+// The culled draws of `scene` by `unit`: GpuCasterCulling::draw_count() once it uploaded `scene`.
+uint32_t cull_unit_total(const CasterScene& scene, CullUnit unit);
+
 // Throws InputError when `draws` casters in `layers` layers need more indirect commands than
 // the GPU culling makes room for (2^26, or what one storage buffer of the device holds),
 // DeviceError when the draws do not fit one storage buffer or one indirect draw
@@ -108,6 +111,12 @@ public:
     // set PENUMBRA_SET_CASTER_DRAWS is draws_set_layout().
     void record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
                       const CasterFaceCulling& culling, uint32_t layer) const;
+    // The same for a culling that keeps a bucket's commands of every layer together (from
+    // the bucket's first command times the layer count on) with one count per bucket: one
+    // indirect draw per bucket draws every layer's (the virtual shadow map's levels, whose
+    // vertex shader finds its page per instance).
+    void record_draws_of_every_layer(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
+                                     const CasterFaceCulling& culling) const;
 
     const std::vector<CasterBucket>& buckets() const { return buckets_; }
     // The device and staging buffers it holds now (replaced ones still in flight left out).

@@ -195,7 +195,7 @@ void record_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const C
 void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                                   const CasterScene& scene, std::span<const CasterBucket> buckets, VkBuffer commands,
                                   uint32_t first_command, VkBuffer counts, uint32_t first_count,
-                                  const CasterFaceCulling& culling) {
+                                  const CasterFaceCulling& culling, uint32_t layers_per_bucket) {
     constexpr VkDeviceSize kCommandSize = sizeof(VkDrawIndexedIndirectCommand);
     BoundState bound;
     for (size_t b = 0; b < buckets.size(); ++b) {
@@ -206,8 +206,9 @@ void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd
         const CasterMesh& mesh = scene.meshes[draw.mesh];
         // The vertex shader reads the transform and layer per command (CullRecord).
         push_caster_constants(device, cmd, pipelines, {glm::mat4(1.0f), 0, mesh.alpha_cutoff, mesh.alpha_scale, 0});
-        device->vkCmdDrawIndexedIndirectCount(cmd, commands, (first_command + bucket.first_command) * kCommandSize,
-                                              counts, (first_count + b) * sizeof(uint32_t), bucket.capacity,
+        const VkDeviceSize first = first_command + VkDeviceSize{bucket.first_command} * layers_per_bucket;
+        device->vkCmdDrawIndexedIndirectCount(cmd, commands, first * kCommandSize, counts,
+                                              (first_count + b) * sizeof(uint32_t), bucket.capacity * layers_per_bucket,
                                               kCommandSize);
     }
 }

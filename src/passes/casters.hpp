@@ -135,12 +135,13 @@ struct CasterBucket {
 };
 
 // Records one vkCmdDrawIndexedIndirectCount per bucket: `commands` holds
-// VkDrawIndexedIndirectCommands, a bucket's from `first_command` plus its own first, and
-// `counts` one uint32_t count per bucket from `first_count`.
+// VkDrawIndexedIndirectCommands, a bucket's from `first_command` plus its own first times
+// `layers_per_bucket` (room for its capacity that many times: the commands of several
+// layers kept together), and `counts` one uint32_t count per bucket from `first_count`.
 void record_indirect_caster_draws(const gpu::Device& device, VkCommandBuffer cmd, const CasterPipelines& pipelines,
                                   const CasterScene& scene, std::span<const CasterBucket> buckets, VkBuffer commands,
                                   uint32_t first_command, VkBuffer counts, uint32_t first_count,
-                                  const CasterFaceCulling& culling);
+                                  const CasterFaceCulling& culling, uint32_t layers_per_bucket = 1);
 
 void set_viewport_and_scissor(const gpu::Device& device, VkCommandBuffer cmd, uint32_t width, uint32_t height);
 

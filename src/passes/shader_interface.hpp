@@ -143,20 +143,25 @@ static_assert(offsetof(VirtualInvalidation, level) == 16);
 static_assert(sizeof(VirtualInvalidation) == 32);
 static_assert(sizeof(VirtualPhysicalPage) == 8);
 static_assert(offsetof(VirtualCounters, threshold_bucket) == 32);
-static_assert(offsetof(VirtualCounters, clear_vertex_count) == 48);
-static_assert(offsetof(VirtualCounters, page_draws) == 64);
-static_assert(offsetof(VirtualCounters, level_needs) == 80);
-static_assert(offsetof(VirtualCounters, age_histogram) == 80 + 4 * PENUMBRA_MAX_VIRTUAL_LEVELS);
-static_assert(offsetof(VirtualCounters, level_rendered) ==
-              80 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
-static_assert(offsetof(VirtualCounters, level_listed) ==
-              80 + 4 * (2 * PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
-static_assert(sizeof(VirtualCounters) == 80 + 4 * (3 * PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
+static_assert(sizeof(VirtualDispatch) == sizeof(VkDispatchIndirectCommand));
+static_assert(offsetof(VirtualCounters, evict_groups) == 48);
+static_assert(offsetof(VirtualCounters, assign_groups) == 60);
+static_assert(offsetof(VirtualCounters, cull_groups) == 72);
+static_assert(offsetof(VirtualCounters, page_draws) == 84);
+static_assert(offsetof(VirtualCounters, level_needs) == 96);
+static_assert(offsetof(VirtualCounters, age_histogram) == 96 + 4 * PENUMBRA_MAX_VIRTUAL_LEVELS);
+static_assert(sizeof(VirtualClearDraw) == sizeof(VkDrawIndirectCommand));
+static_assert(offsetof(VirtualClearDraw, instance_count) == offsetof(VkDrawIndirectCommand, instanceCount));
+static_assert(offsetof(VirtualClearDraw, first_instance) == offsetof(VkDrawIndirectCommand, firstInstance));
+static_assert(offsetof(VirtualCounters, level_clears) ==
+              96 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
+static_assert(sizeof(VirtualCounters) ==
+              96 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS) + 16 * PENUMBRA_MAX_VIRTUAL_LEVELS);
 static_assert(sizeof(VirtualPageDraw) == 8);
 static_assert(sizeof(VirtualCullPushConstants) == 16);
 static_assert(offsetof(VirtualMarkPushConstants, width) == 64);
 static_assert(offsetof(VirtualMarkPushConstants, background_depth) == 72);
 static_assert(sizeof(VirtualMarkPushConstants) == 80);
-static_assert(sizeof(VirtualStepPushConstants) == 4);
+static_assert(sizeof(VirtualStepPushConstants) == 16);
 
 }  // namespace penumbra::shader

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 #include "penumbra/errors.hpp"
@@ -57,10 +58,13 @@ constexpr VkPipelineStageFlags2 kShaderStages = VK_PIPELINE_STAGE_2_COMPUTE_SHAD
                                                 VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 
+// Between the steps: the next reads and writes the buffers, and the counters hold its
+// dispatch command.
 void compute_to_compute(const gpu::Device& device, VkCommandBuffer cmd) {
     gpu::memory_barrier(device, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                            VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
 }
 
 }  // namespace
@@ -128,8 +132,8 @@ VirtualPages::VirtualPages(const gpu::Device& device, const VirtualPagesDesc& de
     counters_ = create(sizeof(shader::VirtualCounters), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     needs_ = create(entries * sizeof(uint32_t));
     free_list_ = create(VkDeviceSize{desc_.pool_pages} * sizeof(uint32_t));
-    // At most every requested entry is drawn, and never more than the pool holds.
-    render_list_ = create(std::min<VkDeviceSize>(entries, desc_.pool_pages) * sizeof(uint32_t));
+    // A level's part of the list has room for the whole pool: no level draws more pages.
+    render_list_ = create(VkDeviceSize{desc_.level_count} * desc_.pool_pages * sizeof(uint32_t));
     page_draws_ = create(VkDeviceSize{desc_.max_page_draws} * sizeof(shader::VirtualPageDraw));
 
     const uint32_t slot_count = desc_.frames_in_flight + 1;
@@ -174,8 +178,10 @@ void VirtualPages::write_pages_set(FrameSlot& slot) const {
 }
 
 void VirtualPages::prepare(uint64_t frame, shader::PenumbraVirtualClipmap clipmap,
-                           std::span<const shader::VirtualInvalidation> invalidations) {
+                           std::span<const shader::VirtualInvalidation> invalidations, glm::uvec2 cull_workgroups) {
     FrameSlot& slot = slots_[frame % slots_.size()];
+    slot.cull_workgroups = cull_workgroups;
+    request_stamp_ = PENUMBRA_VIRTUAL_REQUEST_STAMP(clipmap.frame);
     clipmap.pool_pages = desc_.pool_pages;
     clipmap.level_count = std::min(clipmap.level_count, desc_.level_count);
     clipmap.pages_per_side = desc_.pages_per_side;
@@ -201,12 +207,13 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
         VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
         VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     if (!initialised_) {
-        // No entry holds a page, and no page has an owner.
+        // No entry holds a page or was ever requested (no frame's stamp is 0), and no page
+        // has an owner. Later frames leave the requests alone: each frame has its own stamp.
         device_->vkCmdFillBuffer(cmd, page_table_.get(), 0, VK_WHOLE_SIZE, 0u);
+        device_->vkCmdFillBuffer(cmd, requests_.get(), 0, VK_WHOLE_SIZE, 0u);
         device_->vkCmdFillBuffer(cmd, physical_.get(), 0, VK_WHOLE_SIZE, PENUMBRA_PAGE_NO_OWNER);
         initialised_ = true;
     }
-    device_->vkCmdFillBuffer(cmd, requests_.get(), 0, VK_WHOLE_SIZE, 0u);
     device_->vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0u);
     // vkCmdFillBuffer is a transfer write of the copy stage.
     gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
@@ -214,10 +221,22 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
-void VirtualPages::record_step(VkCommandBuffer cmd, uint32_t step, uint32_t threads) const {
-    const shader::VirtualStepPushConstants constants{step};
+void VirtualPages::push_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step) const {
+    const shader::VirtualStepPushConstants constants{step, slot.cull_workgroups.x, slot.cull_workgroups.y, 0};
     device_->vkCmdPushConstants(cmd, pages_layout_, kCompute, 0, sizeof(constants), &constants);
+}
+
+void VirtualPages::record_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step, uint32_t threads) const {
+    push_step(cmd, slot, step);
     device_->vkCmdDispatch(cmd, (threads + kPagesGroupSize - 1) / kPagesGroupSize, 1, 1);
+    compute_to_compute(device_, cmd);
+}
+
+// A step whose workgroups the plan wrote into the counters (no workgroup when it has nothing to do).
+void VirtualPages::record_indirect_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step,
+                                        VkDeviceSize offset) const {
+    push_step(cmd, slot, step);
+    device_->vkCmdDispatchIndirect(cmd, counters_.get(), offset);
     compute_to_compute(device_, cmd);
 }
 
@@ -243,12 +262,11 @@ void VirtualPages::record_allocation(VkCommandBuffer cmd, uint64_t frame) {
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pages_pipeline_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pages_layout_, 0, 1, &slot.pages_set, 0,
                                      nullptr);
-    record_step(cmd, PENUMBRA_VIRTUAL_STEP_UPDATE, entry_count());
-    record_step(cmd, PENUMBRA_VIRTUAL_STEP_SCAN, desc_.pool_pages);
-    record_step(cmd, PENUMBRA_VIRTUAL_STEP_THRESHOLD, 1);
-    record_step(cmd, PENUMBRA_VIRTUAL_STEP_EVICT, desc_.pool_pages);
-    record_step(cmd, PENUMBRA_VIRTUAL_STEP_ASSIGN, entry_count());
-    record_step(cmd, PENUMBRA_VIRTUAL_STEP_COUNT, desc_.pool_pages);
+    record_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_UPDATE, entry_count());
+    record_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_SCAN, desc_.pool_pages);
+    record_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_PLAN, 1);
+    record_indirect_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_EVICT, offsetof(shader::VirtualCounters, evict_groups));
+    record_indirect_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_ASSIGN, offsetof(shader::VirtualCounters, assign_groups));
 
     // The frame's passes read the table and the list (the casters' culling writes the
     // counters and may invalidate pages).
@@ -301,11 +319,18 @@ VirtualPageState VirtualPages::read_back(const gpu::OneTimeCommands& commands) c
     VirtualPageState state;
     take(state.page_table, entry_count());
     take(state.requests, entry_count());
+    for (uint32_t& request : state.requests) request = request == request_stamp_ ? 1u : 0u;
     take(state.physical, desc_.pool_pages);
     std::memcpy(&state.counters, bytes, sizeof(state.counters));
     bytes += counters_.size;
-    take(state.rendered, render_list_.size / sizeof(uint32_t));
-    state.rendered.resize(std::min<size_t>(state.rendered.size(), state.counters.rendered));
+    // Each level's part of the list, finer levels first.
+    std::vector<uint32_t> list;
+    take(list, render_list_.size / sizeof(uint32_t));
+    for (uint32_t level = 0; level < desc_.level_count; ++level) {
+        const auto first = list.begin() + ptrdiff_t{level} * desc_.pool_pages;
+        const uint32_t count = std::min(state.counters.level_clears[level].instance_count, desc_.pool_pages);
+        state.rendered.insert(state.rendered.end(), first, first + count);
+    }
     return state;
 }
 

@@ -39,10 +39,10 @@ struct VirtualPagesDesc {
 // Everything the GPU holds about the pages, read back (tests).
 struct VirtualPageState {
     std::vector<uint32_t> page_table;  // per level and slot: PENUMBRA_PAGE_* bits and the physical page
-    std::vector<uint32_t> requests;    // per level and slot: 1 where a pixel requested the page
+    std::vector<uint32_t> requests;    // per level and slot: 1 where a pixel requested the page this frame
     std::vector<shader::VirtualPhysicalPage> physical;
     shader::VirtualCounters counters{};
-    std::vector<uint32_t> rendered;  // the entries drawn this frame (counters.rendered of them)
+    std::vector<uint32_t> rendered;  // the entries drawn this frame, finer levels first (counters.rendered of them)
 };
 
 // The pool image is a 2D array whose layers hold 4 x 4 pages each (512^2 texels): physical
@@ -88,13 +88,15 @@ public:
 
     // Writes frame `frame`'s clipmap and invalidations into its slot (the frame that used
     // the slot before, frames_in_flight earlier, must be complete). More invalidations than
-    // the desc's maximum set invalidate_all instead.
+    // the desc's maximum set invalidate_all instead. `cull_workgroups`: the casters'
+    // culling dispatch (x, y) of a frame that draws pages (VirtualCounters::cull_groups).
     void prepare(uint64_t frame, shader::PenumbraVirtualClipmap clipmap,
-                 std::span<const shader::VirtualInvalidation> invalidations);
+                 std::span<const shader::VirtualInvalidation> invalidations, glm::uvec2 cull_workgroups = {0, 0});
 
     // Records the frame's marking from the caller's depth (in `depth_layout`, its writes
-    // visible to compute shaders) and then the allocation. Afterwards the page table and the
-    // list of pages to draw are visible to compute, vertex, fragment and indirect reads.
+    // visible to compute shaders) and then the allocation. Afterwards the page table, the
+    // list of pages to draw and the counters (with the culling's and the clear's indirect
+    // commands) are visible to compute, vertex, fragment and indirect reads.
     void record(VkCommandBuffer cmd, uint64_t frame, VkImageView depth, VkImageLayout depth_layout,
                 const shader::VirtualMarkPushConstants& screen) {
         record_marking(cmd, frame, depth, depth_layout, screen);
@@ -124,6 +126,8 @@ public:
     // The PenumbraVirtualClipmap uniform buffer of `frame` (the sampling set binds it).
     VkBuffer clipmap_buffer(uint64_t frame) const { return slots_[frame % slots_.size()].clipmap.get(); }
     VkBuffer rendered_entries() const { return render_list_.get(); }
+    // Holds the indirect commands the allocation writes: VirtualCounters::cull_groups and
+    // level_clears (one draw per level, desc().level_count of them).
     VkBuffer counters_buffer() const { return counters_.get(); }
     uint64_t buffer_bytes() const;
 
@@ -135,10 +139,13 @@ private:
         VkDescriptorSet depth_set = VK_NULL_HANDLE;
         gpu::Buffer statistics;  // the counters copied for the host
         uint64_t frame = ~uint64_t{0};
+        glm::uvec2 cull_workgroups{0, 0};
     };
 
     void record_clear(VkCommandBuffer cmd);
-    void record_step(VkCommandBuffer cmd, uint32_t step, uint32_t threads) const;
+    void push_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step) const;
+    void record_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step, uint32_t threads) const;
+    void record_indirect_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step, VkDeviceSize offset) const;
     void write_pages_set(FrameSlot& slot) const;
 
     const gpu::Device& device_;
@@ -162,7 +169,8 @@ private:
     // One per frame in flight and one more: a frame's statistics stay readable until the
     // frames in flight after it have been prepared.
     std::vector<FrameSlot> slots_;
-    bool initialised_ = false;  // the page table and physical pages cleared on the GPU
+    bool initialised_ = false;    // the page table, requests and physical pages cleared on the GPU
+    uint32_t request_stamp_ = 0;  // of the last prepared frame (read_back())
 };
 
 }  // namespace penumbra::passes

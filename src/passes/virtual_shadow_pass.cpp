@@ -64,6 +64,12 @@ void set_page_viewports(const gpu::Device& device, VkCommandBuffer cmd) {
     device->vkCmdSetScissor(cmd, 0, count, scissors.data());
 }
 
+// One workgroup per culled unit, the rows continuing the columns.
+glm::uvec2 cull_grid(uint32_t units) {
+    const uint32_t columns = std::clamp(units, 1u, kMaxWorkgroupsPerDimension);
+    return {columns, (units + columns - 1) / columns};
+}
+
 CasterPipelineTemplate virtual_template(const gpu::Device& device, VkPipelineLayout layout) {
     CasterPipelineTemplate pipelines;
     pipelines.opaque_vertex = shaders::caster_virtual_vert();
@@ -77,6 +83,10 @@ CasterPipelineTemplate virtual_template(const gpu::Device& device, VkPipelineLay
 }
 
 }  // namespace
+
+glm::uvec2 VirtualShadowPass::cull_workgroups(const CasterScene& scene) {
+    return cull_grid(cull_unit_total(scene, CullUnit::Clusters));
+}
 
 VirtualShadowPass::VirtualShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                                      VkDescriptorSetLayout alpha_mask_set_layout, const VirtualPages& pages,
@@ -121,9 +131,10 @@ void VirtualShadowPass::record_cull(VkCommandBuffer cmd, const CasterScene& scen
     constants.instance_count = culling_.draw_count();
     constants.bucket_count = static_cast<uint32_t>(culling_.buckets().size());
     constants.draw_capacity = pages.desc().max_page_draws;
+    constants.level_count = levels;
     device_->vkCmdPushConstants(cmd, cull_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
-    const uint32_t columns = std::clamp(constants.instance_count, 1u, kMaxWorkgroupsPerDimension);
-    device_->vkCmdDispatch(cmd, columns, (constants.instance_count + columns - 1) / columns, 1);
+    // The allocation wrote cull_workgroups(scene) here, or no workgroup when no page is drawn.
+    device_->vkCmdDispatchIndirect(cmd, pages.counters_buffer(), offsetof(shader::VirtualCounters, cull_groups));
     culling_.finish_commands(cmd, frame);
 }
 
@@ -150,16 +161,15 @@ void VirtualShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, c
     const VkDescriptorSet pages_set = pages.pages_set(frame);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, clear_pipeline_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, clear_layout_, 0, 1, &pages_set, 0, nullptr);
-    device_->vkCmdDrawIndirect(cmd, pages.counters_buffer(), offsetof(shader::VirtualCounters, clear_vertex_count), 1,
-                               sizeof(VkDrawIndirectCommand));
+    device_->vkCmdDrawIndirect(cmd, pages.counters_buffer(), offsetof(shader::VirtualCounters, level_clears),
+                               pages.desc().level_count, sizeof(shader::VirtualClearDraw));
     if (culling_.draws_set() != VK_NULL_HANDLE && !culling_.buckets().empty()) {
         set_shadow_depth_bias(device_, cmd, bias);
         device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, caster_layout_,
                                          PENUMBRA_SET_CASTER_FRAME, 1, &frame_set, 0, nullptr);
         device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, caster_layout_,
                                          PENUMBRA_SET_VIRTUAL_PAGES, 1, &pages_set, 0, nullptr);
-        for (uint32_t level = 0; level < pages.desc().level_count; ++level)
-            culling_.record_draws(cmd, pipelines_, scene, culling, level);
+        culling_.record_draws_of_every_layer(cmd, pipelines_, scene, culling);
     }
     device_->vkCmdEndRendering(cmd);
     gpu::transition(device_, cmd, pool_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);

@@ -4,9 +4,10 @@
 // (passes/virtual_pages.hpp). Three steps, all on the GPU:
 //   1. culling (shaders/virtual_cull.comp): every caster instance against the pages drawn
 //      this frame, per clipmap level, into indexed indirect commands (the layered strategy's
-//      buffers: one region per level and bucket) whose instances are its pages;
-//   2. clearing those pages (an indirect draw of one quad per page at depth 0);
-//   3. drawing: one vkCmdDrawIndexedIndirectCount per level and bucket; the vertex shader
+//      buffers, a bucket's commands of every level together) whose instances are its pages;
+//      an indirect dispatch the allocation sized, empty when no page is drawn;
+//   2. clearing those pages (an indirect draw per level of one quad per page at depth 0);
+//   3. drawing: one vkCmdDrawIndexedIndirectCount per bucket; the vertex shader
 //      sends each instance to its page's layer and viewport (the viewport's scissor keeps it
 //      in the page), with the cascades' depth bias, depth clamp, face culling and alpha test.
 // Cached pages keep their texels: the pool is never cleared as a whole.
@@ -38,6 +39,10 @@ public:
                       uint32_t frames_in_flight);
 
     void prepare_pipelines(const VertexFormats& formats) { pipelines_.prepare(formats); }
+
+    // The culling's workgroups (x, y) for `scene` in a frame that draws pages: what
+    // VirtualPages::prepare() passes on to the allocation, which sizes the dispatch.
+    static glm::uvec2 cull_workgroups(const CasterScene& scene);
 
     // Records the three steps for the pages `pages` listed in `frame` (after its record()).
     // `frame_set` is the caster passes' set 0. On exit the pool is in

@@ -186,16 +186,24 @@ std::set<uint32_t> requested_entries(const passes::VirtualPageState& state) {
 bool allocated(uint32_t value) { return (value & PENUMBRA_PAGE_ALLOCATED) != 0; }
 uint32_t physical_of(uint32_t value) { return value & PENUMBRA_PAGE_PHYSICAL_MASK; }
 
-// The list of pages drawn this frame holds each of them once, finer levels first, as the
-// casters' culling reads it (each level's pages from the sum of the finer levels' counts).
+// The list of pages drawn this frame holds each of them once, each in its level's part (as
+// the casters' culling reads it), and each level's clear draw covers its part: 6 vertices a
+// page, instances from the level's first place on.
 void expect_render_list_grouped_by_level(const passes::VirtualPageState& state) {
     const uint32_t per_level = static_cast<uint32_t>(state.page_table.size()) / test_config().level_count;
+    const auto pool_pages = static_cast<uint32_t>(state.physical.size());
     ASSERT_EQ(state.rendered.size(), state.counters.rendered);
     EXPECT_EQ(std::set<uint32_t>(state.rendered.begin(), state.rendered.end()).size(), state.rendered.size());
     uint32_t first = 0;
     for (uint32_t level = 0; level < PENUMBRA_MAX_VIRTUAL_LEVELS; ++level) {
-        const uint32_t count = state.counters.level_rendered[level];
-        EXPECT_EQ(state.counters.level_listed[level], count) << "level " << level;
+        const shader::VirtualClearDraw& clear = state.counters.level_clears[level];
+        const uint32_t count = clear.instance_count;
+        if (level < test_config().level_count) {
+            EXPECT_EQ(clear.vertex_count, 6u) << "level " << level;
+            EXPECT_EQ(clear.first_instance, level * pool_pages) << "level " << level;
+        } else {
+            EXPECT_EQ(count, 0u) << "level " << level;
+        }
         for (uint32_t i = first; i < first + count && i < state.rendered.size(); ++i) {
             EXPECT_EQ(state.rendered[i] / per_level, level) << "list position " << i;
             EXPECT_NE(state.page_table[state.rendered[i]] & PENUMBRA_PAGE_RENDER, 0u) << "entry " << state.rendered[i];

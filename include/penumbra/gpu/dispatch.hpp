@@ -112,6 +112,7 @@ namespace penumbra::gpu {
     X(vkCmdDrawIndirect)                \
     X(vkCmdFillBuffer)                  \
     X(vkCmdDispatch)                    \
+    X(vkCmdDispatchIndirect)            \
     X(vkCmdCopyBuffer)                  \
     X(vkCmdCopyBufferToImage)           \
     X(vkCmdCopyImageToBuffer)           \
