@@ -1,24 +1,28 @@
 #version 460
 // Virtual shadow maps, step 2 of a frame: physical page allocation on the GPU, without a
-// readback (UE5's page allocation; Frogfood's and EEVEE-Next's follow the same order). Run
-// as a sequence of dispatches, one per step (VirtualStepPushConstants::step):
-//   UPDATE  per page table entry: an entry whose window page changed (its level moved by
+// readback (UE5's page allocation; Frogfood's and EEVEE-Next's follow the same order), in
+// two dispatches (VirtualStepPushConstants::step), since each dispatch and the barrier after
+// it costs more than the work of a frame whose pages are cached:
+//   SCAN    per page table entry: an entry whose window page changed (its level moved by
 //           whole pages, toroidal addressing) or whose texels are stale (invalidations)
 //           loses its contents; unrequested, it gives its physical page back; requested,
 //           it is drawn again in place. A requested entry with valid texels is cached.
 //           Requested entries without a page are queued as needs.
-//   SCAN    per physical page: free pages are listed; pages whose entry nobody requested
-//           this frame are evictable and counted by age (frames since their last request).
-//   PLAN    one thread: how many evictable pages must go, oldest first, for the needs that
-//           the free pages do not cover (least recently used); from the counts alone, what
-//           the frame will assign and draw, so that the next dispatches (eviction,
-//           assignment, the casters' culling) are indirect and empty when there is nothing
-//           to do, and the clear pass's draws.
-//   EVICT   per physical page: evicts the oldest evictable pages up to that number.
-//   ASSIGN  per level and need, coarser levels first: a free page (to be drawn this
-//           frame), or unserved: the pool is full, and the receiver samples a coarser level
-//           instead (never another page's texels; the marking requests the next coarser
-//           level's pages too, for this fallback).
+//           Per physical page, from the same facts about its owner: free pages (and the
+//           ones given back now) are listed; pages whose entry nobody requested this frame
+//           are evictable and counted by age (frames since their last request).
+//           The last workgroup to finish plans: how many evictable pages must go, oldest
+//           first, for the needs that the free pages do not cover (least recently used),
+//           and from the counts alone what the frame assigns and draws, so that the next
+//           dispatches (assignment, the casters' culling) are indirect and empty when there
+//           is nothing to do, and the clear pass's draws.
+//   ASSIGN  per level and need, coarser levels first (a need's rank): the free page of its
+//           rank, if the free list is that long. Per physical page: the oldest evictable
+//           pages up to the plan's number are evicted, and the k-th evicted page serves the
+//           need ranked just after the free pages' k-th. Needs beyond both stay unserved:
+//           the pool is full, and the receiver samples a coarser level instead (never
+//           another page's texels; the marking requests the next coarser level's pages
+//           too, for this fallback).
 // A page drawn this frame is listed as it is found, in its level's part of the list (the
 // casters' culling scans one level's pages at a time).
 #extension GL_GOOGLE_include_directive : require
@@ -35,7 +39,10 @@ layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_REQUESTS) readonly bu
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_PHYSICAL) buffer Physical {
     VirtualPhysicalPage physical[];
 };
-layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_COUNTERS) buffer Counters { VirtualCounters counters; };
+// Coherent: the scan's last workgroup reads what every workgroup counted.
+layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_COUNTERS) coherent buffer Counters {
+    VirtualCounters counters;
+};
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_NEEDS) buffer Needs { uint needs[]; };
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_FREE) buffer Free { uint free_pages[]; };
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_RENDER) writeonly buffer Render { uint render_entries[]; };
@@ -73,34 +80,38 @@ bool invalidated(uint level, ivec2 world_page) {
     return false;
 }
 
-void update_entry(uint entry) {
-    const uint per_level = penumbra_virtual_slots_per_level();
+// Whether an allocated entry's texels are stale: its slot holds another world page than last
+// frame (its level moved), or a changed caster reaches it. An entry of a level the clipmap
+// no longer has (a sun that casts nothing) keeps its page until it is evicted.
+bool is_stale(uint entry) {
     const uint level = penumbra_virtual_level_of_entry(entry);
+    if (level >= clipmap.level_count) return false;
     const uint slot = penumbra_virtual_slot_of_entry(entry);
+    const ivec2 world_page = penumbra_virtual_world_page_of_slot(clipmap.levels[level].first_page, slot);
+    const ivec2 previous = penumbra_virtual_world_page_of_slot(clipmap.levels[level].previous_first_page, slot);
+    return any(notEqual(world_page, previous)) || invalidated(level, world_page);
+}
+
+// The page table's side of an entry (its physical page's side is scan_page()).
+void update_entry(uint entry) {
+    const uint level = penumbra_virtual_level_of_entry(entry);
     const bool requested = is_requested(entry);
     if (requested) atomicAdd(counters.requested, 1u);
     uint value = page_table[entry] & ~PENUMBRA_PAGE_RENDER;  // last frame's
     if ((value & PENUMBRA_PAGE_ALLOCATED) == 0u) {
         if (requested) {
-            needs[level * per_level + atomicAdd(counters.level_needs[level], 1u)] = entry;
+            needs[level * penumbra_virtual_slots_per_level() + atomicAdd(counters.level_needs[level], 1u)] = entry;
             atomicAdd(counters.needed, 1u);
         }
         return;
     }
-    const ivec2 world_page = penumbra_virtual_world_page_of_slot(clipmap.levels[level].first_page, slot);
-    const ivec2 previous = penumbra_virtual_world_page_of_slot(clipmap.levels[level].previous_first_page, slot);
-    const bool stale = any(notEqual(world_page, previous)) || invalidated(level, world_page);
-    const uint page = value & PENUMBRA_PAGE_PHYSICAL_MASK;
+    const bool stale = is_stale(entry);
     if (stale) value &= ~PENUMBRA_PAGE_VALID;
     if (!requested) {
-        if (stale) {
-            physical[page].owner = PENUMBRA_PAGE_NO_OWNER;
-            value = 0u;
-        }
-        page_table[entry] = value;
+        page_table[entry] = stale ? 0u : value;  // a stale page is given back
         return;
     }
-    physical[page].last_used = clipmap.frame;
+    physical[value & PENUMBRA_PAGE_PHYSICAL_MASK].last_used = clipmap.frame;
     if ((value & PENUMBRA_PAGE_VALID) != 0u) {
         atomicAdd(counters.cached, 1u);
     } else {
@@ -113,8 +124,14 @@ uint age_bucket(uint page) {
     return min(clipmap.frame - physical[page].last_used, uint(PENUMBRA_VIRTUAL_AGE_BUCKETS - 1));
 }
 
+// The physical page's side: an owner that nobody requested gives a stale page back (its
+// entry's thread clears the entry) and keeps a valid one, evictable.
 void scan_page(uint page) {
-    const uint owner = physical[page].owner;
+    uint owner = physical[page].owner;
+    if (owner != PENUMBRA_PAGE_NO_OWNER && !is_requested(owner) && is_stale(owner)) {
+        physical[page].owner = PENUMBRA_PAGE_NO_OWNER;
+        owner = PENUMBRA_PAGE_NO_OWNER;
+    }
     if (owner == PENUMBRA_PAGE_NO_OWNER) {
         free_pages[atomicAdd(counters.free, 1u)] = page;
     } else if (!is_requested(owner)) {
@@ -138,10 +155,6 @@ void choose_threshold(uint deficit) {
     }
 }
 
-VirtualDispatch dispatch_if(bool work, uint x, uint y) {
-    return work ? VirtualDispatch(x, y, 1u) : VirtualDispatch(0u, 1u, 1u);
-}
-
 // What eviction and assignment will do follows from the counts: eviction takes exactly
 // min(deficit, evictable) pages (choose_threshold), assignment min(needed, free pages), the
 // rest of the needs stay unserved.
@@ -158,13 +171,58 @@ void plan() {
         counters.level_clears[level].vertex_count = 6u;
         counters.level_clears[level].first_instance = level * clipmap.pool_pages;
     }
-    const uint pool_groups = (clipmap.pool_pages + kGroupSize - 1u) / kGroupSize;
-    counters.evict_groups = dispatch_if(evicting > 0u, pool_groups, 1u);
-    counters.assign_groups =
-        dispatch_if(assigned > 0u, (most_needs + kGroupSize - 1u) / kGroupSize, clipmap.level_count);
-    counters.cull_groups = dispatch_if(counters.rendered + assigned > 0u, pages.cull_columns, pages.cull_rows);
+    // Rows 0 .. level_count - 1: each level's needs; the last row: the physical pages.
+    const uint columns = max(most_needs, evicting > 0u ? clipmap.pool_pages : 0u);
+    counters.assign_groups = assigned > 0u
+                                 ? VirtualDispatch((columns + kGroupSize - 1u) / kGroupSize, clipmap.level_count + 1u, 1u)
+                                 : VirtualDispatch(0u, 1u, 1u);
+    counters.cull_groups = counters.rendered + assigned > 0u ? VirtualDispatch(pages.cull_columns, pages.cull_rows, 1u)
+                                                             : VirtualDispatch(0u, 1u, 1u);
 }
 
+// The scan's last workgroup to finish sees every workgroup's counts (atomics, made visible
+// before each workgroup counts itself done) and plans.
+shared bool last_group;
+void plan_if_last() {
+    memoryBarrierBuffer();
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) {
+        const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
+        last_group = atomicAdd(counters.scan_groups_done, 1u) == groups - 1u;
+    }
+    barrier();
+    if (last_group && gl_LocalInvocationIndex == 0u) {
+        memoryBarrierBuffer();
+        plan();
+    }
+}
+
+// Page `page` to the need of `entry`: drawn this frame.
+void give_page(uint entry, uint page) {
+    page_table[entry] = queue_render(entry, PENUMBRA_PAGE_ALLOCATED | page);
+    physical[page] = VirtualPhysicalPage(entry, clipmap.frame);
+}
+
+// The need of rank `rank` (coarser levels first).
+uint need_of_rank(uint rank) {
+    for (int level = int(clipmap.level_count) - 1; level >= 0; --level) {
+        const uint count = counters.level_needs[level];
+        if (rank < count) return needs[uint(level) * penumbra_virtual_slots_per_level() + rank];
+        rank -= count;
+    }
+    return PENUMBRA_PAGE_NO_OWNER;
+}
+
+// Need number `need` of `level` takes the free page of its rank, if there is one.
+void assign_free_page(uint level, uint need) {
+    if (need >= counters.level_needs[level]) return;
+    uint rank = need;
+    for (uint coarser = level + 1u; coarser < clipmap.level_count; ++coarser) rank += counters.level_needs[coarser];
+    if (rank < counters.free) give_page(needs[level * penumbra_virtual_slots_per_level() + need], free_pages[rank]);
+}
+
+// Evicts the page if it is among the oldest the plan takes; it serves the next need after
+// the free pages'.
 void evict_page(uint page) {
     const uint owner = physical[page].owner;
     if (owner == PENUMBRA_PAGE_NO_OWNER || is_requested(owner)) return;
@@ -172,35 +230,22 @@ void evict_page(uint page) {
     if (bucket < counters.threshold_bucket) return;
     if (bucket == counters.threshold_bucket && atomicAdd(counters.taken, 1u) >= counters.take_at_threshold) return;
     page_table[owner] = 0u;
-    physical[page].owner = PENUMBRA_PAGE_NO_OWNER;
-    free_pages[atomicAdd(counters.free, 1u)] = page;
-    atomicAdd(counters.evicted, 1u);
-}
-
-// Need number `need` of `level`. Its rank among all needs counts the coarser levels' first:
-// they are served first.
-void assign_page(uint level, uint need) {
-    if (level >= clipmap.level_count || need >= counters.level_needs[level]) return;
-    uint rank = need;
-    for (uint coarser = level + 1u; coarser < clipmap.level_count; ++coarser) rank += counters.level_needs[coarser];
-    const uint entry = needs[level * penumbra_virtual_slots_per_level() + need];
-    if (rank >= counters.free) return;  // unserved (counted by the plan)
-    const uint page = free_pages[rank];
-    page_table[entry] = queue_render(entry, PENUMBRA_PAGE_ALLOCATED | page);
-    physical[page] = VirtualPhysicalPage(entry, clipmap.frame);
+    const uint evicted = atomicAdd(counters.evicted, 1u);
+    give_page(need_of_rank(counters.free + evicted), page);
 }
 
 void main() {
     const uint index = gl_GlobalInvocationID.x;
-    const uint step = pages.step;
-    if (step == PENUMBRA_VIRTUAL_STEP_PLAN) {
-        if (index == 0u) plan();
-    } else if (step == PENUMBRA_VIRTUAL_STEP_UPDATE) {
-        if (index < entry_count()) update_entry(index);
-    } else if (step == PENUMBRA_VIRTUAL_STEP_ASSIGN) {
-        assign_page(gl_WorkGroupID.y, index);
+    if (pages.step == PENUMBRA_VIRTUAL_STEP_SCAN) {
+        if (index < pages.first_page_thread) {
+            if (index < entry_count()) update_entry(index);
+        } else if (index - pages.first_page_thread < clipmap.pool_pages) {
+            scan_page(index - pages.first_page_thread);
+        }
+        plan_if_last();
+    } else if (gl_WorkGroupID.y < clipmap.level_count) {
+        assign_free_page(gl_WorkGroupID.y, index);
     } else if (index < clipmap.pool_pages) {
-        if (step == PENUMBRA_VIRTUAL_STEP_SCAN) scan_page(index);
-        else evict_page(index);
+        evict_page(index);
     }
 }

@@ -178,7 +178,7 @@ struct VirtualClearDraw {
 // What the allocation found this frame (the host reads a copy, FrameInfo's statistics).
 struct VirtualCounters {
     PENUMBRA_UINT needed;     // requested entries without a page
-    PENUMBRA_UINT free;       // physical pages free for them (after eviction)
+    PENUMBRA_UINT free;       // physical pages free for them before eviction (the free list's length)
     PENUMBRA_UINT rendered;   // entries whose page is drawn this frame (new or stale)
     PENUMBRA_UINT unserved;   // requested entries left without a page: the pool is full
     PENUMBRA_UINT requested;  // entries a pixel requested
@@ -191,15 +191,17 @@ struct VirtualCounters {
     PENUMBRA_UINT take_at_threshold;
     PENUMBRA_UINT taken;
     PENUMBRA_UINT evictable;  // unrequested pages held by an entry
-    // The dispatches of eviction, assignment and the casters' culling, sized by the plan.
-    VirtualDispatch evict_groups;
+    // The dispatches of assignment (and eviction) and of the casters' culling, sized by the plan.
     VirtualDispatch assign_groups;
     VirtualDispatch cull_groups;
+    PENUMBRA_UINT scan_groups_done;  // workgroups of the scan finished: the last one plans
     // The casters' culling: VirtualPageDraws written, and the ones beyond the buffer's
     // room (their pages lose VALID and are drawn again next frame).
     PENUMBRA_UINT page_draws;
     PENUMBRA_UINT dropped_page_draws;
     PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT padding2;
     // Requested entries without a page, per level: coarser levels are served first, since a
     // receiver whose page is unserved falls back to the next coarser level.
     PENUMBRA_UINT level_needs[PENUMBRA_MAX_VIRTUAL_LEVELS];
@@ -235,19 +237,18 @@ struct VirtualMarkPushConstants {
 };
 
 // The allocation passes (shaders/virtual_pages.comp): which step a dispatch runs.
-#define PENUMBRA_VIRTUAL_STEP_UPDATE 0  // per entry: scrolled out, stale, requested
-#define PENUMBRA_VIRTUAL_STEP_SCAN 1    // per physical page: free or evictable (ages)
-#define PENUMBRA_VIRTUAL_STEP_PLAN 2    // one thread: eviction's age threshold, the next dispatches
-#define PENUMBRA_VIRTUAL_STEP_EVICT 3   // per physical page: evict the oldest unrequested
-#define PENUMBRA_VIRTUAL_STEP_ASSIGN 4  // per level and needed entry: a free page, or unserved
+#define PENUMBRA_VIRTUAL_STEP_SCAN 0    // per entry and per physical page; the last workgroup plans
+#define PENUMBRA_VIRTUAL_STEP_ASSIGN 1  // per level and need, and per physical page to evict
 
 struct VirtualStepPushConstants {
     PENUMBRA_UINT step;  // PENUMBRA_VIRTUAL_STEP_*
+    // The scan's threads from this one on scan the physical pages (the ones before, the
+    // page table's entries).
+    PENUMBRA_UINT first_page_thread;
     // The casters' culling dispatch when pages are drawn (VirtualCounters::cull_groups):
     // workgroups in x and y, one per culled instance.
     PENUMBRA_UINT cull_columns;
     PENUMBRA_UINT cull_rows;
-    PENUMBRA_UINT padding;
 };
 
 #endif

@@ -58,9 +58,15 @@ constexpr VkPipelineStageFlags2 kShaderStages = VK_PIPELINE_STAGE_2_COMPUTE_SHAD
                                                 VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 
-// Between the steps: the next reads and writes the buffers, and the counters hold its
-// dispatch command.
+// From one step to the next, which reads and writes the buffers.
 void compute_to_compute(const gpu::Device& device, VkCommandBuffer cmd) {
+    gpu::memory_barrier(device, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+// The same, to a step whose dispatch command the previous one wrote.
+void compute_to_indirect_compute(const gpu::Device& device, VkCommandBuffer cmd) {
     gpu::memory_barrier(device, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
@@ -221,23 +227,15 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
+// The scan's threads: one per page table entry (whole workgroups), then one per physical page.
+uint32_t VirtualPages::first_page_thread() const {
+    return (entry_count() + kPagesGroupSize - 1) / kPagesGroupSize * kPagesGroupSize;
+}
+
 void VirtualPages::push_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step) const {
-    const shader::VirtualStepPushConstants constants{step, slot.cull_workgroups.x, slot.cull_workgroups.y, 0};
+    const shader::VirtualStepPushConstants constants{step, first_page_thread(), slot.cull_workgroups.x,
+                                                     slot.cull_workgroups.y};
     device_->vkCmdPushConstants(cmd, pages_layout_, kCompute, 0, sizeof(constants), &constants);
-}
-
-void VirtualPages::record_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step, uint32_t threads) const {
-    push_step(cmd, slot, step);
-    device_->vkCmdDispatch(cmd, (threads + kPagesGroupSize - 1) / kPagesGroupSize, 1, 1);
-    compute_to_compute(device_, cmd);
-}
-
-// A step whose workgroups the plan wrote into the counters (no workgroup when it has nothing to do).
-void VirtualPages::record_indirect_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step,
-                                        VkDeviceSize offset) const {
-    push_step(cmd, slot, step);
-    device_->vkCmdDispatchIndirect(cmd, counters_.get(), offset);
-    compute_to_compute(device_, cmd);
 }
 
 void VirtualPages::record_marking(VkCommandBuffer cmd, uint64_t frame, VkImageView depth, VkImageLayout depth_layout,
@@ -262,11 +260,12 @@ void VirtualPages::record_allocation(VkCommandBuffer cmd, uint64_t frame) {
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pages_pipeline_);
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pages_layout_, 0, 1, &slot.pages_set, 0,
                                      nullptr);
-    record_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_UPDATE, entry_count());
-    record_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_SCAN, desc_.pool_pages);
-    record_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_PLAN, 1);
-    record_indirect_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_EVICT, offsetof(shader::VirtualCounters, evict_groups));
-    record_indirect_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_ASSIGN, offsetof(shader::VirtualCounters, assign_groups));
+    push_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_SCAN);
+    device_->vkCmdDispatch(cmd, (first_page_thread() + desc_.pool_pages + kPagesGroupSize - 1) / kPagesGroupSize, 1, 1);
+    compute_to_indirect_compute(device_, cmd);
+    // The workgroups the scan's plan wrote: none when no page is assigned.
+    push_step(cmd, slot, PENUMBRA_VIRTUAL_STEP_ASSIGN);
+    device_->vkCmdDispatchIndirect(cmd, counters_.get(), offsetof(shader::VirtualCounters, assign_groups));
 
     // The frame's passes read the table and the list (the casters' culling writes the
     // counters and may invalidate pages).

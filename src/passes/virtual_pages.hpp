@@ -4,9 +4,10 @@
 // without any readback:
 //   1. marking (shaders/virtual_mark.comp): each pixel of the caller's depth requests the
 //      pages its filter reads in the level that matches its footprint;
-//   2. allocation (shaders/virtual_pages.comp): requested pages get physical pages (free
-//      ones, else the least recently requested), pages that left their level's window or
-//      whose casters changed lose their texels, and every page to draw this frame is listed.
+//   2. allocation (shaders/virtual_pages.comp, two dispatches): requested pages get physical
+//      pages (free ones, else the least recently requested), pages that left their level's
+//      window or whose casters changed lose their texels, and every page to draw this frame
+//      is listed.
 // The pool's depth texels themselves belong to the pass that draws and samples them.
 #include <vulkan/vulkan.h>
 
@@ -143,9 +144,8 @@ private:
     };
 
     void record_clear(VkCommandBuffer cmd);
+    uint32_t first_page_thread() const;
     void push_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step) const;
-    void record_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step, uint32_t threads) const;
-    void record_indirect_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step, VkDeviceSize offset) const;
     void write_pages_set(FrameSlot& slot) const;
 
     const gpu::Device& device_;
