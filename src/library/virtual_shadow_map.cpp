@@ -168,7 +168,6 @@ void VirtualShadowMap::record_pages(VkCommandBuffer cmd, VkDescriptorSet caster_
                                     const passes::CasterScene& scene, uint64_t frame, const BiasSettings& bias,
                                     const passes::CasterFaceCulling& culling, gpu::GpuTimer* timer) {
     pass_.record(cmd, caster_frame_set, scene, pages_, frame, bias, culling, timer);
-    pages_.copy_counters(cmd, frame);
 }
 
 VirtualShadowInfo VirtualShadowMap::info(uint64_t counted_frame) const {

@@ -346,6 +346,7 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
     device_->vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     device_->vkCmdDispatch(cmd, (draw_count_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
     finish_commands(cmd, frame);
+    gpu::transfer_to_host_barrier(device_, cmd);
 }
 
 bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count) {
@@ -393,7 +394,6 @@ void GpuCasterCulling::finish_commands(VkCommandBuffer cmd, uint64_t frame) {
     }
     const VkBufferCopy region{statistics_offset, 0, statistics_bytes};
     device_->vkCmdCopyBuffer(cmd, buffers_->counts.get(), slot.buffer.get(), 1, &region);
-    gpu::transfer_to_host_barrier(device_, cmd);
     slot.frame = frame;
     slot.layers = layer_count_;
 }

@@ -95,7 +95,9 @@ public:
     // pages, layer = clipmap level): uploads `scene` as record_cull() does and clears the
     // counts; false when there is nothing to draw (no bucket or no layer). Then bind
     // draws_set() at the dispatch's set, dispatch, and call finish_commands(): the commands
-    // ready for the indirect draws, the layers' statistics copied for culled(frame).
+    // ready for the indirect draws and every compute write visible to copies, the layers'
+    // statistics copied for culled(frame) (the caller records gpu::transfer_to_host_barrier()
+    // after its own copies).
     bool begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count);
     void finish_commands(VkCommandBuffer cmd, uint64_t frame);
     VkDescriptorSet draws_set() const { return buffers_ ? buffers_->set : VK_NULL_HANDLE; }

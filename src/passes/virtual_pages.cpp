@@ -58,14 +58,8 @@ constexpr VkPipelineStageFlags2 kShaderStages = VK_PIPELINE_STAGE_2_COMPUTE_SHAD
                                                 VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 
-// From one step to the next, which reads and writes the buffers.
-void compute_to_compute(const gpu::Device& device, VkCommandBuffer cmd) {
-    gpu::memory_barrier(device, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-}
-
-// The same, to a step whose dispatch command the previous one wrote.
+// From one step to the next, which reads and writes the buffers and whose dispatch
+// command the previous one wrote.
 void compute_to_indirect_compute(const gpu::Device& device, VkCommandBuffer cmd) {
     gpu::memory_barrier(device, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
@@ -212,6 +206,9 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
             VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT,
         VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
         VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    // The marking does not touch the counters: the barrier after it makes their clearing
+    // visible to the allocation.
+    device_->vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0u);
     if (!initialised_) {
         // No entry holds a page or was ever requested (no frame's stamp is 0), and no page
         // has an owner. Later frames leave the requests alone: each frame has its own stamp.
@@ -219,12 +216,11 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
         device_->vkCmdFillBuffer(cmd, requests_.get(), 0, VK_WHOLE_SIZE, 0u);
         device_->vkCmdFillBuffer(cmd, physical_.get(), 0, VK_WHOLE_SIZE, PENUMBRA_PAGE_NO_OWNER);
         initialised_ = true;
+        // vkCmdFillBuffer is a transfer write of the copy stage.
+        gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     }
-    device_->vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0u);
-    // vkCmdFillBuffer is a transfer write of the copy stage.
-    gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
-                        VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 // The scan's threads: one per page table entry (whole workgroups), then one per physical page.
@@ -252,7 +248,12 @@ void VirtualPages::record_marking(VkCommandBuffer cmd, uint64_t frame, VkImageVi
     device_->vkCmdPushConstants(cmd, mark_layout_, kCompute, 0, sizeof(screen), &screen);
     device_->vkCmdDispatch(cmd, (screen.width + kMarkGroupPixels - 1) / kMarkGroupPixels,
                            (screen.height + kMarkGroupPixels - 1) / kMarkGroupPixels, 1);
-    compute_to_compute(device_, cmd);
+    // The requests, and the counters' clearing, to the allocation.
+    gpu::memory_barrier(
+        device_, cmd,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 void VirtualPages::record_allocation(VkCommandBuffer cmd, uint64_t frame) {
@@ -276,12 +277,16 @@ void VirtualPages::record_allocation(VkCommandBuffer cmd, uint64_t frame) {
 }
 
 void VirtualPages::copy_counters(VkCommandBuffer cmd, uint64_t frame) {
-    FrameSlot& slot = slots_[frame % slots_.size()];
     gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    record_counters_copy(cmd, frame);
+    gpu::transfer_to_host_barrier(device_, cmd);
+}
+
+void VirtualPages::record_counters_copy(VkCommandBuffer cmd, uint64_t frame) {
+    FrameSlot& slot = slots_[frame % slots_.size()];
     const VkBufferCopy region{0, 0, sizeof(shader::VirtualCounters)};
     device_->vkCmdCopyBuffer(cmd, counters_.get(), slot.statistics.get(), 1, &region);
-    gpu::transfer_to_host_barrier(device_, cmd);
     slot.frame = frame;
 }
 

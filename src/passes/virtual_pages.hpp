@@ -111,6 +111,9 @@ public:
     // Copies the counters for the host (counters(frame)); after the frame's last pass that
     // counts (the casters' culling).
     void copy_counters(VkCommandBuffer cmd, uint64_t frame);
+    // The copy alone, for a caller that has made the counters' compute writes visible to
+    // copies and records the transfer-to-host barrier after it.
+    void record_counters_copy(VkCommandBuffer cmd, uint64_t frame);
 
     // The counters of `frame`, once its commands completed; nullopt when its slot was reused
     // (after frames in flight + 1 frames) or nothing was recorded for it.

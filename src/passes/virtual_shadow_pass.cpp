@@ -120,10 +120,13 @@ VirtualShadowPass::VirtualShadowPass(const gpu::Device& device, VkDescriptorSetL
     clear_pipeline_ = gpu::create_graphics_pipeline(device, clear);
 }
 
-void VirtualShadowPass::record_cull(VkCommandBuffer cmd, const CasterScene& scene, const VirtualPages& pages,
+void VirtualShadowPass::record_cull(VkCommandBuffer cmd, const CasterScene& scene, VirtualPages& pages,
                                     uint64_t frame) {
     const uint32_t levels = pages.desc().level_count;
-    if (!culling_.begin_commands(cmd, scene, levels)) return;
+    if (!culling_.begin_commands(cmd, scene, levels)) {
+        pages.copy_counters(cmd, frame);
+        return;
+    }
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_pipeline_);
     const std::array<VkDescriptorSet, 2> sets{pages.pages_set(frame), culling_.draws_set()};
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_layout_, 0, 2, sets.data(), 0, nullptr);
@@ -136,10 +139,13 @@ void VirtualShadowPass::record_cull(VkCommandBuffer cmd, const CasterScene& scen
     // The allocation wrote cull_workgroups(scene) here, or no workgroup when no page is drawn.
     device_->vkCmdDispatchIndirect(cmd, pages.counters_buffer(), offsetof(shader::VirtualCounters, cull_groups));
     culling_.finish_commands(cmd, frame);
+    // The culling's last count: the frame's counters, copied with the culling's statistics.
+    pages.record_counters_copy(cmd, frame);
+    gpu::transfer_to_host_barrier(device_, cmd);
 }
 
 void VirtualShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                               const VirtualPages& pages, uint64_t frame, const BiasSettings& bias,
+                               VirtualPages& pages, uint64_t frame, const BiasSettings& bias,
                                const CasterFaceCulling& culling, gpu::GpuTimer* timer) {
     {
         gpu::TimedScope scope(device_, timer, cmd, "shadow_virtual_cull");

@@ -44,10 +44,12 @@ public:
     // VirtualPages::prepare() passes on to the allocation, which sizes the dispatch.
     static glm::uvec2 cull_workgroups(const CasterScene& scene);
 
-    // Records the three steps for the pages `pages` listed in `frame` (after its record()).
-    // `frame_set` is the caster passes' set 0. On exit the pool is in
-    // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, its writes visible to fragment and compute reads.
-    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, const VirtualPages& pages,
+    // Records the three steps for the pages `pages` listed in `frame` (after its record()),
+    // and the copy of the pages' counters for the host once the culling counted (so
+    // VirtualPages::counters(frame) after the frame completes). `frame_set` is the caster
+    // passes' set 0. On exit the pool is in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, its
+    // writes visible to fragment and compute reads.
+    void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, VirtualPages& pages,
                 uint64_t frame, const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer);
 
     const gpu::Image& pool() const { return pool_; }
@@ -57,7 +59,7 @@ public:
     uint64_t buffer_bytes() const { return culling_.buffer_bytes(); }
 
 private:
-    void record_cull(VkCommandBuffer cmd, const CasterScene& scene, const VirtualPages& pages, uint64_t frame);
+    void record_cull(VkCommandBuffer cmd, const CasterScene& scene, VirtualPages& pages, uint64_t frame);
 
     const gpu::Device& device_;
     GpuCasterCulling culling_;
