@@ -139,7 +139,7 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     const bool layered = desc.layers > 1 || desc.array_view;
     result.view =
         create_view(device, image, desc, layered ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D, 0, desc.layers);
-    if (layered) {
+    if (layered && desc.layer_views) {
         for (uint32_t layer = 0; layer < desc.layers; ++layer) {
             result.layer_views.push_back(create_view(device, image, desc, VK_IMAGE_VIEW_TYPE_2D, layer, 1));
         }

@@ -42,6 +42,7 @@ gpu::Image create_pool(const gpu::Device& device, uint32_t pool_pages) {
     desc.height = desc.width;
     desc.layers = virtual_pool_layers(pool_pages);
     desc.array_view = true;
+    desc.layer_views = false;  // drawn through gl_Layer, one rendering over every layer
     desc.usage =
         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;

@@ -83,6 +83,9 @@ struct ImageDesc {
     VkImageUsageFlags usage = 0;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     bool array_view = false;  // view the image as a 2D array even with one layer
+    // One 2D view per layer of a layered image, for rendering into one layer at a time (an
+    // image drawn into through gl_Layer, e.g. the virtual shadow map's pool, needs none).
+    bool layer_views = true;
     // A size-compatible format to write the image through as a storage image (e.g.
     // R32G32_UINT for R16G16B16A16_UNORM): the image is created mutable, Image::storage_view
     // views every layer in it, and the other views are not storage views.
@@ -93,7 +96,7 @@ struct Image {
     BoundMemory memory;
     UniqueImage image;
     UniqueImageView view;                      // all layers
-    std::vector<UniqueImageView> layer_views;  // one 2D view per layer (when layers > 1 or array_view)
+    std::vector<UniqueImageView> layer_views;  // one 2D view per layer (layered, with ImageDesc::layer_views)
     UniqueImageView storage_view;              // with ImageDesc::storage_view_format: a 2D array view in it
     ImageDesc desc;
     VkDeviceSize memory_size = 0;  // bytes of its allocation (what it costs in GPU memory)
