@@ -141,8 +141,8 @@ void cull_level(Candidates c, uint instance_index, CullInstance instance) {
 void main() {
     // Workgroups beyond the first dimension's limit continue in the second.
     const uint index = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-    // A frame whose pages are all cached (a still or walking camera) draws nothing.
-    if (index >= cull.instance_count || counters.rendered == 0u) return;
+    // (A frame that draws no page dispatches no workgroup: the allocation sized it.)
+    if (index >= cull.instance_count) return;
     if (gl_LocalInvocationIndex < PENUMBRA_MAX_VIRTUAL_LEVELS) {
         found_pages[gl_LocalInvocationIndex] = 0u;
         written[gl_LocalInvocationIndex] = 0u;

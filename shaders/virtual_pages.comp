@@ -56,6 +56,10 @@ layout(push_constant) uniform PushBlock { VirtualStepPushConstants pages; };
 
 uint entry_count() { return clipmap.level_count * penumbra_virtual_slots_per_level(); }
 
+// Where a level's need number `need` lies in the needs buffer: each level has room for all
+// its slots.
+uint need_index(uint level, uint need) { return level * penumbra_virtual_slots_per_level() + need; }
+
 bool is_requested(uint entry) { return requests[entry] == PENUMBRA_VIRTUAL_REQUEST_STAMP(clipmap.frame); }
 
 // A page drawn this frame: counted, listed in its level's part of the list (each level has
@@ -100,7 +104,7 @@ void update_entry(uint entry) {
     uint value = page_table[entry] & ~PENUMBRA_PAGE_RENDER;  // last frame's
     if ((value & PENUMBRA_PAGE_ALLOCATED) == 0u) {
         if (requested) {
-            needs[level * penumbra_virtual_slots_per_level() + atomicAdd(counters.level_needs[level], 1u)] = entry;
+            needs[need_index(level, atomicAdd(counters.level_needs[level], 1u))] = entry;
             atomicAdd(counters.needed, 1u);
         }
         return;
@@ -207,7 +211,7 @@ void give_page(uint entry, uint page) {
 uint need_of_rank(uint rank) {
     for (int level = int(clipmap.level_count) - 1; level >= 0; --level) {
         const uint count = counters.level_needs[level];
-        if (rank < count) return needs[uint(level) * penumbra_virtual_slots_per_level() + rank];
+        if (rank < count) return needs[need_index(uint(level), rank)];
         rank -= count;
     }
     return PENUMBRA_PAGE_NO_OWNER;
@@ -218,7 +222,7 @@ void assign_free_page(uint level, uint need) {
     if (need >= counters.level_needs[level]) return;
     uint rank = need;
     for (uint coarser = level + 1u; coarser < clipmap.level_count; ++coarser) rank += counters.level_needs[coarser];
-    if (rank < counters.free) give_page(needs[level * penumbra_virtual_slots_per_level() + need], free_pages[rank]);
+    if (rank < counters.free) give_page(needs[need_index(level, need)], free_pages[rank]);
 }
 
 // Evicts the page if it is among the oldest the plan takes; it serves the next need after
