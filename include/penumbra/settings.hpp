@@ -16,8 +16,9 @@
 
 namespace penumbra {
 
-inline constexpr int kMaxCascades = 8;   // cascades of the sun's shadow map
-inline constexpr int kMaxPcfRadius = 5;  // FilterSettings::pcf_radius
+inline constexpr int kMaxCascades = 8;    // cascades of the sun's shadow map
+inline constexpr int kMaxPcfRadius = 5;   // FilterSettings::pcf_radius
+inline constexpr uint32_t kMaxViews = 8;  // views one ShadowSystem::prepare() takes
 
 // Spot and point lights (docs/local-lights.md).
 inline constexpr uint32_t kMaxLights = 256;             // lights one ShadowSystem takes (set_lights)

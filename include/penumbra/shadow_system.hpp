@@ -262,21 +262,34 @@ struct VirtualShadowInfo {
     uint32_t dropped_page_draws = 0;   // beyond Penumbra's draw buffer: their pages were drawn again the next frame
 };
 
+// One view's sun shadow in a frame (see ShadowSystem::prepare() with several views).
+struct ViewShadowInfo {
+    std::vector<CascadeInfo> cascades;             // empty with the virtual shadow map
+    std::optional<VirtualShadowInfo> virtual_map;  // with Settings::shadow.technique = virtual
+    float shadow_distance = 0.0f;                  // where the last cascade ends (fading to lit before it)
+    // The set the caller binds for penumbra/shadow.glsl (at the set index of its choosing)
+    // when it shades this view, valid for the command buffers that record this frame.
+    VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
+};
+
 struct FrameInfo {
     uint64_t frame = 0;  // counts prepare() calls, from 1
     // The sun (the first directional light), when there is one. Its cascades are fitted
     // even when it casts no shadow (then nothing is drawn into them: draws 0).
     std::optional<uint32_t> sun;
-    Vec3 sun_direction{0.0f, -1.0f, 0.0f};         // the direction its light travels, normalised
+    Vec3 sun_direction{0.0f, -1.0f, 0.0f};  // the direction its light travels, normalised
+    // The first view's sun shadow (the same as views[0]'s fields):
     std::vector<CascadeInfo> cascades;             // empty with the virtual shadow map
     std::optional<VirtualShadowInfo> virtual_map;  // with Settings::shadow.technique = virtual
     float shadow_distance = 0.0f;                  // where the last cascade ends (fading to lit before it)
-    std::vector<LocalShadowInfo> local_shadows;    // shadowed spot/point lights, in light order
-    // Spot/point lights that cast shadows but got none: beyond the budget or the layers.
-    std::vector<uint32_t> unshadowed_lights;
     // The set the caller binds for penumbra/shadow.glsl (at the set index of its choosing),
     // valid for the command buffer that records this frame.
     VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
+    // Every view's, in the order prepare() took them (one entry with a single view).
+    std::vector<ViewShadowInfo> views;
+    std::vector<LocalShadowInfo> local_shadows;  // shadowed spot/point lights, in light order, shared by the views
+    // Spot/point lights that cast shadows but got none: beyond the budget or the layers.
+    std::vector<uint32_t> unshadowed_lights;
     double cpu_fit_ms = 0.0;  // prepare(): cascade splits and fitting, local-light fitting
     // prepare(): applying update_settings() (pipelines and maps rebuilt); 0 without a change
     double cpu_settings_ms = 0.0;
@@ -387,7 +400,8 @@ struct ShadowMaps {
 
 struct PassTime {
     // "shadow_cascade_<i>", "shadow_multiview", "shadow_moments", "shadow_local", "visibility";
-    // the virtual shadow map's "shadow_virtual_mark", "_allocate", "_cull" and "_raster"
+    // the virtual shadow map's "shadow_virtual_mark", "_allocate", "_cull" and "_raster";
+    // a view after the first adds "_view<v>" to its sun's passes and its "visibility"
     std::string name;
     double milliseconds = 0.0;
 };
@@ -488,6 +502,15 @@ public:
     // there yet (the caller has more frames in flight, or never submitted it) is a
     // UsageError naming frames_in_flight, thrown before anything changes.
     const FrameInfo& prepare(const ViewDesc& view);
+    // Several views in one frame (split screen, a reflection probe's faces, a second camera;
+    // VR's two eyes are better one view whose projection holds both frusta): 1..kMaxViews
+    // views, each with a sun shadow of its own (cascades or a virtual shadow map fitted to
+    // it, with its own cache, uniforms, descriptor set and visibility image), sharing the
+    // scene, the settings and the spot/point lights' maps (sized for the view that needs
+    // them largest). View v's calls below take `view` = v. A view keeps its caches while
+    // the next frames have a view at its index; a frame with fewer views releases the rest.
+    // Each view's maps take their own memory (MemoryStats counts them all).
+    const FrameInfo& prepare(std::span<const ViewDesc> views);
 
     // The virtual shadow map (Settings::shadow.technique = virtual) draws only the pages the
     // frame's pixels sample: this records the compute passes that find them in `screen`'s
@@ -497,25 +520,29 @@ public:
     // frame's (newly visible surfaces then get their pages a frame late, and sample the
     // next coarser level until then). The caller makes the depth's writes available to
     // compute shader reads first, as for record_visibility(). With the cascades it records
-    // nothing.
-    void record_page_marking(VkCommandBuffer cmd, const ScreenInputs& screen);
+    // nothing. With several views, each view's pages are marked from its own depth.
+    void record_page_marking(VkCommandBuffer cmd, const ScreenInputs& screen, uint32_t view = 0);
 
     // Records the frame's shadow passes into `cmd` (a primary command buffer in the
     // recording state, outside any render pass, on a queue of the DeviceDesc's family),
     // after the uploads of meshes added since the last recording. On exit the maps are
-    // ready for sampling (see ShadowMaps). Requires prepare() first, and with the virtual
-    // shadow map record_page_marking() (UsageError).
+    // ready for sampling (see ShadowMaps). Every view's maps are recorded. Requires
+    // prepare() first, and with the virtual shadow map record_page_marking() of every view
+    // (UsageError).
     void record_shadow_maps(VkCommandBuffer cmd);
 
     // Records the compute resolve: the visibility of the sun and of every shadowed local
     // light at each pixel of `screen`, with the configured filter, into Penumbra's own
     // image, or into the caller's `target` (InputError naming the field when its format,
     // extent or layers do not fit). Requires record_shadow_maps() earlier in this frame (in
-    // this or an earlier submitted command buffer of the same frame).
-    void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen);
-    void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target);
-    // The image the last record_visibility() wrote, and where; a UsageError before the first.
-    VisibilityImage visibility_image() const;
+    // this or an earlier submitted command buffer of the same frame). Once per view and frame;
+    // `screen` is that view's.
+    void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, uint32_t view = 0);
+    void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target,
+                           uint32_t view = 0);
+    // The image the view's last record_visibility() wrote, and where; a UsageError before
+    // the first, or for a view the last prepare() did not have.
+    VisibilityImage visibility_image(uint32_t view = 0) const;
 
     // For forward shading with penumbra/shadow.glsl: the layout of FrameInfo::descriptor_set
     // (include it in your pipeline layout at the set index your shaders define as
@@ -525,7 +552,9 @@ public:
     VkDescriptorSetLayout descriptor_set_layout() const;
     ShaderSpecialization shader_specialization(uint32_t first_constant_id = 0) const;
 
-    ShadowMaps shadow_maps() const;
+    // The maps of a view of the last prepare() (cascades and virtual pool are the view's, the
+    // local lights' are shared); UsageError for a view it did not have.
+    ShadowMaps shadow_maps(uint32_t view = 0) const;
 
     // GPU time of each pass of `frame` (a FrameInfo::frame), once the submission that
     // recorded it has completed, and still after the prepare() that reuses its slot (which

@@ -166,9 +166,20 @@ uint32_t coverage_shadow_resolution(const core::Light& light, const CameraView& 
 
 void size_local_shadows(LocalShadowPlan& plan, std::span<const core::Light> lights, const CameraView& camera,
                         uint32_t viewport_height, uint32_t max_resolution) {
+    const SizedCamera view{camera, viewport_height};
+    size_local_shadows(plan, lights, std::span<const SizedCamera>(&view, 1), max_resolution);
+}
+
+void size_local_shadows(LocalShadowPlan& plan, std::span<const core::Light> lights, std::span<const SizedCamera> views,
+                        uint32_t max_resolution) {
     for (LocalShadowSlot& slot : plan.slots) {
         if (slot.fixed_resolution) continue;
-        slot.resolution = coverage_shadow_resolution(lights[slot.light], camera, viewport_height, max_resolution);
+        uint32_t resolution = 0;
+        for (const SizedCamera& view : views) {
+            resolution = std::max(resolution, coverage_shadow_resolution(lights[slot.light], view.camera,
+                                                                         view.viewport_height, max_resolution));
+        }
+        slot.resolution = resolution;
     }
 }
 

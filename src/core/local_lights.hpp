@@ -118,6 +118,16 @@ uint32_t coverage_shadow_resolution(const core::Light& light, const CameraView& 
 void size_local_shadows(LocalShadowPlan& plan, std::span<const core::Light> lights, const CameraView& camera,
                         uint32_t viewport_height, uint32_t max_resolution);
 
+// A view the maps serve: its camera and the height of its image in pixels.
+struct SizedCamera {
+    CameraView camera;
+    uint32_t viewport_height = 0;
+};
+
+// The same for maps that several views share: each slot the largest resolution a view needs.
+void size_local_shadows(LocalShadowPlan& plan, std::span<const core::Light> lights, std::span<const SizedCamera> views,
+                        uint32_t max_resolution);
+
 // Conservative culling: false only when the box cannot cast into the layer: outside a plane
 // of its frustum (Gribb-Hartmann planes of the view projection), or, for a cube face,
 // farther than the range from the light.

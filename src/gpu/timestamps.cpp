@@ -52,7 +52,7 @@ uint32_t GpuTimer::begin(VkCommandBuffer cmd, std::string name) {
         throw UsageError("GpuTimer: more than " + std::to_string(max_scopes_) + " scopes in one frame");
     }
     const auto scope = static_cast<uint32_t>(names_.size());
-    names_.push_back(std::move(name));
+    names_.push_back(std::move(name) + suffix_);
     ended_.push_back(false);
     // BOTTOM_OF_PIPE at both ends (for a timestamp the same as ALL_COMMANDS, which the
     // best-practices layer flags): a timestamp is written once every earlier command has
@@ -89,7 +89,7 @@ std::optional<std::vector<ScopeTime>> GpuTimer::read() const {
 }
 
 TimedScope::TimedScope(const Device& device, GpuTimer* timer, VkCommandBuffer cmd, const std::string& name)
-    : label_(device, cmd, name), timer_(timer), cmd_(cmd) {
+    : label_(device, cmd, timer ? name + timer->scope_suffix() : name), timer_(timer), cmd_(cmd) {
     if (timer_) scope_ = timer_->begin(cmd_, name);
 }
 

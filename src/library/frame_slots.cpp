@@ -10,8 +10,9 @@
 namespace penumbra::library {
 namespace {
 
-// Scopes a frame can open: one per cascade, the local lights, the resolve, and room.
-constexpr uint32_t kMaxTimedScopes = 16;
+// Scopes a frame can open: per view one per cascade (or the virtual map's four) and the
+// resolve, the local lights, and room.
+constexpr uint32_t kMaxTimedScopes = 8 * kMaxViews + 8;
 
 }  // namespace
 
@@ -43,14 +44,7 @@ FrameSetLayouts create_frame_set_layouts(const gpu::Device& device) {
     return {gpu::create_descriptor_set_layout(device, sampling), gpu::create_descriptor_set_layout(device, caster)};
 }
 
-FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSetLayouts& layouts,
-                       VkDescriptorSetLayout screen_set_layout)
-    : device_(device) {
-    const std::array<VkDescriptorPoolSize, 4> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 3 * count},
-                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * count},
-                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 11 * count},
-                                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, count}}};
-    pool_ = gpu::create_descriptor_pool(device, 3 * count, sizes);
+FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count) : device_(device) {
     // Hardware depth comparison with bilinear filtering. Repeat: a toroidal cascade wraps
     // around its layer's edges, and the filters clamp every tap to the texels a cascade or
     // a local light uses (a border colour would also be wrong: lavapipe (Mesa 22.3)
@@ -88,29 +82,49 @@ FrameSlots::FrameSlots(const gpu::Device& device, uint32_t count, const FrameSet
 
     slots_.reserve(count);
     for (uint32_t i = 0; i < count; ++i) {
-        FrameSlot slot{gpu::create_buffer(device, sizeof(shader::PenumbraShadowUniforms),
-                                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload),
-                       gpu::create_buffer(device, sizeof(shader::PenumbraLocalShadows),
-                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::HostUpload),
-                       gpu::allocate_descriptor_set(device, pool_, layouts.sampling),
-                       gpu::allocate_descriptor_set(device, pool_, layouts.caster),
-                       gpu::allocate_descriptor_set(device, pool_, screen_set_layout),
-                       gpu::GpuTimer(device, kMaxTimedScopes)};
-        gpu::write_uniform_buffer(device, slot.sampling_set, PENUMBRA_BINDING_SHADOW_UNIFORMS,
-                                  slot.shadow_uniforms.get(), slot.shadow_uniforms.size);
-        gpu::write_storage_buffer(device, slot.sampling_set, PENUMBRA_BINDING_LOCAL_SHADOWS, slot.local_shadows.get(),
-                                  slot.local_shadows.size);
-        gpu::write_uniform_buffer(device, slot.caster_set, PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS,
-                                  slot.shadow_uniforms.get(), slot.shadow_uniforms.size);
-        gpu::write_storage_buffer(device, slot.caster_set, PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS,
-                                  slot.local_shadows.get(), slot.local_shadows.size);
-        slots_.push_back(std::move(slot));
+        slots_.push_back({gpu::create_buffer(device, sizeof(shader::PenumbraLocalShadows),
+                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::HostUpload),
+                          gpu::GpuTimer(device, kMaxTimedScopes)});
     }
 }
 
 uint64_t FrameSlots::buffer_bytes() const {
     uint64_t bytes = 0;
-    for (const FrameSlot& slot : slots_) bytes += slot.shadow_uniforms.size + slot.local_shadows.size;
+    for (const FrameSlot& slot : slots_) bytes += slot.local_shadows.size;
+    return bytes;
+}
+
+ViewSlots::ViewSlots(const gpu::Device& device, const FrameSlots& frames, const FrameSetLayouts& layouts,
+                     VkDescriptorSetLayout screen_set_layout) {
+    const uint32_t count = frames.count();
+    const std::array<VkDescriptorPoolSize, 4> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 3 * count},
+                                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * count},
+                                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 11 * count},
+                                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, count}}};
+    pool_ = gpu::create_descriptor_pool(device, 3 * count, sizes);
+    slots_.reserve(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        ViewSlot slot{gpu::create_buffer(device, sizeof(shader::PenumbraShadowUniforms),
+                                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryKind::HostUpload),
+                      gpu::allocate_descriptor_set(device, pool_, layouts.sampling),
+                      gpu::allocate_descriptor_set(device, pool_, layouts.caster),
+                      gpu::allocate_descriptor_set(device, pool_, screen_set_layout)};
+        const gpu::Buffer& local_shadows = frames.at(i).local_shadows;
+        gpu::write_uniform_buffer(device, slot.sampling_set, PENUMBRA_BINDING_SHADOW_UNIFORMS,
+                                  slot.shadow_uniforms.get(), slot.shadow_uniforms.size);
+        gpu::write_storage_buffer(device, slot.sampling_set, PENUMBRA_BINDING_LOCAL_SHADOWS, local_shadows.get(),
+                                  local_shadows.size);
+        gpu::write_uniform_buffer(device, slot.caster_set, PENUMBRA_BINDING_CASTER_SHADOW_UNIFORMS,
+                                  slot.shadow_uniforms.get(), slot.shadow_uniforms.size);
+        gpu::write_storage_buffer(device, slot.caster_set, PENUMBRA_BINDING_CASTER_LOCAL_SHADOWS, local_shadows.get(),
+                                  local_shadows.size);
+        slots_.push_back(std::move(slot));
+    }
+}
+
+uint64_t ViewSlots::buffer_bytes() const {
+    uint64_t bytes = 0;
+    for (const ViewSlot& slot : slots_) bytes += slot.shadow_uniforms.size;
     return bytes;
 }
 
@@ -122,30 +136,29 @@ void FrameSlots::record_placeholder_layout(VkCommandBuffer cmd) {
     placeholder_.ready = true;
 }
 
-void FrameSlots::write_sampling_set(const FrameSlot& slot, const SampledMaps& cascades, const SampledMaps& local,
+void FrameSlots::write_sampling_set(VkDescriptorSet set, const SampledMaps& cascades, const SampledMaps& local,
                                     const std::optional<SampledVirtual>& virtual_map) const {
     const SampledVirtual bound =
         virtual_map.value_or(SampledVirtual{placeholder_.clipmap.get(), placeholder_.page_table.get(),
                                             placeholder_.page_table.size, placeholder_.pool.view});
-    gpu::write_uniform_buffer(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_CLIPMAP_BLOCK, bound.clipmap,
+    gpu::write_uniform_buffer(device_, set, PENUMBRA_BINDING_VIRTUAL_CLIPMAP_BLOCK, bound.clipmap,
                               sizeof(shader::PenumbraVirtualClipmap));
-    gpu::write_storage_buffer(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE_BUFFER, bound.page_table,
+    gpu::write_storage_buffer(device_, set, PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE_BUFFER, bound.page_table,
                               bound.page_table_bytes);
-    gpu::write_combined_image_sampler(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_POOL, bound.pool,
+    gpu::write_combined_image_sampler(device_, set, PENUMBRA_BINDING_VIRTUAL_POOL, bound.pool,
                                       pool_comparison_sampler_);
-    gpu::write_combined_image_sampler(device_, slot.sampling_set, PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH, bound.pool,
+    gpu::write_combined_image_sampler(device_, set, PENUMBRA_BINDING_VIRTUAL_POOL_DEPTH, bound.pool,
                                       raw_depth_sampler_);
     const auto write_maps = [&](const SampledMaps& maps, uint32_t comparison, uint32_t raw, uint32_t moments) {
         const VkImageView depth = maps.depth->view;
-        gpu::write_combined_image_sampler(device_, slot.sampling_set, comparison, depth, comparison_sampler_);
-        gpu::write_combined_image_sampler(device_, slot.sampling_set, raw, depth, raw_depth_sampler_);
+        gpu::write_combined_image_sampler(device_, set, comparison, depth, comparison_sampler_);
+        gpu::write_combined_image_sampler(device_, set, raw, depth, raw_depth_sampler_);
         // Without moments the binding still needs a valid image: the depth, which the
         // comparison filters never read through it.
         if (maps.moments) {
-            gpu::write_combined_image_sampler(device_, slot.sampling_set, moments, maps.moments->view,
-                                              maps.moments_sampler);
+            gpu::write_combined_image_sampler(device_, set, moments, maps.moments->view, maps.moments_sampler);
         } else {
-            gpu::write_combined_image_sampler(device_, slot.sampling_set, moments, depth, raw_depth_sampler_);
+            gpu::write_combined_image_sampler(device_, set, moments, depth, raw_depth_sampler_);
         }
     };
     write_maps(cascades, PENUMBRA_BINDING_CASCADE_MAP, PENUMBRA_BINDING_CASCADE_DEPTH,

@@ -29,6 +29,7 @@
 #include "library/local_cache.hpp"
 #include "library/retired.hpp"
 #include "library/shadow_maps.hpp"
+#include "library/sun_view.hpp"
 #include "library/virtual_shadow_map.hpp"
 #include "passes/shadow_filter_specialization.hpp"
 #include "passes/visibility_resolve_pass.hpp"
@@ -84,9 +85,9 @@ CameraView camera_of(const ViewDesc& view) {
 
 // A caller's projection must give a frustum in front of the camera: a near plane at a
 // positive distance, a farther far plane (or none), and a non-empty extent.
-void check_projection(const ViewDesc& view) {
-    const auto reject = [](const std::string& problem) {
-        throw InputError("ShadowSystem::prepare: ViewDesc::projection: " + problem);
+void check_projection(const ViewDesc& view, const std::string& prefix) {
+    const auto reject = [&](const std::string& problem) {
+        throw InputError(prefix + "ViewDesc::projection: " + problem);
     };
     for (const float value : view.projection->m) {
         if (!std::isfinite(value)) reject("must be finite");
@@ -109,9 +110,10 @@ void check_projection(const ViewDesc& view) {
     if (!bounded || !(span.base + span.per_metre > 0.0f)) reject("its frustum is empty or unbounded");
 }
 
-void check_view(const ViewDesc& view) {
-    const auto reject = [](const std::string& field, const std::string& problem) {
-        throw InputError("ShadowSystem::prepare: ViewDesc::" + field + ": " + problem);
+// `prefix` names the call, and the view among several.
+void check_view(const ViewDesc& view, const std::string& prefix) {
+    const auto reject = [&](const std::string& field, const std::string& problem) {
+        throw InputError(prefix + "ViewDesc::" + field + ": " + problem);
     };
     for (const float value : view.view.m) {
         if (!std::isfinite(value)) reject("view", "must be finite");
@@ -122,7 +124,7 @@ void check_view(const ViewDesc& view) {
                                    " is out of range (1.." + std::to_string(kMaxScreenSize) + ")");
     }
     if (view.projection) {
-        check_projection(view);
+        check_projection(view, prefix);
         return;
     }
     if (!(view.fov_y_radians > 0.0f && view.fov_y_radians < 3.14159f)) {
@@ -133,6 +135,17 @@ void check_view(const ViewDesc& view) {
     }
     if (!(view.far_plane > view.near_plane) || !std::isfinite(view.far_plane)) {
         reject("far_plane", std::to_string(view.far_plane) + " must be finite and > near_plane");
+    }
+}
+
+void check_views(std::span<const ViewDesc> views) {
+    if (views.empty() || views.size() > kMaxViews) {
+        throw InputError("ShadowSystem::prepare: " + std::to_string(views.size()) + " views; it takes 1.." +
+                         std::to_string(kMaxViews));
+    }
+    for (size_t v = 0; v < views.size(); ++v) {
+        check_view(views[v], "ShadowSystem::prepare: " +
+                                 (views.size() > 1 ? "views[" + std::to_string(v) + "]: " : std::string()));
     }
 }
 
@@ -164,12 +177,13 @@ void check_screen(const std::string& call, const ScreenInputs& screen) {
 }
 
 // The frame's place and arguments for record_visibility(), whichever image it writes.
-void check_visibility_call(const library::FrameSlot& slot, VkCommandBuffer cmd, const ScreenInputs& screen) {
+void check_visibility_call(const library::FrameSlot& slot, const library::ViewSlot& view_slot, VkCommandBuffer cmd,
+                           const ScreenInputs& screen) {
     if (!slot.shadow_maps_recorded) {
         throw UsageError("ShadowSystem::record_visibility: record_shadow_maps() has not been recorded for this frame");
     }
-    if (slot.visibility_recorded) {
-        throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame)");
+    if (view_slot.visibility_recorded) {
+        throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame and view)");
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_visibility: cmd is VK_NULL_HANDLE");
     check_screen("record_visibility", screen);
@@ -196,6 +210,26 @@ void check_visibility_target(const VisibilityTarget& target, const ScreenInputs&
     }
 }
 
+// What names a view's objects and timed passes: nothing for the first (the names a single
+// view always had), "_view<v>" after it.
+std::string view_suffix(size_t index) { return index == 0 ? "" : "_view" + std::to_string(index); }
+
+// The timed scopes opened while it lives are a view's (GpuTimer::set_scope_suffix).
+class ViewScopes {
+public:
+    ViewScopes(gpu::GpuTimer* timer, size_t view) : timer_(timer) {
+        if (timer_) timer_->set_scope_suffix(view_suffix(view));
+    }
+    ~ViewScopes() {
+        if (timer_) timer_->set_scope_suffix("");
+    }
+    ViewScopes(const ViewScopes&) = delete;
+    ViewScopes& operator=(const ViewScopes&) = delete;
+
+private:
+    gpu::GpuTimer* timer_;
+};
+
 MapImage map_image(const gpu::Image* image) {
     if (!image) return {};
     return {image->get(), image->view, image->desc.format, image->desc.aspect, image->desc.width, image->desc.layers};
@@ -211,30 +245,24 @@ struct ShadowSystem::Impl {
     library::RetiredObjects retired;
     library::FrameSetLayouts layouts;
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
-    // The maps the settings size (SettingEffect::Resource replaces them, the scene stays).
-    std::unique_ptr<library::CascadeMaps> cascades;
+    // The local lights' maps the settings size (SettingEffect::Resource replaces them, and
+    // each view's sun maps, the scene stays).
     std::unique_ptr<library::LocalMaps> local;
-    std::unique_ptr<library::VirtualShadowMap> virtual_map;  // Settings::shadow.technique = virtual
-    std::optional<Settings> pending_settings;                // update_settings(): applied by the next prepare()
-    bool cascade_placeholder_drawn = false;  // with virtual_map: the cascades' placeholder is in its layout
+    std::optional<Settings> pending_settings;  // update_settings(): applied by the next prepare()
     passes::VisibilityResolvePass resolve;
     library::FrameSlots slots;
     library::Geometry geometry;
+    // The views of the last prepare(), each with its sun's maps (one from the start, so that
+    // shadow_maps() answers before the first frame).
+    std::vector<std::unique_ptr<library::SunView>> views;
 
     std::vector<core::Light> lights;
-    uint64_t frame = 0;           // prepare() calls so far; the current frame's number
-    uint32_t sampling_frame = 0;  // rotates the Poisson/PCSS patterns (ViewDesc::sampling_frame)
+    uint64_t frame = 0;  // prepare() calls so far; the current frame's number
     FrameInfo info;
-    // What prepare() computed for record_shadow_maps().
-    std::vector<passes::CascadeDraws> cascade_draws;
-    library::CascadeCache cascade_cache;
-    CascadeSet planned_cascades;        // the cascades cascade_draws were planned for
-    size_t planned_static_changes = 0;  // Geometry::static_changes() that plan covered
+    size_t planned_static_changes = 0;  // Geometry::static_changes() the views' plans covered
     LocalShadowPlan plan;
     std::vector<passes::LocalShadowLayer> local_layers;
     library::LocalShadowCache local_cache;
-    passes::CasterFaceCulling cascade_culling;
-    bool sun_casts = false;  // prepare(): the sun casts shadows this frame
     // The layered strategy: which layers each shadowed light had in the recent frames (one
     // entry per frame in flight and one more), to attribute the GPU's counts of a frame.
     struct LocalLayerRange {
@@ -247,8 +275,6 @@ struct ShadowSystem::Impl {
         std::vector<LocalLayerRange> ranges;
     };
     std::vector<LocalLayerHistory> local_history;
-    std::unique_ptr<gpu::Image> visibility;          // Penumbra's own target, made on first use
-    std::optional<VisibilityImage> last_visibility;  // what the last record_visibility() wrote
     // Every specialization shader_specialization() handed out, kept for the system's life
     // (ShaderSpecialization views them); one per distinct content.
     struct Specialization {
@@ -299,23 +325,21 @@ struct ShadowSystem::Impl {
           layouts(gpu::named(device, "set layouts", [&] { return library::create_frame_set_layouts(device); })),
           alpha_mask_layout(
               gpu::named(device, "alpha masks", [&] { return passes::create_alpha_mask_set_layout(device); })),
-          cascades(make_cascades()),
           local(make_local()),
-          virtual_map(make_virtual_map()),
           resolve(gpu::named(
               device, "visibility resolve",
               [&] { return passes::VisibilityResolvePass(device, layouts.sampling, settings.shadow.filter); })),
-          slots(gpu::named(
-              device, "frame slots",
-              [&] { return library::FrameSlots(device, frames_in_flight, layouts, resolve.screen_set_layout()); })),
+          slots(gpu::named(device, "frame slots", [&] { return library::FrameSlots(device, frames_in_flight); })),
           geometry(device, retired, alpha_mask_layout, [this](const passes::VertexFormats& formats) {
               const gpu::ObjectNames names(device, "caster pipelines");
               prepare_pipelines(formats);
-          }) {}
+          }) {
+        views.push_back(make_view(0));
+    }
 
     // Each part's Vulkan objects are named for it (VK_EXT_debug_utils).
-    std::unique_ptr<library::CascadeMaps> make_cascades() {
-        return gpu::named(device, "cascade maps", [&] {
+    std::unique_ptr<library::CascadeMaps> make_cascades(size_t index) {
+        return gpu::named(device, "cascade maps" + view_suffix(index), [&] {
             return std::make_unique<library::CascadeMaps>(device, layouts.caster, alpha_mask_layout,
                                                           cascade_map_settings(settings.shadow), frames_in_flight);
         });
@@ -326,20 +350,52 @@ struct ShadowSystem::Impl {
                                                         retired, frames_in_flight);
         });
     }
-    std::unique_ptr<library::VirtualShadowMap> make_virtual_map() {
+    std::unique_ptr<library::VirtualShadowMap> make_virtual_map(size_t index) {
         if (!is_virtual(settings)) return nullptr;
-        return gpu::named(device, "virtual shadow map", [&] {
+        return gpu::named(device, "virtual shadow map" + view_suffix(index), [&] {
             return std::make_unique<library::VirtualShadowMap>(device, layouts.caster, alpha_mask_layout,
                                                                settings.shadow, frames_in_flight);
         });
     }
+    // A view's sun maps for the current settings, with pipelines for every vertex format the
+    // scene has.
+    void make_sun_maps(library::SunView& view, size_t index) {
+        view.cascades = make_cascades(index);
+        view.virtual_map = make_virtual_map(index);
+        view.cascade_placeholder_drawn = false;
+        view.cascade_cache.invalidate();
+    }
+    std::unique_ptr<library::SunView> make_view(size_t index) {
+        auto view = std::make_unique<library::SunView>(gpu::named(device, "view slots" + view_suffix(index), [&] {
+            return library::ViewSlots(device, slots, layouts, resolve.screen_set_layout());
+        }));
+        make_sun_maps(*view, index);
+        geometry.for_each_vertex_format(
+            [&](const passes::VertexFormats& formats) { prepare_sun_pipelines(*view, formats); });
+        return view;
+    }
+
+    // Makes the frame's views `count`: new ones are made first (so that a failure leaves the
+    // system as it was), views beyond `count` are retired (frames in flight may use them).
+    void fit_view_count(size_t count) {
+        std::vector<std::unique_ptr<library::SunView>> added;
+        for (size_t index = views.size(); index < count; ++index) added.push_back(make_view(index));
+        for (std::unique_ptr<library::SunView>& view : added) views.push_back(std::move(view));
+        while (views.size() > count) {
+            retired.retire(std::move(views.back()), frame);
+            views.pop_back();
+        }
+    }
 
     // The caster pipelines of the maps for one vertex format combination of the scene.
+    void prepare_sun_pipelines(library::SunView& view, const passes::VertexFormats& formats) {
+        view.cascades->prepare_pipelines(formats);
+        if (view.virtual_map) view.virtual_map->prepare_pipelines(formats);
+    }
     void prepare_pipelines(const passes::VertexFormats& formats) {
         const gpu::ObjectNames names(device, "caster pipelines");
-        cascades->prepare_pipelines(formats);
+        for (const std::unique_ptr<library::SunView>& view : views) prepare_sun_pipelines(*view, formats);
         local->prepare_pipelines(formats);
-        if (virtual_map) virtual_map->prepare_pipelines(formats);
     }
 
     // Settings that update_settings() took, from the start of a frame (before anything of it
@@ -359,14 +415,24 @@ struct ShadowSystem::Impl {
     }
 
     void replace_maps() {
-        retired.retire(std::exchange(cascades, make_cascades()), frame);
+        for (size_t index = 0; index < views.size(); ++index) {
+            library::SunView& view = *views[index];
+            retired.retire(std::move(view.cascades), frame);
+            retired.retire(std::move(view.virtual_map), frame);
+            make_sun_maps(view, index);  // they hold nothing yet: every caster is drawn again
+        }
         retired.retire(std::exchange(local, make_local()), frame);
-        retired.retire(std::exchange(virtual_map, make_virtual_map()), frame);
-        geometry.for_each_vertex_format([this](const passes::VertexFormats& formats) { prepare_pipelines(formats); });
-        // The new maps hold nothing yet: every caster is drawn again.
-        cascade_cache.invalidate();
         local_cache.invalidate();
-        cascade_placeholder_drawn = false;
+        geometry.for_each_vertex_format([this](const passes::VertexFormats& formats) { prepare_pipelines(formats); });
+    }
+
+    // A setting that changes the depths the caches hold.
+    void invalidate_caches() {
+        for (const std::unique_ptr<library::SunView>& view : views) {
+            view->cascade_cache.invalidate();
+            if (view->virtual_map) view->virtual_map->invalidate();
+        }
+        local_cache.invalidate();
     }
 
     ~Impl() {
@@ -382,38 +448,46 @@ struct ShadowSystem::Impl {
         return nullptr;
     }
 
-    // What both techniques set of the sun's frame: the casters' face culling as the light
-    // sees them (the virtual map's pages share the cascades' orientation), its direction and
-    // where its shadow ends.
-    void set_sun_frame_info(const CascadeSet& set, const glm::vec3& direction) {
-        cascade_culling = {settings.shadow.caster_culling,
-                           light_facing_is_counter_clockwise(set.cascades.front().view_projection)
-                               ? VK_FRONT_FACE_COUNTER_CLOCKWISE
-                               : VK_FRONT_FACE_CLOCKWISE};
-        info.sun_direction = library::to_public(direction);
-        info.shadow_distance = set.shadow_distance;
-        info.cascades.clear();
+    library::SunView& view_at(const char* call, uint32_t index) const {
+        if (index >= views.size()) {
+            throw UsageError(std::string("ShadowSystem::") + call + ": view " + std::to_string(index) +
+                             " is not a view of the last prepare(), which had " + std::to_string(views.size()));
+        }
+        return *views[index];
     }
 
-    // The virtual shadow map's frame: the clipmap around the camera and what invalidates its
+    // What both techniques set of a view's sun: the casters' face culling as the light sees
+    // them (the virtual map's pages share the cascades' orientation), its direction and
+    // where its shadow ends.
+    void set_sun_frame_info(library::SunView& view, const CascadeSet& set, const glm::vec3& direction) {
+        view.culling = {settings.shadow.caster_culling,
+                        light_facing_is_counter_clockwise(set.cascades.front().view_projection)
+                            ? VK_FRONT_FACE_COUNTER_CLOCKWISE
+                            : VK_FRONT_FACE_CLOCKWISE};
+        info.sun_direction = library::to_public(direction);
+        view.info.shadow_distance = set.shadow_distance;
+        view.info.cascades.clear();
+    }
+
+    // A view's virtual shadow map: the clipmap around its camera and what invalidates its
     // pages; the cascades' uniforms keep the camera and filter values, with no cascade.
-    void prepare_virtual_sun(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
+    void prepare_virtual_sun(library::SunView& view, const CameraView& camera, const ViewDesc& desc,
+                             const passes::CasterScene& scene) {
         const Clock::time_point start = Clock::now();
         const core::Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
         const bool casts = sun_light && sun_light->cast_shadows;
         const ShadowSettings placeholder = cascade_map_settings(settings.shadow);
         const CascadeSet set = compute_cascades(camera, direction, placeholder.cascades, geometry.depth_range_bounds());
-        cascade_draws = std::vector<passes::CascadeDraws>(set.cascades.size());
-        planned_cascades = set;
-        sun_casts = false;  // nothing drawn into the cascades' placeholder
-        planned_static_changes = geometry.static_changes().size();
+        view.cascade_draws = std::vector<passes::CascadeDraws>(set.cascades.size());
+        view.planned_cascades = set;
+        view.sun_casts = false;  // nothing drawn into the cascades' placeholder
         library::VirtualFrameInputs inputs;
         inputs.frame = frame;
         inputs.camera = &camera;
         const FrustumSpan span = vertical_frustum_span(camera);
-        inputs.footprint_per_metre = span.per_metre / static_cast<float>(view.height);
-        inputs.footprint_base = span.base / static_cast<float>(view.height);
+        inputs.footprint_per_metre = span.per_metre / static_cast<float>(desc.height);
+        inputs.footprint_base = span.base / static_cast<float>(desc.height);
         inputs.shadow_distance = set.shadow_distance;
         inputs.light_direction = direction;
         inputs.sun_angular_diameter_degrees = sun_light ? sun_light->angular_diameter_degrees : 0.0f;
@@ -421,20 +495,26 @@ struct ShadowSystem::Impl {
         inputs.scene = &scene;
         inputs.static_changes = geometry.static_changes();
         inputs.depth_range_bounds = geometry.depth_range_bounds();
-        virtual_map->prepare(inputs, settings.shadow);
+        view.virtual_map->prepare(inputs, settings.shadow);
         info.cpu_fit_ms += milliseconds_since(start);
-        set_sun_frame_info(set, direction);
-        info.virtual_map = virtual_map->info(frame > frames_in_flight ? frame - frames_in_flight : 0);
-        shader::PenumbraShadowUniforms uniforms =
-            library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
-                                           passes::caster_depth_bias(device, settings.shadow.bias), sampling_frame);
+        set_sun_frame_info(view, set, direction);
+        view.info.virtual_map = view.virtual_map->info(frame > frames_in_flight ? frame - frames_in_flight : 0);
+        shader::PenumbraShadowUniforms uniforms = library::build_shadow_uniforms(
+            camera, set, sun_light, casts, settings.shadow, passes::caster_depth_bias(device, settings.shadow.bias),
+            sampling_frame_of(desc));
         uniforms.cascade_count = 0;  // the sun's shadow is the virtual map's (penumbra_sun_is_virtual)
         library::set_contact_uniforms(uniforms, settings.contact);
-        std::memcpy(slots.at(frame).shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
+        std::memcpy(view.slots.at(frame).shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
     }
 
-    void prepare_sun(const CameraView& camera, const passes::CasterScene& scene) {
-        info.virtual_map.reset();
+    // Rotates the Poisson/PCSS patterns (ViewDesc::sampling_frame).
+    uint32_t sampling_frame_of(const ViewDesc& desc) const {
+        return desc.sampling_frame.value_or(static_cast<uint32_t>(frame - 1));
+    }
+
+    void prepare_sun(library::SunView& view, const CameraView& camera, const ViewDesc& desc,
+                     const passes::CasterScene& scene) {
+        view.info.virtual_map.reset();
         Clock::time_point start = Clock::now();
         const core::Light* sun_light = sun();
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
@@ -444,55 +524,55 @@ struct ShadowSystem::Impl {
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         const bool casts = sun_light && sun_light->cast_shadows;
-        if (!casts) cascade_cache.invalidate();
-        planned_static_changes = geometry.static_changes().size();
+        if (!casts) view.cascade_cache.invalidate();
         // The layered strategy culls on the GPU (record_shadow_maps): no lists here.
         const bool cpu_culls = casts && settings.shadow.strategy != ShadowStrategy::Layered;
         if (!cpu_culls && casts) {
             passes::check_gpu_culling_room(device, scene.draws.size(), static_cast<uint32_t>(set.cascades.size()));
         }
-        cascade_draws = cpu_culls ? cascade_cache.plan(set, scene, settings.shadow.cull_casters, cascades->cached(),
-                                                       geometry.static_changes(), settings.shadow.cascades.resolution)
-                                  : std::vector<passes::CascadeDraws>(set.cascades.size());
-        sun_casts = casts;
-        planned_cascades = set;
+        view.cascade_draws =
+            cpu_culls ? view.cascade_cache.plan(set, scene, settings.shadow.cull_casters, view.cascades->cached(),
+                                                geometry.static_changes(), settings.shadow.cascades.resolution)
+                      : std::vector<passes::CascadeDraws>(set.cascades.size());
+        view.sun_casts = casts;
+        view.planned_cascades = set;
         info.cpu_cull_ms += milliseconds_since(start);
-        set_sun_frame_info(set, direction);
-        for (size_t c = 0; c < set.cascades.size(); ++c) {
-            const Cascade& cascade = set.cascades[c];
-            CascadeInfo out{library::to_public(cascade.view_projection),
-                            cascade.split_near,
-                            cascade.split_far,
-                            cascade.texel_world_size,
-                            library::to_public(cascade.light_extent),
-                            0,
-                            0};
-            const library::CascadeDrawStats stats =
-                library::cascade_draw_stats(cascade_draws[c], settings.shadow.cascades.resolution);
-            out.draws = stats.draws;
-            out.cache_reused = stats.cache_reused;
-            out.texels_rendered = stats.texels_rendered;
-            out.texels_copied = stats.texels_copied;
-            out.layer_origin_x = static_cast<uint32_t>(cascade.layer_origin.x);
-            out.layer_origin_y = static_cast<uint32_t>(cascade.layer_origin.y);
-            const auto region_of = [](const TexelRect& rect) {
-                return TexelRegion{static_cast<uint32_t>(rect.min.x), static_cast<uint32_t>(rect.min.y),
-                                   static_cast<uint32_t>(rect.max.x - rect.min.x),
-                                   static_cast<uint32_t>(rect.max.y - rect.min.y)};
-            };
-            for (const passes::CascadeDraws::Region& region : cascade_draws[c].regions)
-                out.redrawn.push_back(region_of(region.window));
-            for (const TexelRect& rect : cascade_draws[c].dynamic_window)
-                out.dynamic_regions.push_back(region_of(rect));
-            library::for_each_draw(cascade_draws[c], [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
-            info.cascades.push_back(out);
-        }
-        library::FrameSlot& slot = slots.at(frame);
-        shader::PenumbraShadowUniforms uniforms =
-            library::build_shadow_uniforms(camera, set, sun_light, casts, settings.shadow,
-                                           passes::caster_depth_bias(device, settings.shadow.bias), sampling_frame);
+        set_sun_frame_info(view, set, direction);
+        for (size_t c = 0; c < set.cascades.size(); ++c) view.info.cascades.push_back(cascade_info(view, set, c));
+        shader::PenumbraShadowUniforms uniforms = library::build_shadow_uniforms(
+            camera, set, sun_light, casts, settings.shadow, passes::caster_depth_bias(device, settings.shadow.bias),
+            sampling_frame_of(desc));
         library::set_contact_uniforms(uniforms, settings.contact);
-        std::memcpy(slot.shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
+        std::memcpy(view.slots.at(frame).shadow_uniforms.mapped, &uniforms, sizeof(uniforms));
+    }
+
+    CascadeInfo cascade_info(const library::SunView& view, const CascadeSet& set, size_t c) const {
+        const Cascade& cascade = set.cascades[c];
+        CascadeInfo out{library::to_public(cascade.view_projection),
+                        cascade.split_near,
+                        cascade.split_far,
+                        cascade.texel_world_size,
+                        library::to_public(cascade.light_extent),
+                        0,
+                        0};
+        const passes::CascadeDraws& draws = view.cascade_draws[c];
+        const library::CascadeDrawStats stats = library::cascade_draw_stats(draws, settings.shadow.cascades.resolution);
+        out.draws = stats.draws;
+        out.cache_reused = stats.cache_reused;
+        out.texels_rendered = stats.texels_rendered;
+        out.texels_copied = stats.texels_copied;
+        out.layer_origin_x = static_cast<uint32_t>(cascade.layer_origin.x);
+        out.layer_origin_y = static_cast<uint32_t>(cascade.layer_origin.y);
+        const auto region_of = [](const TexelRect& rect) {
+            return TexelRegion{static_cast<uint32_t>(rect.min.x), static_cast<uint32_t>(rect.min.y),
+                               static_cast<uint32_t>(rect.max.x - rect.min.x),
+                               static_cast<uint32_t>(rect.max.y - rect.min.y)};
+        };
+        for (const passes::CascadeDraws::Region& region : draws.regions)
+            out.redrawn.push_back(region_of(region.window));
+        for (const TexelRect& rect : draws.dynamic_window) out.dynamic_regions.push_back(region_of(rect));
+        library::for_each_draw(draws, [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
+        return out;
     }
 
     // The layered strategy culls on the GPU while a frame runs: FrameInfo reports the counts
@@ -508,12 +588,14 @@ struct ShadowSystem::Impl {
         }
         if (frame <= frames_in_flight) return;
         const uint64_t complete = frame - frames_in_flight;
-        // With the virtual shadow map the cascades' placeholder has no GPU culling.
-        const passes::GpuCasterCulling* cascade_culling_pass = cascades->gpu_culling();
-        if (const auto counted = cascade_culling_pass ? cascade_culling_pass->culled(complete) : std::nullopt) {
-            for (size_t c = 0; c < info.cascades.size() && c < counted->size(); ++c) {
-                info.cascades[c].draws = (*counted)[c].draws;
-                info.cascades[c].triangles = (*counted)[c].triangles;
+        for (const std::unique_ptr<library::SunView>& view : views) {
+            // With the virtual shadow map the cascades' placeholder has no GPU culling.
+            const passes::GpuCasterCulling* culling = view->cascades->gpu_culling();
+            const auto counted = culling ? culling->culled(complete) : std::nullopt;
+            if (!counted) continue;
+            for (size_t c = 0; c < view->info.cascades.size() && c < counted->size(); ++c) {
+                view->info.cascades[c].draws = (*counted)[c].draws;
+                view->info.cascades[c].triangles = (*counted)[c].triangles;
             }
         }
         const LocalLayerHistory& then = local_history[complete % local_history.size()];
@@ -531,11 +613,12 @@ struct ShadowSystem::Impl {
         }
     }
 
-    void prepare_local(const CameraView& camera, const ViewDesc& view, const passes::CasterScene& scene) {
+    // The local lights' maps, shared by the views: each sized for the view that needs it largest.
+    void prepare_local(std::span<const SizedCamera> cameras, const passes::CasterScene& scene) {
         Clock::time_point start = Clock::now();
         plan = plan_local_shadows(lights, settings.local_shadows);
         fit_local_shadows(plan, lights, library::caster_bounds(scene));
-        size_local_shadows(plan, lights, camera, view.height, settings.local_shadows.resolution);
+        size_local_shadows(plan, lights, cameras, settings.local_shadows.resolution);
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         if (settings.shadow.strategy == ShadowStrategy::Layered) {
@@ -577,23 +660,43 @@ struct ShadowSystem::Impl {
         std::memcpy(slots.at(frame).local_shadows.mapped, &uniforms, sizeof(uniforms));
     }
 
+    // The frame's views into FrameInfo: each view's, and the first's in the top-level fields.
+    void gather_view_info() {
+        info.views.clear();
+        for (const std::unique_ptr<library::SunView>& view : views) info.views.push_back(view->info);
+        const ViewShadowInfo& first = info.views.front();
+        info.cascades = first.cascades;
+        info.virtual_map = first.virtual_map;
+        info.shadow_distance = first.shadow_distance;
+        info.descriptor_set = first.descriptor_set;
+    }
+
     library::FrameSlot& current_slot(const char* call) {
         if (frame == 0) throw UsageError(std::string("ShadowSystem::") + call + ": call prepare() first");
         return slots.at(frame);
     }
 
-    // The virtual shadow map's pages, the cascades' placeholder once, and the local lights.
-    void record_virtual_maps(VkCommandBuffer cmd, library::FrameSlot& slot, const passes::CasterScene& scene) {
-        if (!cascade_placeholder_drawn) {
-            cascades->record(cmd, slot.caster_set, scene, cascade_draws, cascade_map_settings(settings.shadow),
-                             cascade_culling, false, frame, nullptr);
-            cascade_placeholder_drawn = true;
+    // A view's sun: the virtual shadow map's pages (and the cascades' placeholder once), or
+    // the cascades with their cache.
+    void record_sun(VkCommandBuffer cmd, library::SunView& view, const passes::CasterScene& scene,
+                    gpu::GpuTimer* timer) {
+        const VkDescriptorSet caster_set = view.slots.at(frame).caster_set;
+        if (view.virtual_map) {
+            if (!view.cascade_placeholder_drawn) {
+                view.cascades->record(cmd, caster_set, scene, view.cascade_draws, cascade_map_settings(settings.shadow),
+                                      view.culling, false, frame, nullptr);
+                view.cascade_placeholder_drawn = true;
+            }
+            view.virtual_map->record_pages(cmd, caster_set, scene, frame, settings.shadow.bias, view.culling, timer);
+            return;
         }
-        virtual_map->record_pages(cmd, slot.caster_set, scene, frame, settings.shadow.bias, cascade_culling,
-                                  timer_of(slot));
-        geometry.forget_static_changes(planned_static_changes);
-        local->record(cmd, slot.caster_set, scene, local_layers, plan, settings.shadow, frame, timer_of(slot));
-        if (settings.shadow.cache_static_casters) local_cache.commit(lights, plan, local->generation());
+        slots.record_placeholder_layout(cmd);
+        view.cascades->record(cmd, caster_set, scene, view.cascade_draws, settings.shadow, view.culling, view.sun_casts,
+                              frame, timer);
+        // The cache holds this frame's static casters once the commands run.
+        if (view.cascades->cached()) {
+            view.cascade_cache.commit(view.planned_cascades, view.cascade_draws, settings.shadow.cascades.resolution);
+        }
     }
 
     // The visibility slots of the prepared frame: the sun's and one per shadowed local light.
@@ -601,18 +704,16 @@ struct ShadowSystem::Impl {
 
     // Records the resolve of `screen` into `target` and keeps what it wrote for
     // visibility_image().
-    void record_resolve(VkCommandBuffer cmd, library::FrameSlot& slot, const ScreenInputs& screen,
+    void record_resolve(VkCommandBuffer cmd, uint32_t view_index, const ScreenInputs& screen,
                         const passes::ResolveTarget& target);
 
-    void ensure_visibility_image(uint32_t width, uint32_t height, uint32_t slot_count) {
+    void ensure_visibility_image(library::SunView& view, uint32_t width, uint32_t height, uint32_t slot_count) {
         const uint32_t layers = visibility_layers(slot_count);
-        if (visibility && visibility->desc.width == width && visibility->desc.height == height &&
-            visibility->desc.layers == layers) {
-            return;
-        }
-        retired.retire(std::move(visibility), frame);
+        const std::unique_ptr<gpu::Image>& image = view.visibility;
+        if (image && image->desc.width == width && image->desc.height == height && image->desc.layers == layers) return;
+        retired.retire(std::move(view.visibility), frame);
         const gpu::ObjectNames names(device, "visibility image");
-        visibility = std::make_unique<gpu::Image>(passes::create_visibility_image(device, width, height, layers));
+        view.visibility = std::make_unique<gpu::Image>(passes::create_visibility_image(device, width, height, layers));
     }
 };
 
@@ -656,11 +757,7 @@ SettingsChange ShadowSystem::update_settings(const Settings& settings) {
     change.shader_specialization_changed = passes::shadow_filter_specialization(current.shadow.filter) !=
                                            passes::shadow_filter_specialization(settings.shadow.filter);
     // Biases and culling change the depths the caches hold.
-    if (difference.any) {
-        impl.cascade_cache.invalidate();
-        impl.local_cache.invalidate();
-        if (impl.virtual_map) impl.virtual_map->invalidate();
-    }
+    if (difference.any) impl.invalidate_caches();
     impl.pending_settings = settings;
     return change;
 }
@@ -669,11 +766,14 @@ const Settings& ShadowSystem::settings() const {
     return impl_->pending_settings ? *impl_->pending_settings : impl_->settings;
 }
 
-const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
-    check_view(view);
+const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) { return prepare(std::span<const ViewDesc>(&view, 1)); }
+
+const FrameInfo& ShadowSystem::prepare(std::span<const ViewDesc> views) {
+    check_views(views);
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.slots.at(impl.frame + 1);
     impl.retire_slot(slot);  // before anything changes: throws when the slot is still in use
+    impl.fit_view_count(views.size());
     impl.frame += 1;
     impl.retired.release(impl.frame);
     const Clock::time_point settings_start = Clock::now();
@@ -681,11 +781,8 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     impl.info.cpu_settings_ms = milliseconds_since(settings_start);
     slot.frame = impl.frame;
     slot.shadow_maps_recorded = false;
-    slot.visibility_recorded = false;
-    slot.pages_marked = false;
     slot.timer_started = false;
     impl.info.frame = impl.frame;
-    impl.sampling_frame = view.sampling_frame.value_or(static_cast<uint32_t>(impl.frame - 1));
     impl.info.sun.reset();
     for (uint32_t i = 0; i < impl.lights.size(); ++i) {
         if (impl.lights[i].type == LightType::Directional) {
@@ -695,47 +792,66 @@ const FrameInfo& ShadowSystem::prepare(const ViewDesc& view) {
     }
 
     const Clock::time_point start = Clock::now();
-    const CameraView camera = camera_of(view);
+    std::vector<SizedCamera> cameras;
+    for (const ViewDesc& view : views) cameras.push_back({camera_of(view), view.height});
     const passes::CasterScene& scene = impl.geometry.build_scene();
     impl.info.cpu_fit_ms = milliseconds_since(start);
     impl.info.cpu_cull_ms = 0.0;
-    if (impl.virtual_map) {
-        impl.prepare_virtual_sun(camera, view, scene);
-    } else {
-        impl.prepare_sun(camera, scene);
+    impl.planned_static_changes = impl.geometry.static_changes().size();
+    for (size_t v = 0; v < views.size(); ++v) {
+        library::SunView& view = *impl.views[v];
+        library::ViewSlot& view_slot = view.slots.at(impl.frame);
+        view_slot.pages_marked = false;
+        view_slot.visibility_recorded = false;
+        if (view.virtual_map) {
+            impl.prepare_virtual_sun(view, cameras[v].camera, views[v], scene);
+        } else {
+            impl.prepare_sun(view, cameras[v].camera, views[v], scene);
+        }
     }
-    impl.prepare_local(camera, view, scene);
+    impl.prepare_local(cameras, scene);
     impl.report_gpu_counts();
-    std::optional<library::SampledVirtual> virtual_bindings;
-    if (impl.virtual_map) {
-        const library::VirtualShadowMap& map = *impl.virtual_map;
-        virtual_bindings = library::SampledVirtual{map.clipmap_buffer(impl.frame), map.page_table(),
-                                                   map.page_table_bytes(), map.pool().view};
+    for (const std::unique_ptr<library::SunView>& view : impl.views) {
+        std::optional<library::SampledVirtual> virtual_bindings;
+        if (view->virtual_map) {
+            const library::VirtualShadowMap& map = *view->virtual_map;
+            virtual_bindings = library::SampledVirtual{map.clipmap_buffer(impl.frame), map.page_table(),
+                                                       map.page_table_bytes(), map.pool().view};
+        }
+        const VkDescriptorSet set = view->slots.at(impl.frame).sampling_set;
+        impl.slots.write_sampling_set(set, view->cascades->sampled(), impl.local->sampled(), virtual_bindings);
+        view->info.descriptor_set = set;
     }
-    impl.slots.write_sampling_set(slot, impl.cascades->sampled(), impl.local->sampled(), virtual_bindings);
-    impl.info.descriptor_set = slot.sampling_set;
+    impl.gather_view_info();
     return impl.info;
 }
 
-void ShadowSystem::record_page_marking(VkCommandBuffer cmd, const ScreenInputs& screen) {
+void ShadowSystem::record_page_marking(VkCommandBuffer cmd, const ScreenInputs& screen, uint32_t view) {
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_page_marking");
+    library::SunView& marked = impl.view_at("record_page_marking", view);
+    library::ViewSlot& view_slot = marked.slots.at(impl.frame);
     if (slot.shadow_maps_recorded) {
         throw UsageError(
             "ShadowSystem::record_page_marking: record_shadow_maps() was already recorded for this frame; mark the "
             "pages before it");
     }
-    if (slot.pages_marked) {
-        throw UsageError("ShadowSystem::record_page_marking: already recorded for this frame (once per frame)");
+    if (view_slot.pages_marked) {
+        throw UsageError(
+            "ShadowSystem::record_page_marking: already recorded for this frame (once per frame and view)");
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_page_marking: cmd is VK_NULL_HANDLE");
     check_screen("record_page_marking", screen);
-    if (!impl.virtual_map) return;
+    if (!marked.virtual_map) {  // the cascades have no pages to mark
+        view_slot.pages_marked = true;
+        return;
+    }
     gpu::GpuTimer* timer = impl.timer_of(slot);
     if (timer && !slot.timer_started) timer->begin_frame(cmd);
     slot.timer_started = true;
-    impl.virtual_map->record_marking(cmd, impl.frame, screen, timer);
-    slot.pages_marked = true;
+    const ViewScopes scopes(timer, view);
+    marked.virtual_map->record_marking(cmd, impl.frame, screen, timer);
+    view_slot.pages_marked = true;
 }
 
 void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
@@ -745,10 +861,12 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         throw UsageError("ShadowSystem::record_shadow_maps: already recorded for this frame; call prepare() first");
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_shadow_maps: cmd is VK_NULL_HANDLE");
-    if (impl.virtual_map && !slot.pages_marked) {
-        throw UsageError(
-            "ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() earlier in this "
-            "frame (the pages the frame's pixels sample)");
+    for (size_t v = 0; v < impl.views.size(); ++v) {
+        if (impl.views[v]->virtual_map && !impl.views[v]->slots.at(impl.frame).pages_marked) {
+            throw UsageError("ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() " +
+                             std::string(impl.views.size() > 1 ? "of view " + std::to_string(v) + " " : "") +
+                             "earlier in this frame (the pages the frame's pixels sample)");
+        }
     }
     gpu::GpuTimer* timer = impl.timer_of(slot);
     if (timer && !slot.timer_started) timer->begin_frame(cmd);
@@ -756,50 +874,48 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
     impl.geometry.record_uploads(cmd, impl.frame);
     // The scene prepare() culled: instances changed since then show in the next frame.
     const passes::CasterScene& scene = impl.geometry.scene();
-    if (impl.virtual_map) {
-        impl.record_virtual_maps(cmd, slot, scene);
-        slot.shadow_maps_recorded = true;
-        return;
+    for (size_t v = 0; v < impl.views.size(); ++v) {
+        const ViewScopes scopes(timer, v);
+        impl.record_sun(cmd, *impl.views[v], scene, timer);
     }
-    impl.slots.record_placeholder_layout(cmd);
-    impl.cascades->record(cmd, slot.caster_set, scene, impl.cascade_draws, impl.settings.shadow, impl.cascade_culling,
-                          impl.sun_casts, impl.frame, timer);
-    // The cache holds this frame's static casters once the commands run; the changes the
-    // plan covered are drawn.
-    if (impl.cascades->cached())
-        impl.cascade_cache.commit(impl.planned_cascades, impl.cascade_draws, impl.settings.shadow.cascades.resolution);
+    // Every view's plan covered these changes: they are drawn.
     impl.geometry.forget_static_changes(impl.planned_static_changes);
-    impl.local->record(cmd, slot.caster_set, scene, impl.local_layers, impl.plan, impl.settings.shadow, impl.frame,
-                       timer);
+    impl.local->record(cmd, impl.views.front()->slots.at(impl.frame).caster_set, scene, impl.local_layers, impl.plan,
+                       impl.settings.shadow, impl.frame, timer);
     if (impl.settings.shadow.cache_static_casters)
         impl.local_cache.commit(impl.lights, impl.plan, impl.local->generation());
     slot.shadow_maps_recorded = true;
 }
 
-void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen) {
+void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, uint32_t view) {
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
-    check_visibility_call(slot, cmd, screen);
-    impl.ensure_visibility_image(screen.width, screen.height, impl.visibility_slot_count());
-    const gpu::Image& own = *impl.visibility;
-    impl.record_resolve(cmd, slot, screen, {own.get(), own.view, own.desc.layers});
+    library::SunView& resolved = impl.view_at("record_visibility", view);
+    check_visibility_call(slot, resolved.slots.at(impl.frame), cmd, screen);
+    impl.ensure_visibility_image(resolved, screen.width, screen.height, impl.visibility_slot_count());
+    const gpu::Image& own = *resolved.visibility;
+    impl.record_resolve(cmd, view, screen, {own.get(), own.view, own.desc.layers});
 }
 
-void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target) {
+void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target,
+                                     uint32_t view) {
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
-    check_visibility_call(slot, cmd, screen);
+    library::SunView& resolved = impl.view_at("record_visibility", view);
+    check_visibility_call(slot, resolved.slots.at(impl.frame), cmd, screen);
     check_visibility_target(target, screen, impl.visibility_slot_count());
     // Penumbra's own image is not needed while the caller brings one.
-    if (impl.visibility) impl.retired.retire(std::move(impl.visibility), impl.frame);
-    impl.record_resolve(cmd, slot, screen, {target.image, target.view, target.layers});
+    if (resolved.visibility) impl.retired.retire(std::move(resolved.visibility), impl.frame);
+    impl.record_resolve(cmd, view, screen, {target.image, target.view, target.layers});
 }
 
-void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, library::FrameSlot& slot, const ScreenInputs& screen,
+void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, uint32_t view_index, const ScreenInputs& screen,
                                         const passes::ResolveTarget& target) {
+    library::SunView& view = *views[view_index];
+    library::ViewSlot& view_slot = view.slots.at(frame);
     const uint32_t slot_count = visibility_slot_count();
     const glm::mat4 view_projection = library::to_glm(screen.view_projection);
-    resolve.write_screen_set(slot.screen_set, screen, target.view);
+    resolve.write_screen_set(view_slot.screen_set, screen, target.view);
     shader::ResolvePushConstants constants{};
     constants.inverse_view_projection = glm::inverse(view_projection);
     constants.width = screen.width;
@@ -809,18 +925,24 @@ void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, library::FrameSlot&
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
-    gpu::TimedScope scope(device, timer_of(slot), cmd, "visibility");
-    resolve.record(cmd, slot.sampling_set, slot.screen_set, target, constants);
-    slot.visibility_recorded = true;
-    last_visibility = VisibilityImage{target.image,  target.view, VK_FORMAT_R8G8B8A8_UNORM, screen.width, screen.height,
-                                      target.layers, slot_count};
+    gpu::GpuTimer* timer = timer_of(slots.at(frame));
+    {
+        const ViewScopes scopes(timer, view_index);
+        gpu::TimedScope scope(device, timer, cmd, "visibility");
+        resolve.record(cmd, view_slot.sampling_set, view_slot.screen_set, target, constants);
+    }
+    view_slot.visibility_recorded = true;
+    view.last_visibility = VisibilityImage{
+        target.image, target.view, VK_FORMAT_R8G8B8A8_UNORM, screen.width, screen.height, target.layers, slot_count};
 }
 
-VisibilityImage ShadowSystem::visibility_image() const {
-    if (!impl_->last_visibility) {
-        throw UsageError("ShadowSystem::visibility_image: record_visibility() has not been recorded yet");
+VisibilityImage ShadowSystem::visibility_image(uint32_t view) const {
+    const library::SunView& resolved = impl_->view_at("visibility_image", view);
+    if (!resolved.last_visibility) {
+        throw UsageError("ShadowSystem::visibility_image: record_visibility() has not been recorded yet" +
+                         std::string(view > 0 ? " for view " + std::to_string(view) : ""));
     }
-    return *impl_->last_visibility;
+    return *resolved.last_visibility;
 }
 
 VkDescriptorSetLayout ShadowSystem::descriptor_set_layout() const { return impl_->layouts.sampling; }
@@ -854,12 +976,13 @@ VkSpecializationInfo ShaderSpecialization::info() const {
     return {static_cast<uint32_t>(entries.size()), entries.data(), data.size_bytes(), data.data()};
 }
 
-ShadowMaps ShadowSystem::shadow_maps() const {
-    const library::SampledMaps cascades = impl_->cascades->sampled();
+ShadowMaps ShadowSystem::shadow_maps(uint32_t view) const {
+    const library::SunView& maps = impl_->view_at("shadow_maps", view);
+    const library::SampledMaps cascades = maps.cascades->sampled();
     const library::SampledMaps local = impl_->local->sampled();
     MapImage virtual_pool;
-    if (impl_->virtual_map) {
-        const gpu::Image& pool = impl_->virtual_map->pool();
+    if (maps.virtual_map) {
+        const gpu::Image& pool = maps.virtual_map->pool();
         virtual_pool = {pool.get(), pool.view, pool.desc.format, pool.desc.aspect, pool.desc.width, pool.desc.layers};
     }
     return {map_image(cascades.depth), map_image(cascades.moments), map_image(local.depth), map_image(local.moments),
@@ -887,18 +1010,23 @@ std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
 MemoryStats ShadowSystem::memory() const {
     const Impl& impl = *impl_;
     MemoryStats stats;
-    stats.cascade_maps = impl.cascades->memory_bytes();
     stats.local_maps = impl.local->memory_bytes();
-    stats.visibility = impl.visibility ? impl.visibility->memory_size : 0u;
     stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
     stats.memory_blocks = static_cast<uint32_t>(impl.device.own_memory_blocks());
-    if (impl.virtual_map) {
-        stats.virtual_pool = impl.virtual_map->pool_bytes();
-        stats.buffers += impl.virtual_map->buffer_bytes();
-    }
-    for (const passes::GpuCasterCulling* culling : {impl.cascades->gpu_culling(), impl.local->gpu_culling()}) {
+    const auto add_culling = [&stats](const passes::GpuCasterCulling* culling) {
         if (culling) stats.buffers += culling->buffer_bytes();
+    };
+    for (const std::unique_ptr<library::SunView>& view : impl.views) {
+        stats.cascade_maps += view->cascades->memory_bytes();
+        stats.visibility += view->visibility ? view->visibility->memory_size : 0u;
+        stats.buffers += view->slots.buffer_bytes();
+        if (view->virtual_map) {
+            stats.virtual_pool += view->virtual_map->pool_bytes();
+            stats.buffers += view->virtual_map->buffer_bytes();
+        }
+        add_culling(view->cascades->gpu_culling());
     }
+    add_culling(impl.local->gpu_culling());
     return stats;
 }
 

@@ -341,8 +341,8 @@ VisibilityImage2D LibraryTest::render_visibility_from(ShadowSystem& shadows, con
     return read_visibility(shadows, slot);
 }
 
-VisibilityImage2D LibraryTest::read_visibility(const ShadowSystem& shadows, uint32_t slot) {
-    const VisibilityImage visibility = shadows.visibility_image();
+VisibilityImage2D LibraryTest::read_visibility(const ShadowSystem& shadows, uint32_t slot, uint32_t view) {
+    const VisibilityImage visibility = shadows.visibility_image(view);
     EXPECT_LT(slot, visibility.slots);
     HostBuffer readback(device_, VkDeviceSize{visibility.width} * visibility.height * 4,
                         VK_BUFFER_USAGE_TRANSFER_DST_BIT);

@@ -137,8 +137,8 @@ protected:
     // Records the ground depth (cleared) into depth_ and hands it to record_visibility.
     void record_ground_visibility(VkCommandBuffer cmd, ShadowSystem& shadows, const TestImage* normals,
                                   NormalEncoding encoding, const TestImage* face_normals = nullptr);
-    // Copies the visibility image's layer holding `slot` and extracts its channel.
-    VisibilityImage2D read_visibility(const ShadowSystem& shadows, uint32_t slot);
+    // Copies the visibility image's layer holding `slot` (of `view`'s image) and extracts its channel.
+    VisibilityImage2D read_visibility(const ShadowSystem& shadows, uint32_t slot, uint32_t view = 0);
     // Every layer of the cascades' depth map after the last recorded frame, as floats.
     std::vector<float> read_cascade_depths(const ShadowSystem& shadows);
     // Every layer of a map (depth, or moments: RG32F, RGBA32F, RGBA16) as its bytes.

@@ -306,6 +306,27 @@ TEST(LocalShadowSizing, FixedLightsKeepTheirResolution) {
     EXPECT_EQ(fixed.slots[0].resolution, 2048u);
 }
 
+// Views sharing the maps: each light gets the largest resolution any view asks of it, and
+// a view that sees nothing of it lowers nothing.
+TEST(LocalShadowSizing, SharedMapsServeTheViewThatNeedsThemLargest) {
+    Scene scene;
+    scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, 1.0f));
+    scene.lights.push_back(point_light({30.0f, 0.0f, 0.0f}, 1.0f));
+    const CameraView near_first = camera_at({0, 0, 5}, {0, 0, 0});
+    const CameraView near_second = camera_at({30, 0, 5}, {30, 0, 0});
+    LocalShadowPlan alone[2] = {plan_local_shadows(scene.lights, {8, 4096, LocalShadowSizing::Coverage}),
+                                plan_local_shadows(scene.lights, {8, 4096, LocalShadowSizing::Coverage})};
+    size_local_shadows(alone[0], scene.lights, near_first, 1080, 4096);
+    size_local_shadows(alone[1], scene.lights, near_second, 1080, 4096);
+    ASSERT_GT(alone[0].slots[0].resolution, alone[1].slots[0].resolution) << "each camera is near one light";
+    ASSERT_LT(alone[0].slots[1].resolution, alone[1].slots[1].resolution);
+    LocalShadowPlan shared = plan_local_shadows(scene.lights, {8, 4096, LocalShadowSizing::Coverage});
+    const penumbra::SizedCamera views[2] = {{near_first, 1080}, {near_second, 1080}};
+    penumbra::size_local_shadows(shared, to_core(scene.lights), views, 4096);
+    EXPECT_EQ(shared.slots[0].resolution, alone[0].slots[0].resolution);
+    EXPECT_EQ(shared.slots[1].resolution, alone[1].slots[1].resolution);
+}
+
 // A caster off a cube face's axis, near the corner of the -Y face: its nearest point is
 // 2.0 m from the light but only 1.2 m deep along the face's axis. The near plane must not
 // clip it (it did when the near plane was the nearest caster's distance itself).

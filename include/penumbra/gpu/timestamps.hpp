@@ -41,6 +41,10 @@ public:
 
     // Resets the queries and forgets the previous frame's scopes.
     void begin_frame(VkCommandBuffer cmd);
+    // Appended to the name of every scope opened from now on (which of several views a pass
+    // belongs to); empty by default.
+    void set_scope_suffix(std::string suffix) { suffix_ = std::move(suffix); }
+    const std::string& scope_suffix() const { return suffix_; }
     // Opens a scope; returns its index for end(). Throws UsageError past max_scopes.
     uint32_t begin(VkCommandBuffer cmd, std::string name);
     void end(VkCommandBuffer cmd, uint32_t scope);
@@ -60,6 +64,7 @@ private:
     UniqueQueryPool pool_;
     std::vector<std::string> names_;
     std::vector<bool> ended_;
+    std::string suffix_;
 };
 
 // A pass: opens a timing scope on construction and closes it on destruction, inside a
