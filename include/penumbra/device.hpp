@@ -47,6 +47,14 @@ struct DeviceDesc {
     // the caller's allocator, which must outlive the ShadowSystem; nullptr = Penumbra's own,
     // which sub-allocates from blocks of 64 MiB.
     DeviceMemoryAllocator* allocator = nullptr;
+    // Async compute (ShadowSystem::record_visibility_async()): a queue family with
+    // VK_QUEUE_COMPUTE_BIT other than queue_family, and the queue of it the caller submits
+    // the resolve on (~ShadowSystem waits for it as for `queue`). Penumbra's images and
+    // buffers are then shared by both families (VK_SHARING_MODE_CONCURRENT) and never change
+    // hands; the caller's screen images and visibility target do (docs/library.md, "Async
+    // compute"). VK_QUEUE_FAMILY_IGNORED: none, everything on `queue`.
+    uint32_t compute_queue_family = VK_QUEUE_FAMILY_IGNORED;
+    VkQueue compute_queue = VK_NULL_HANDLE;
 };
 
 // What a physical device offers, for choosing one.
@@ -87,6 +95,10 @@ struct VulkanContextOptions {
     // For a window: extra instance extensions (e.g. glfwGetRequiredInstanceExtensions);
     // the device then also gets VK_KHR_swapchain.
     std::vector<std::string> presentation_extensions;
+    // A second queue for async compute, from a family with compute and without graphics
+    // (the queues GPUs run beside graphics work), when the device has one: DeviceDesc's
+    // compute_queue_family and compute_queue name it; otherwise they stay unset.
+    bool async_compute = false;
     // For a window: whether (instance, physical device, queue family) can present to it.
     std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
 };

@@ -362,7 +362,7 @@ constexpr uint32_t visibility_layers(uint32_t slots) { return (slots + 3) / 4; }
 // it is left in are those of VisibilityImage, and its earlier uses must be fragment or
 // compute shader reads (or be ordered before compute shaders by the caller's own barrier).
 struct VisibilityTarget {
-    VkImage image = VK_NULL_HANDLE;              // created with VK_IMAGE_USAGE_STORAGE_BIT, one mip level
+    VkImage image = VK_NULL_HANDLE;              // with VK_IMAGE_USAGE_STORAGE_BIT and _SAMPLED_BIT, one mip level
     VkImageView view = VK_NULL_HANDLE;           // VK_IMAGE_VIEW_TYPE_2D_ARRAY over layers [0, layers)
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;  // the only format the resolve writes
     uint32_t width = 0;  // at least the ScreenInputs' extent; pixels beyond it keep their contents
@@ -454,11 +454,11 @@ public:
     // Checks the device (DeviceError naming what is missing) and the settings (InputError),
     // then creates the pipelines and the maps the settings ask for.
     explicit ShadowSystem(const ShadowSystemDesc& desc);
-    // Waits for DeviceDesc::queue to be idle (vkQueueWaitIdle: frames submitted and not
-    // waited for complete first; no wait when the caller already waited), then destroys
-    // everything Penumbra created. The queue is externally synchronised: no other thread
-    // may submit to it while this runs. Frames submitted on another queue are the caller's
-    // to wait for.
+    // Waits for DeviceDesc::queue (and compute_queue, when given) to be idle (vkQueueWaitIdle:
+    // frames submitted and not waited for complete first; no wait when the caller already
+    // waited), then destroys everything Penumbra created. The queues are externally
+    // synchronised: no other thread may submit to them while this runs. Frames submitted on
+    // other queues are the caller's to wait for.
     ~ShadowSystem();
     ShadowSystem(const ShadowSystem&) = delete;
     ShadowSystem& operator=(const ShadowSystem&) = delete;
@@ -540,6 +540,20 @@ public:
     void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, uint32_t view = 0);
     void record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target,
                            uint32_t view = 0);
+    // Async compute: the same resolve into the caller's `target`, recorded into
+    // `compute_cmd`, a command buffer of DeviceDesc::compute_queue_family (UsageError without
+    // one), which the caller submits on DeviceDesc::compute_queue waiting (with a semaphore,
+    // at VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) for the submission that holds this frame's
+    // record_shadow_maps(). Penumbra's maps and buffers are shared by both families; the
+    // caller's images change hands (docs/library.md, "Async compute", has the barriers):
+    // the screen inputs are released by the graphics family and acquired by the compute
+    // family before this call, in the layouts ScreenInputs gives; the target's contents are
+    // discarded (no acquire needed), and it is left in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+    // with its writes visible to compute shader reads of this queue, for the caller to
+    // release to the graphics family and acquire there before sampling it. The rest is as
+    // record_visibility() (once per frame and view, either call).
+    void record_visibility_async(VkCommandBuffer compute_cmd, const ScreenInputs& screen,
+                                 const VisibilityTarget& target, uint32_t view = 0);
     // The image the view's last record_visibility() wrote, and where; a UsageError before
     // the first, or for a view the last prepare() did not have.
     VisibilityImage visibility_image(uint32_t view = 0) const;

@@ -1,6 +1,7 @@
 #include "penumbra/gpu/resources.hpp"
 #include "penumbra/gpu/debug_names.hpp"
 
+#include <array>
 #include <cstring>
 #include <string>
 
@@ -71,6 +72,20 @@ UniqueImageView create_view(const Device& device, VkImage image, const ImageDesc
     return UniqueImageView(device, view);
 }
 
+// Exclusive to the device's queue family, or shared with its async compute family: the
+// resolve on a compute queue reads the maps and buffers as they are, with no ownership
+// transfer (Vulkan spec, "Resource Sharing Mode").
+template <typename CreateInfo>
+void set_sharing(const Device& device, CreateInfo& info, const std::array<uint32_t, 2>& families) {
+    if (!device.shares_with_compute()) {
+        info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+        return;
+    }
+    info.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    info.queueFamilyIndexCount = static_cast<uint32_t>(families.size());
+    info.pQueueFamilyIndices = families.data();
+}
+
 }  // namespace
 
 Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind) {
@@ -79,7 +94,8 @@ Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
     info.usage = usage;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    const std::array<uint32_t, 2> families{device.queue_family(), device.compute_queue_family()};
+    set_sharing(device, info, families);
     VkBuffer buffer = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateBuffer(device, &info, nullptr, &buffer));
     name_object(device, VK_OBJECT_TYPE_BUFFER, buffer, "buffer");
@@ -123,7 +139,8 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     if (desc.storage_view_format != VK_FORMAT_UNDEFINED) {
         info.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
     }
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    const std::array<uint32_t, 2> families{device.queue_family(), device.compute_queue_family()};
+    set_sharing(device, info, families);
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateImage(device, &info, nullptr, &image));

@@ -38,6 +38,30 @@ void check_queue_family(const gpu::VulkanFunctions& vk, VkPhysicalDevice physica
     }
 }
 
+// The async compute family, when the caller names one: it exists, computes, and is not the
+// graphics queue's own (whose queue needs no sharing: record_visibility() runs there).
+void check_compute_queue_family(const gpu::VulkanFunctions& vk, const DeviceDesc& desc) {
+    if (desc.compute_queue_family == VK_QUEUE_FAMILY_IGNORED) return;
+    const std::string field =
+        std::string(kWhere) + "DeviceDesc::compute_queue_family " + std::to_string(desc.compute_queue_family);
+    uint32_t count = 0;
+    vk.vkGetPhysicalDeviceQueueFamilyProperties(desc.physical_device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vk.vkGetPhysicalDeviceQueueFamilyProperties(desc.physical_device, &count, families.data());
+    if (desc.compute_queue_family >= count) {
+        throw InputError(field + " does not exist (the device has " + std::to_string(count) + ")");
+    }
+    if (desc.compute_queue_family == desc.queue_family) {
+        throw InputError(field +
+                         " is queue_family itself: leave it VK_QUEUE_FAMILY_IGNORED and record the resolve on that "
+                         "queue with record_visibility()");
+    }
+    if ((families[desc.compute_queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT) == 0) {
+        throw InputError(field + " lacks VK_QUEUE_COMPUTE_BIT");
+    }
+    require_handle(desc.compute_queue, "compute_queue");
+}
+
 }  // namespace
 
 gpu::EnabledFeatures check_device(const DeviceDesc& desc, PFN_vkGetInstanceProcAddr get_instance_proc_addr) {
@@ -65,6 +89,7 @@ gpu::EnabledFeatures check_device(const DeviceDesc& desc, PFN_vkGetInstanceProcA
                           gpu::api_version_string(properties.apiVersion) + "; Penumbra needs 1.3");
     }
     check_queue_family(vk, desc.physical_device, desc.queue_family);
+    check_compute_queue_family(vk, desc);
 
     const gpu::FeatureChain chain = gpu::read_feature_chain(*desc.enabled_features);
     require_feature(chain.dynamic_rendering, "VkPhysicalDeviceVulkan13Features::dynamicRendering");

@@ -1,6 +1,7 @@
 #include "library/device_context.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <optional>
@@ -168,9 +169,12 @@ Context::Context(const ContextOptions& options)
         create_instance(options.validation, options.best_practices);
         const uint32_t index = pick_physical_device(options.device_selector);
         if (presentation_) pick_present_queue_family();
+        if (options.async_compute) pick_async_compute_family();
         const EnabledFeatures features = create_device();
         VkQueue queue = VK_NULL_HANDLE;
         vk_.vkGetDeviceQueue(device_, queue_family_, 0, &queue);
+        if (compute_family_ != VK_QUEUE_FAMILY_IGNORED)
+            vk_.vkGetDeviceQueue(device_, compute_family_, 0, &compute_queue_);
         initialize({instance_, physical_device_, device_, queue, queue_family_}, features, index);
     } catch (...) {
         release();
@@ -258,6 +262,21 @@ void Context::pick_present_queue_family() {
     throw DeviceError("device " + name + " has no graphics queue that can present to the window");
 }
 
+// The queues that run beside graphics work: a family with compute and without graphics.
+void Context::pick_async_compute_family() {
+    uint32_t count = 0;
+    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, families.data());
+    for (uint32_t family = 0; family < count; ++family) {
+        const VkQueueFlags flags = families[family].queueFlags;
+        if ((flags & VK_QUEUE_COMPUTE_BIT) != 0 && (flags & VK_QUEUE_GRAPHICS_BIT) == 0) {
+            compute_family_ = family;
+            return;
+        }
+    }
+}
+
 // Exactly the features Penumbra uses (docs/library.md): the required Vulkan 1.3 ones, and
 // every optional one the device supports.
 EnabledFeatures Context::create_device() {
@@ -292,13 +311,17 @@ EnabledFeatures Context::create_device() {
     features.features.multiViewport = enabled.virtual_pages ? VK_TRUE : VK_FALSE;
 
     const float priority = 1.0f;
-    VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queue_info.queueFamilyIndex = queue_family_;
-    queue_info.queueCount = 1;
-    queue_info.pQueuePriorities = &priority;
+    std::array<VkDeviceQueueCreateInfo, 2> queue_infos{};
+    for (VkDeviceQueueCreateInfo& queue_info : queue_infos) {
+        queue_info.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+        queue_info.queueCount = 1;
+        queue_info.pQueuePriorities = &priority;
+    }
+    queue_infos[0].queueFamilyIndex = queue_family_;
+    queue_infos[1].queueFamilyIndex = compute_family_;
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
-    info.queueCreateInfoCount = 1;
-    info.pQueueCreateInfos = &queue_info;
+    info.queueCreateInfoCount = compute_family_ != VK_QUEUE_FAMILY_IGNORED ? 2u : 1u;
+    info.pQueueCreateInfos = queue_infos.data();
     const char* swapchain_extension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
     if (presentation_) {
         info.enabledExtensionCount = 1;

@@ -42,6 +42,8 @@ struct ContextOptions {
         std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> can_present;
     };
     std::optional<Presentation> presentation;  // nullopt = headless (no WSI extensions)
+    // Also one queue of a family with compute and without graphics, when the device has one.
+    bool async_compute = false;
 };
 
 // Lists the physical devices. Throws DeviceError when no Vulkan driver is present.
@@ -54,6 +56,10 @@ public:
     ~Context() override;
 
     bool validation_enabled() const { return validation_enabled_; }
+    // ContextOptions::async_compute's queue and family; VK_QUEUE_FAMILY_IGNORED without one.
+    // The Context's own images and buffers stay exclusive to queue_family().
+    uint32_t async_compute_family() const { return compute_family_; }
+    VkQueue async_compute_queue() const { return compute_queue_; }
     bool presentation_enabled() const { return presentation_.has_value(); }
     const ValidationLog& validation_log() const { return *validation_log_; }
     const std::shared_ptr<ValidationLog>& shared_validation_log() const { return validation_log_; }
@@ -65,6 +71,7 @@ private:
     void create_instance(bool validation, bool best_practices);
     uint32_t pick_physical_device(const std::string& selector);
     void pick_present_queue_family();
+    void pick_async_compute_family();
     EnabledFeatures create_device();
     void release();  // destroys whatever was created, in reverse order
 
@@ -73,6 +80,8 @@ private:
     VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
+    uint32_t compute_family_ = VK_QUEUE_FAMILY_IGNORED;
+    VkQueue compute_queue_ = VK_NULL_HANDLE;
     bool validation_enabled_ = false;
     std::shared_ptr<ValidationLog> validation_log_;
     std::function<void(const std::string& message)> on_message_;

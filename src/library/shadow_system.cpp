@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/camera_math.hpp"
 #include "core/cascades.hpp"
@@ -56,8 +57,19 @@ PFN_vkGetInstanceProcAddr instance_proc_addr(const DeviceDesc& desc) {
 
 gpu::Device make_device(const DeviceDesc& desc) {
     const gpu::EnabledFeatures features = library::check_device(desc, instance_proc_addr(desc));
-    return gpu::Device({desc.instance, desc.physical_device, desc.device, desc.queue, desc.queue_family}, features,
-                       instance_proc_addr(desc), desc.allocator);
+    return gpu::Device({desc.instance, desc.physical_device, desc.device, desc.queue, desc.queue_family,
+                        desc.compute_queue_family, desc.compute_queue},
+                       features, instance_proc_addr(desc), desc.allocator);
+}
+
+bool compute_timestamps_match(const gpu::Device& device) {
+    if (!device.shares_with_compute()) return false;
+    uint32_t count = 0;
+    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, families.data());
+    const uint32_t graphics_bits = families.at(device.queue_family()).timestampValidBits;
+    return graphics_bits > 0 && families.at(device.compute_queue_family()).timestampValidBits == graphics_bits;
 }
 
 uint32_t checked_frames_in_flight(uint32_t frames) {
@@ -242,6 +254,9 @@ struct ShadowSystem::Impl {
     Settings settings;
     uint32_t frames_in_flight;
     bool timestamps;  // ShadowSystemDesc::timestamps
+    // The async compute family's timestamps tick as the graphics family's: the resolve on it
+    // is timed too.
+    bool compute_timestamps;
     library::RetiredObjects retired;
     library::FrameSetLayouts layouts;
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
@@ -320,6 +335,7 @@ struct ShadowSystem::Impl {
           settings(checked_settings(desc.settings)),
           frames_in_flight(checked_frames_in_flight(desc.frames_in_flight)),
           timestamps(desc.timestamps),
+          compute_timestamps(compute_timestamps_match(device)),
           retired(frames_in_flight),
           // Each part's Vulkan objects are named for it (VK_EXT_debug_utils).
           layouts(gpu::named(device, "set layouts", [&] { return library::create_frame_set_layouts(device); })),
@@ -705,7 +721,8 @@ struct ShadowSystem::Impl {
     // Records the resolve of `screen` into `target` and keeps what it wrote for
     // visibility_image().
     void record_resolve(VkCommandBuffer cmd, uint32_t view_index, const ScreenInputs& screen,
-                        const passes::ResolveTarget& target);
+                        const passes::ResolveTarget& target,
+                        passes::ResolveQueue queue = passes::ResolveQueue::Graphics);
 
     void ensure_visibility_image(library::SunView& view, uint32_t width, uint32_t height, uint32_t slot_count) {
         const uint32_t layers = visibility_layers(slot_count);
@@ -721,10 +738,13 @@ ShadowSystem::ShadowSystem(const ShadowSystemDesc& desc) : impl_(std::make_uniqu
 
 ShadowSystem::~ShadowSystem() {
     // Frames the caller submitted and did not wait for may still use the maps, buffers and
-    // pipelines destroyed below: wait for the queue they run on (DeviceDesc::queue). It
+    // pipelines destroyed below: wait for the queues they run on (DeviceDesc::queue and
+    // compute_queue). It
     // returns at once when the caller already waited; a lost device has nothing to wait for,
     // so its result is ignored (a destructor does not throw).
-    if (impl_) impl_->device->vkQueueWaitIdle(impl_->device.queue());
+    if (!impl_) return;
+    impl_->device->vkQueueWaitIdle(impl_->device.queue());
+    if (impl_->device.compute_queue()) impl_->device->vkQueueWaitIdle(impl_->device.compute_queue());
 }
 
 MeshId ShadowSystem::add_mesh(const MeshDesc& mesh) { return impl_->geometry.add_mesh(mesh); }
@@ -909,8 +929,25 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     impl.record_resolve(cmd, view, screen, {target.image, target.view, target.layers});
 }
 
+void ShadowSystem::record_visibility_async(VkCommandBuffer compute_cmd, const ScreenInputs& screen,
+                                           const VisibilityTarget& target, uint32_t view) {
+    Impl& impl = *impl_;
+    if (!impl.device.shares_with_compute()) {
+        throw UsageError(
+            "ShadowSystem::record_visibility_async: the ShadowSystem was made without "
+            "DeviceDesc::compute_queue_family (async compute); use record_visibility()");
+    }
+    library::FrameSlot& slot = impl.current_slot("record_visibility_async");
+    library::SunView& resolved = impl.view_at("record_visibility_async", view);
+    check_visibility_call(slot, resolved.slots.at(impl.frame), compute_cmd, screen);
+    check_visibility_target(target, screen, impl.visibility_slot_count());
+    if (resolved.visibility) impl.retired.retire(std::move(resolved.visibility), impl.frame);
+    impl.record_resolve(compute_cmd, view, screen, {target.image, target.view, target.layers},
+                        passes::ResolveQueue::Compute);
+}
+
 void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, uint32_t view_index, const ScreenInputs& screen,
-                                        const passes::ResolveTarget& target) {
+                                        const passes::ResolveTarget& target, passes::ResolveQueue queue) {
     library::SunView& view = *views[view_index];
     library::ViewSlot& view_slot = view.slots.at(frame);
     const uint32_t slot_count = visibility_slot_count();
@@ -925,11 +962,13 @@ void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, uint32_t view_index
     constants.background_depth = screen.background_depth;
     constants.slot_count = slot_count;
     constants.has_face_normals = screen.face_normals != VK_NULL_HANDLE ? 1u : 0u;
-    gpu::GpuTimer* timer = timer_of(slots.at(frame));
+    // On the compute queue only where its timestamps count as the graphics queue's do.
+    const bool timed = queue == passes::ResolveQueue::Graphics || compute_timestamps;
+    gpu::GpuTimer* timer = timed ? timer_of(slots.at(frame)) : nullptr;
     {
         const ViewScopes scopes(timer, view_index);
         gpu::TimedScope scope(device, timer, cmd, "visibility");
-        resolve.record(cmd, view_slot.sampling_set, view_slot.screen_set, target, constants);
+        resolve.record(cmd, view_slot.sampling_set, view_slot.screen_set, target, constants, queue);
     }
     view_slot.visibility_recorded = true;
     view.last_visibility = VisibilityImage{

@@ -25,6 +25,7 @@ gpu::ContextOptions context_options(const VulkanContextOptions& options) {
         if (log) log->messages.push_back(message);
         if (callback) callback(message);
     };
+    result.async_compute = options.async_compute;
     if (!options.presentation_extensions.empty() || options.can_present) {
         result.presentation = gpu::ContextOptions::Presentation{options.presentation_extensions, options.can_present};
     }
@@ -63,6 +64,8 @@ struct VulkanContext::State {
         desc = {
             context.instance(),     context.physical_device(), context.device(), context.queue(),
             context.queue_family(), VK_API_VERSION_1_3,        &features,        context.vk().vkGetInstanceProcAddr};
+        desc.compute_queue_family = context.async_compute_family();
+        desc.compute_queue = context.async_compute_queue();
         info = to_public(context.info());
     }
 };

@@ -78,9 +78,12 @@ void VisibilityResolvePass::write_screen_set(VkDescriptorSet set, const ScreenIn
 }
 
 void VisibilityResolvePass::record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set,
-                                   const ResolveTarget& target, const shader::ResolvePushConstants& constants) const {
+                                   const ResolveTarget& target, const shader::ResolvePushConstants& constants,
+                                   ResolveQueue queue) const {
+    const bool graphics = queue == ResolveQueue::Graphics;
     gpu::transition(device_, cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layers,
-                    gpu::ImageState::DiscardAfterShaderReads, gpu::ImageState::ComputeStorageWrite);
+                    graphics ? gpu::ImageState::DiscardAfterShaderReads : gpu::ImageState::DiscardAfterComputeReads,
+                    gpu::ImageState::ComputeStorageWrite);
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     const std::array<VkDescriptorSet, 2> sets{shadow_set, screen_set};
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets.data(), 0, nullptr);
@@ -88,7 +91,8 @@ void VisibilityResolvePass::record(VkCommandBuffer cmd, VkDescriptorSet shadow_s
     device_->vkCmdDispatch(cmd, (constants.width + kGroupSize - 1) / kGroupSize,
                            (constants.height + kGroupSize - 1) / kGroupSize, 1);
     gpu::transition(device_, cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.layers,
-                    gpu::ImageState::ComputeStorageWrite, gpu::ImageState::ShaderSampled);
+                    gpu::ImageState::ComputeStorageWrite,
+                    graphics ? gpu::ImageState::ShaderSampled : gpu::ImageState::ComputeSampled);
 }
 
 }  // namespace penumbra::passes

@@ -20,6 +20,10 @@ struct ResolveTarget {
     uint32_t layers = 0;
 };
 
+// The queue the resolve is recorded for: the graphics queue (its barriers reach the
+// caller's fragment shaders) or a compute-only queue (async compute: compute stages only).
+enum class ResolveQueue { Graphics, Compute };
+
 class VisibilityResolvePass {
 public:
     // `shadow_set_layout` is the ShadowSystem's descriptor set (set 0 of the pass); the pass's
@@ -37,9 +41,11 @@ public:
     void write_screen_set(VkDescriptorSet set, const ScreenInputs& screen, VkImageView target) const;
 
     // Dispatches one thread per pixel of `constants.width` x `constants.height`; takes
-    // `target` from ShaderSampled (or unused) to ComputeStorageWrite and back to ShaderSampled.
+    // `target` from ShaderSampled (or unused) to ComputeStorageWrite and back to ShaderSampled
+    // (on a compute queue from and to ComputeSampled).
     void record(VkCommandBuffer cmd, VkDescriptorSet shadow_set, VkDescriptorSet screen_set,
-                const ResolveTarget& target, const shader::ResolvePushConstants& constants) const;
+                const ResolveTarget& target, const shader::ResolvePushConstants& constants,
+                ResolveQueue queue = ResolveQueue::Graphics) const;
 
 private:
     gpu::UniquePipeline create_pipeline(const FilterSettings& filter) const;

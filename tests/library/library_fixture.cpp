@@ -189,6 +189,7 @@ void LibraryTest::SetUp() {
     VulkanContextOptions options;
     options.validation = true;
     options.best_practices = best_practices();
+    options.async_compute = async_compute();
     log_ = options.validation_log;
     context_ = std::make_unique<VulkanContext>(options);
     device_ = context_->device_desc();

@@ -102,6 +102,9 @@ protected:
     void TearDown() override;  // fails the test on any validation message
     // Whether the validation layer also runs its best-practices checks.
     virtual bool best_practices() const { return false; }
+    // Whether the context also makes an async compute queue (DeviceDesc::compute_queue_family),
+    // where the device has a compute-only family.
+    virtual bool async_compute() const { return false; }
 
     // The default settings, with 512-texel local maps to stay quick on lavapipe.
     static Settings test_settings();

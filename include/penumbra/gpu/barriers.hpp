@@ -24,6 +24,10 @@ enum class ImageState {
     // About to be overwritten completely after ShaderSampled reads (a map re-rendered every
     // frame): the contents are discarded, the reads of earlier frames still come first.
     DiscardAfterShaderReads,
+    // The same two on a compute-only queue (async compute), whose barriers name no graphics
+    // stage: read by compute shaders, and overwritten after such reads.
+    ComputeSampled,
+    DiscardAfterComputeReads,
     ComputeStorageWrite,  // written by a compute shader as a storage image
     ComputeStorage,       // read and written by compute shaders as a storage image
     BlitSrc,              // read by vkCmdBlitImage

@@ -47,6 +47,11 @@ struct DeviceHandles {
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queue_family = 0;
+    // A second family whose queue also uses the images and buffers made on this Device
+    // (async compute), or VK_QUEUE_FAMILY_IGNORED: with one, they are created shared by both
+    // families (VK_SHARING_MODE_CONCURRENT) and never change hands.
+    uint32_t compute_queue_family = VK_QUEUE_FAMILY_IGNORED;
+    VkQueue compute_queue = VK_NULL_HANDLE;
 };
 
 class Device {
@@ -67,6 +72,11 @@ public:
     VkDevice device() const { return handles_.device; }
     VkQueue queue() const { return handles_.queue; }
     uint32_t queue_family() const { return handles_.queue_family; }
+    // The async compute queue's family (DeviceHandles::compute_queue_family) and queue.
+    uint32_t compute_queue_family() const { return handles_.compute_queue_family; }
+    VkQueue compute_queue() const { return handles_.compute_queue; }
+    // Whether images and buffers are shared by the two families (a compute family is set).
+    bool shares_with_compute() const { return handles_.compute_queue_family != VK_QUEUE_FAMILY_IGNORED; }
     const DeviceInfo& info() const { return info_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     bool depth_clamp_supported() const { return features_.depth_clamp; }
