@@ -7,8 +7,8 @@
 #      compiles the library alone once);
 #   2. checks the installed headers: exactly the public headers of include/penumbra/ (less
 #      the scene component's) and the generated version.hpp, each compiling on its own;
-#   3. configures and builds examples/minimal and examples/deferred from clean folders
-#      with find_package(Penumbra) on WORK/prefix, into WORK/minimal and WORK/deferred,
+#   3. configures and builds examples/minimal, examples/deferred and examples/engine from
+#      clean folders with find_package(Penumbra) on WORK/prefix, into WORK/<example>,
 #      and tests/examples/gpu_component (a client of the Vulkan helper component,
 #      Penumbra::gpu) into WORK/gpu_component.
 # The example tests (tests/examples) run the binaries; ctest runs this script first.
@@ -52,7 +52,7 @@ for header in $(cd "$prefix/include" && find penumbra -name '*.hpp'); do
     || { echo "build_examples: $header does not compile on its own" >&2; exit 1; }
 done
 
-for example in minimal deferred; do
+for example in minimal deferred engine; do
   cmake -S "$source_dir/examples/$example" -B "$work/$example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_COMPILE_WARNING_AS_ERROR=ON >/dev/null
   cmake --build "$work/$example"
@@ -60,4 +60,4 @@ done
 cmake -S "$source_dir/tests/examples/gpu_component" -B "$work/gpu_component" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_COMPILE_WARNING_AS_ERROR=ON >/dev/null
 cmake --build "$work/gpu_component"
-echo "build_examples: the library, its installed headers, both examples and the gpu component client built in $work"
+echo "build_examples: the library, its installed headers, the examples and the gpu component client built in $work"

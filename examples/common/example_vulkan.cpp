@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace example {
 namespace {
@@ -63,7 +65,20 @@ void check(VkResult result, const char* call) {
     if (result != VK_SUCCESS) throw std::runtime_error(std::string(call) + " failed: " + std::to_string(result));
 }
 
-Device::Device(bool validation) {
+// A family with compute and without graphics: the queue GPUs run beside graphics work.
+uint32_t compute_only_family(VkPhysicalDevice physical_device) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device, &count, families.data());
+    for (uint32_t family = 0; family < count; ++family) {
+        const VkQueueFlags flags = families[family].queueFlags;
+        if ((flags & VK_QUEUE_COMPUTE_BIT) && !(flags & VK_QUEUE_GRAPHICS_BIT)) return family;
+    }
+    return VK_QUEUE_FAMILY_IGNORED;
+}
+
+Device::Device(bool validation, bool async_compute) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "penumbra example";
     app.apiVersion = VK_API_VERSION_1_3;  // Penumbra needs an instance of Vulkan 1.3
@@ -95,24 +110,35 @@ Device::Device(bool validation) {
     features13.dynamicRendering = VK_TRUE;
     features13.synchronization2 = VK_TRUE;
     features.pNext = &features13;
+    if (async_compute) compute_family = compute_only_family(physical_device);
     const float priority = 1.0f;
-    VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queue_info.queueFamilyIndex = queue_family;
-    queue_info.queueCount = 1;
-    queue_info.pQueuePriorities = &priority;
+    VkDeviceQueueCreateInfo queue_infos[2] = {{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO},
+                                              {VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO}};
+    for (VkDeviceQueueCreateInfo& queue_info : queue_infos) {
+        queue_info.queueCount = 1;
+        queue_info.pQueuePriorities = &priority;
+    }
+    queue_infos[0].queueFamilyIndex = queue_family;
+    queue_infos[1].queueFamilyIndex = compute_family;
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
-    device_info.queueCreateInfoCount = 1;
-    device_info.pQueueCreateInfos = &queue_info;
+    device_info.queueCreateInfoCount = compute_family != VK_QUEUE_FAMILY_IGNORED ? 2 : 1;
+    device_info.pQueueCreateInfos = queue_infos;
     EXAMPLE_CHECK(vkCreateDevice(physical_device, &device_info, nullptr, &device));
     vkGetDeviceQueue(device, queue_family, 0, &queue);
     VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool_info.queueFamilyIndex = queue_family;
     EXAMPLE_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
+    if (compute_family != VK_QUEUE_FAMILY_IGNORED) {
+        vkGetDeviceQueue(device, compute_family, 0, &compute_queue);
+        pool_info.queueFamilyIndex = compute_family;
+        EXAMPLE_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &compute_pool));
+    }
 }
 
 Device::~Device() {
     vkDeviceWaitIdle(device);
     vkDestroyCommandPool(device, pool, nullptr);
+    if (compute_pool) vkDestroyCommandPool(device, compute_pool, nullptr);
     vkDestroyDevice(device, nullptr);
     if (messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -131,6 +157,8 @@ penumbra::DeviceDesc Device::penumbra_desc() const {
     desc.queue_family = queue_family;
     desc.instance_api_version = VK_API_VERSION_1_3;  // what Device() created the instance with
     desc.enabled_features = &features;
+    desc.compute_queue_family = compute_family;  // VK_QUEUE_FAMILY_IGNORED without async compute
+    desc.compute_queue = compute_queue;
     return desc;
 }
 

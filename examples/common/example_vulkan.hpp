@@ -29,12 +29,17 @@ struct Device {
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queue_family = 0;
     VkCommandPool pool = VK_NULL_HANDLE;
+    // With async compute, where the device has a family with compute and without graphics:
+    // its queue and a command pool for it (VK_QUEUE_FAMILY_IGNORED / null otherwise).
+    uint32_t compute_family = VK_QUEUE_FAMILY_IGNORED;
+    VkQueue compute_queue = VK_NULL_HANDLE;
+    VkCommandPool compute_pool = VK_NULL_HANDLE;
     // The feature chain vkCreateDevice got: Penumbra reads it (DeviceDesc::enabled_features).
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
 
     // `validation`: the Khronos validation layer with synchronization validation.
-    explicit Device(bool validation);
+    explicit Device(bool validation, bool async_compute = false);
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
