@@ -81,6 +81,10 @@ void barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkIm
              VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
              VkAccessFlags2 dst_access);
 
+// Makes copy writes (into host-visible buffers) visible to the host once the submission's
+// wait returns.
+void host_read_barrier(VkCommandBuffer cmd);
+
 VkShaderModule shader_module(const Device& device, const uint32_t* code, size_t bytes);
 
 // Row 0 at the top; 65535 white.

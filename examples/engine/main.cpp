@@ -176,18 +176,6 @@ void transfer(VkCommandBuffer cmd, Half half, VkImage image, VkImageAspectFlags 
     vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-void host_read_barrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &host;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 // Records into a new command buffer of `pool` and submits it on `queue`, waiting for `wait`
 // (at `wait_stage`) and signalling `signal` (either VK_NULL_HANDLE). The buffer is freed
 // once the device is idle (the frame loop waits for it).
@@ -472,7 +460,7 @@ private:
         example::barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
-        host_read_barrier(cmd);
+        example::host_read_barrier(cmd);
     }
 
     const example::Device& device_;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <penumbra/penumbra.hpp>
+#include <string>
 #include <vector>
 
 namespace penumbra {
@@ -35,6 +36,19 @@ Mat4 translation(const glm::vec3& offset);
 // Makes writes of `src_stage` (copies by default) visible to the host after the fence.
 void host_read_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage = VK_PIPELINE_STAGE_2_COPY_BIT,
                        VkAccessFlags2 src_access = VK_ACCESS_2_TRANSFER_WRITE_BIT);
+
+// Expects `call` to throw exactly `Expected` with a message containing `needle`.
+template <typename Expected, typename Call>
+void expect_error(Call&& call, const std::string& needle) {
+    try {
+        call();
+        ADD_FAILURE() << "no error; expected one mentioning \"" << needle << "\"";
+    } catch (const Expected& error) {
+        EXPECT_NE(std::string(error.what()).find(needle), std::string::npos) << error.what();
+    } catch (const std::exception& error) {
+        ADD_FAILURE() << "an error of another type: " << error.what();
+    }
+}
 
 // Checks a Vulkan call of the test itself.
 void vk_check(VkResult result, const char* call);

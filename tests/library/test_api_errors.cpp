@@ -11,19 +11,6 @@
 namespace penumbra::library_tests {
 namespace {
 
-// Expects `call` to throw exactly `Expected` with a message containing `needle`.
-template <typename Expected, typename Call>
-void expect_error(Call&& call, const std::string& needle) {
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning \"" << needle << "\"";
-    } catch (const Expected& error) {
-        EXPECT_NE(std::string(error.what()).find(needle), std::string::npos) << error.what();
-    } catch (const std::exception& error) {
-        ADD_FAILURE() << "an error of another type: " << error.what();
-    }
-}
-
 using DeviceChecks = LibraryTest;
 
 TEST_F(DeviceChecks, NullFeatureChainIsAnInputError) {

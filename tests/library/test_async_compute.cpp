@@ -198,23 +198,15 @@ TEST_F(AsyncComputeTest, TheResolveOnAComputeQueueEqualsTheGraphicsQueues) {
 }
 
 TEST_F(AsyncComputeTest, ABadComputeFamilyAndTheCallWithoutOneAreNamed) {
-    const auto expect_error = [](auto call, const std::string& expected) {
-        try {
-            call();
-            ADD_FAILURE() << "no error; expected: " << expected;
-        } catch (const Error& error) {
-            EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
-        }
-    };
     ShadowSystemDesc desc = system_desc();
     desc.device.compute_queue_family = 99;
-    expect_error([&] { ShadowSystem shadows(desc); }, "DeviceDesc::compute_queue_family 99 does not exist");
+    expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "DeviceDesc::compute_queue_family 99 does not exist");
     desc.device.compute_queue_family = desc.device.queue_family;
-    expect_error([&] { ShadowSystem shadows(desc); }, "is queue_family itself");
+    expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "is queue_family itself");
     if (device_.compute_queue_family != VK_QUEUE_FAMILY_IGNORED) {
         desc.device = device_;
         desc.device.compute_queue = VK_NULL_HANDLE;
-        expect_error([&] { ShadowSystem shadows(desc); }, "DeviceDesc::compute_queue is null");
+        expect_error<InputError>([&] { ShadowSystem shadows(desc); }, "DeviceDesc::compute_queue is null");
     }
 
     desc.device = device_;
@@ -230,7 +222,7 @@ TEST_F(AsyncComputeTest, ABadComputeFamilyAndTheCallWithoutOneAreNamed) {
         const ScreenInputs screen =
             record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
         shadows.record_shadow_maps(cmd);
-        expect_error(
+        expect_error<UsageError>(
             [&] {
                 shadows.record_visibility_async(
                     cmd, screen, {target.image, target.view, VK_FORMAT_R8G8B8A8_UNORM, kScreen, kScreen, 1});
