@@ -1,6 +1,6 @@
 // libFuzzer harness: the public API's input validation and CPU work. Each input is read as
 // a short program of calls (add_mesh from arrays, add_instance, set_lights, update_settings,
-// prepare) with values taken from the input bytes, NaNs and infinities included, on one
+// prepare with one or several views) with values taken from the input bytes, NaNs and infinities included, on one
 // ShadowSystem over lavapipe. Every call must succeed or throw a penumbra::Error; the
 // system must stay usable (each input ends by removing what it added).
 #include <cstddef>
@@ -77,6 +77,19 @@ penumbra::Mat4 matrix(Input& in) {
     return m;
 }
 
+penumbra::ViewDesc view_desc(Input& in) {
+    const penumbra::Vec3 eye = in.vec3();
+    penumbra::ViewDesc view = penumbra::look_at_view(eye, in.vec3(), in.vec3(), in.number(), in.number(), in.number(),
+                                                     1 + in.small(255), 1 + in.small(255));
+    // Half the time the caller's projection: any matrix, from the field of view's on.
+    if (in.byte() & 1) {
+        penumbra::Mat4 projection = penumbra::reverse_z_projection(view);
+        for (float& value : projection.m) value = in.byte() & 1 ? in.number() : value;
+        view.projection = projection;
+    }
+    return view;
+}
+
 void run(Input& in, penumbra::ShadowSystem& system, std::vector<penumbra::MeshId>& meshes,
          std::vector<penumbra::InstanceId>& instances) {
     std::vector<penumbra::Vec3> positions;
@@ -106,16 +119,11 @@ void run(Input& in, penumbra::ShadowSystem& system, std::vector<penumbra::MeshId
             break;
         }
         default: {
-            const penumbra::Vec3 eye = in.vec3();
-            penumbra::ViewDesc view = penumbra::look_at_view(eye, in.vec3(), in.vec3(), in.number(), in.number(),
-                                                             in.number(), 1 + in.small(255), 1 + in.small(255));
-            // Half the time the caller's projection: any matrix, from the field of view's on.
-            if (in.byte() & 1) {
-                penumbra::Mat4 projection = penumbra::reverse_z_projection(view);
-                for (float& value : projection.m) value = in.byte() & 1 ? in.number() : value;
-                view.projection = projection;
-            }
-            system.prepare(view);
+            // Mostly one view, sometimes several, and now and then none or more than kMaxViews.
+            constexpr uint32_t kViewCounts[] = {1, 1, 2, 3, 0, penumbra::kMaxViews + 1};
+            std::vector<penumbra::ViewDesc> views(kViewCounts[in.small(6)]);
+            for (penumbra::ViewDesc& view : views) view = view_desc(in);
+            system.prepare(views);
             break;
         }
     }
