@@ -26,6 +26,7 @@ size_t Device::own_memory_blocks() const {
 void Device::initialize(const DeviceHandles& handles, const EnabledFeatures& features, uint32_t device_index,
                         DeviceMemoryAllocator* allocator) {
     handles_ = handles;
+    sharing_families_ = {handles.queue_family, handles.compute_queue_family};
     features_ = features;
     if (allocator) {
         allocator_ = allocator;
@@ -51,11 +52,17 @@ uint32_t Device::find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags want
     throw VulkanError("no memory type with the requested properties", VK_ERROR_OUT_OF_DEVICE_MEMORY);
 }
 
-bool find_graphics_compute_family(const VulkanFunctions& vk, VkPhysicalDevice device, uint32_t& family) {
+std::vector<VkQueueFamilyProperties> queue_families(const VulkanFunctions& vk, VkPhysicalDevice device) {
     uint32_t count = 0;
     vk.vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vk.vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+    return families;
+}
+
+bool find_graphics_compute_family(const VulkanFunctions& vk, VkPhysicalDevice device, uint32_t& family) {
+    const std::vector<VkQueueFamilyProperties> families = queue_families(vk, device);
+    const auto count = static_cast<uint32_t>(families.size());
     constexpr VkQueueFlags kWanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
     for (uint32_t i = 0; i < count; ++i) {
         if ((families[i].queueFlags & kWanted) == kWanted) {

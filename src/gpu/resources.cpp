@@ -1,7 +1,6 @@
 #include "penumbra/gpu/resources.hpp"
 #include "penumbra/gpu/debug_names.hpp"
 
-#include <array>
 #include <cstring>
 #include <string>
 
@@ -76,14 +75,14 @@ UniqueImageView create_view(const Device& device, VkImage image, const ImageDesc
 // resolve on a compute queue reads the maps and buffers as they are, with no ownership
 // transfer (Vulkan spec, "Resource Sharing Mode").
 template <typename CreateInfo>
-void set_sharing(const Device& device, CreateInfo& info, const std::array<uint32_t, 2>& families) {
+void set_sharing(const Device& device, CreateInfo& info) {
     if (!device.shares_with_compute()) {
         info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
         return;
     }
     info.sharingMode = VK_SHARING_MODE_CONCURRENT;
-    info.queueFamilyIndexCount = static_cast<uint32_t>(families.size());
-    info.pQueueFamilyIndices = families.data();
+    info.queueFamilyIndexCount = static_cast<uint32_t>(device.sharing_families().size());
+    info.pQueueFamilyIndices = device.sharing_families().data();
 }
 
 }  // namespace
@@ -94,8 +93,7 @@ Buffer create_buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
     info.usage = usage;
-    const std::array<uint32_t, 2> families{device.queue_family(), device.compute_queue_family()};
-    set_sharing(device, info, families);
+    set_sharing(device, info);
     VkBuffer buffer = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateBuffer(device, &info, nullptr, &buffer));
     name_object(device, VK_OBJECT_TYPE_BUFFER, buffer, "buffer");
@@ -139,8 +137,7 @@ Image create_image(const Device& device, const ImageDesc& desc) {
     if (desc.storage_view_format != VK_FORMAT_UNDEFINED) {
         info.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
     }
-    const std::array<uint32_t, 2> families{device.queue_family(), device.compute_queue_family()};
-    set_sharing(device, info, families);
+    set_sharing(device, info);
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image = VK_NULL_HANDLE;
     PENUMBRA_VK_CHECK(device->vkCreateImage(device, &info, nullptr, &image));

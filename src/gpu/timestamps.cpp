@@ -10,11 +10,7 @@ namespace penumbra::gpu {
 namespace {
 
 uint32_t queue_timestamp_bits(const Device& device) {
-    uint32_t count = 0;
-    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, families.data());
-    return families.at(device.queue_family()).timestampValidBits;
+    return queue_families(device.vk(), device.physical_device()).at(device.queue_family()).timestampValidBits;
 }
 
 // Ticks between two timestamps. Only the low valid_bits of a timestamp are meaningful,

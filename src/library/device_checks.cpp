@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "penumbra/errors.hpp"
+#include "penumbra/gpu/device.hpp"
 #include "penumbra/gpu/features.hpp"
 
 namespace penumbra::library {
@@ -22,11 +23,8 @@ void require_feature(bool enabled, const char* feature) {
     }
 }
 
-void check_queue_family(const gpu::VulkanFunctions& vk, VkPhysicalDevice physical_device, uint32_t family) {
-    uint32_t count = 0;
-    vk.vkGetPhysicalDeviceQueueFamilyProperties(physical_device, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vk.vkGetPhysicalDeviceQueueFamilyProperties(physical_device, &count, families.data());
+void check_queue_family(const std::vector<VkQueueFamilyProperties>& families, uint32_t family) {
+    const auto count = static_cast<uint32_t>(families.size());
     if (family >= count) {
         throw InputError(std::string(kWhere) + "DeviceDesc::queue_family " + std::to_string(family) +
                          " does not exist (the device has " + std::to_string(count) + ")");
@@ -40,16 +38,12 @@ void check_queue_family(const gpu::VulkanFunctions& vk, VkPhysicalDevice physica
 
 // The async compute family, when the caller names one: it exists, computes, and is not the
 // graphics queue's own (whose queue needs no sharing: record_visibility() runs there).
-void check_compute_queue_family(const gpu::VulkanFunctions& vk, const DeviceDesc& desc) {
+void check_compute_queue_family(const std::vector<VkQueueFamilyProperties>& families, const DeviceDesc& desc) {
     if (desc.compute_queue_family == VK_QUEUE_FAMILY_IGNORED) return;
     const std::string field =
         std::string(kWhere) + "DeviceDesc::compute_queue_family " + std::to_string(desc.compute_queue_family);
-    uint32_t count = 0;
-    vk.vkGetPhysicalDeviceQueueFamilyProperties(desc.physical_device, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vk.vkGetPhysicalDeviceQueueFamilyProperties(desc.physical_device, &count, families.data());
-    if (desc.compute_queue_family >= count) {
-        throw InputError(field + " does not exist (the device has " + std::to_string(count) + ")");
+    if (desc.compute_queue_family >= families.size()) {
+        throw InputError(field + " does not exist (the device has " + std::to_string(families.size()) + ")");
     }
     if (desc.compute_queue_family == desc.queue_family) {
         throw InputError(field +
@@ -88,8 +82,9 @@ gpu::EnabledFeatures check_device(const DeviceDesc& desc, PFN_vkGetInstanceProcA
         throw DeviceError(std::string(kWhere) + "device " + properties.deviceName + " supports Vulkan " +
                           gpu::api_version_string(properties.apiVersion) + "; Penumbra needs 1.3");
     }
-    check_queue_family(vk, desc.physical_device, desc.queue_family);
-    check_compute_queue_family(vk, desc);
+    const std::vector<VkQueueFamilyProperties> families = gpu::queue_families(vk, desc.physical_device);
+    check_queue_family(families, desc.queue_family);
+    check_compute_queue_family(families, desc);
 
     const gpu::FeatureChain chain = gpu::read_feature_chain(*desc.enabled_features);
     require_feature(chain.dynamic_rendering, "VkPhysicalDeviceVulkan13Features::dynamicRendering");

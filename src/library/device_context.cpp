@@ -248,11 +248,9 @@ void Context::pick_present_queue_family() {
         return std::strcmp(e.extensionName, VK_KHR_SWAPCHAIN_EXTENSION_NAME) == 0;
     });
     if (!has_swapchain) throw DeviceError("device " + name + " does not support " VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, families.data());
+    const std::vector<VkQueueFamilyProperties> families = queue_families(vk_, physical_device_);
     constexpr VkQueueFlags kWanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    for (uint32_t family = 0; family < count; ++family) {
+    for (uint32_t family = 0; family < families.size(); ++family) {
         if ((families[family].queueFlags & kWanted) == kWanted &&
             (!presentation_->can_present || presentation_->can_present(instance_, physical_device_, family))) {
             queue_family_ = family;
@@ -264,11 +262,8 @@ void Context::pick_present_queue_family() {
 
 // The queues that run beside graphics work: a family with compute and without graphics.
 void Context::pick_async_compute_family() {
-    uint32_t count = 0;
-    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, families.data());
-    for (uint32_t family = 0; family < count; ++family) {
+    const std::vector<VkQueueFamilyProperties> families = queue_families(vk_, physical_device_);
+    for (uint32_t family = 0; family < families.size(); ++family) {
         const VkQueueFlags flags = families[family].queueFlags;
         if ((flags & VK_QUEUE_COMPUTE_BIT) != 0 && (flags & VK_QUEUE_GRAPHICS_BIT) == 0) {
             compute_family_ = family;

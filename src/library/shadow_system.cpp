@@ -64,10 +64,7 @@ gpu::Device make_device(const DeviceDesc& desc) {
 
 bool compute_timestamps_match(const gpu::Device& device) {
     if (!device.shares_with_compute()) return false;
-    uint32_t count = 0;
-    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    device->vkGetPhysicalDeviceQueueFamilyProperties(device.physical_device(), &count, families.data());
+    const std::vector<VkQueueFamilyProperties> families = gpu::queue_families(device.vk(), device.physical_device());
     const uint32_t graphics_bits = families.at(device.queue_family()).timestampValidBits;
     return graphics_bits > 0 && families.at(device.compute_queue_family()).timestampValidBits == graphics_bits;
 }
@@ -188,22 +185,24 @@ void check_screen(const std::string& call, const ScreenInputs& screen) {
     if (std::abs(glm::determinant(view_projection)) < 1e-30f) reject("ScreenInputs::view_projection is not invertible");
 }
 
-// The frame's place and arguments for record_visibility(), whichever image it writes.
-void check_visibility_call(const library::FrameSlot& slot, const library::ViewSlot& view_slot, VkCommandBuffer cmd,
-                           const ScreenInputs& screen) {
+// The frame's place and arguments for `call` (record_visibility() or _async()), whichever
+// image it writes.
+void check_visibility_call(const std::string& call, const library::FrameSlot& slot, const library::ViewSlot& view_slot,
+                           VkCommandBuffer cmd, const ScreenInputs& screen) {
     if (!slot.shadow_maps_recorded) {
-        throw UsageError("ShadowSystem::record_visibility: record_shadow_maps() has not been recorded for this frame");
+        throw UsageError("ShadowSystem::" + call + ": record_shadow_maps() has not been recorded for this frame");
     }
     if (view_slot.visibility_recorded) {
-        throw UsageError("ShadowSystem::record_visibility: already recorded for this frame (once per frame and view)");
+        throw UsageError("ShadowSystem::" + call + ": already recorded for this frame (once per frame and view)");
     }
-    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_visibility: cmd is VK_NULL_HANDLE");
-    check_screen("record_visibility", screen);
+    if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::" + call + ": cmd is VK_NULL_HANDLE");
+    check_screen(call, screen);
 }
 
-void check_visibility_target(const VisibilityTarget& target, const ScreenInputs& screen, uint32_t slot_count) {
-    const auto reject = [](const std::string& problem) {
-        throw InputError("ShadowSystem::record_visibility: VisibilityTarget::" + problem);
+void check_visibility_target(const std::string& call, const VisibilityTarget& target, const ScreenInputs& screen,
+                             uint32_t slot_count) {
+    const auto reject = [&](const std::string& problem) {
+        throw InputError("ShadowSystem::" + call + ": VisibilityTarget::" + problem);
     };
     if (target.image == VK_NULL_HANDLE) reject("image is VK_NULL_HANDLE");
     if (target.view == VK_NULL_HANDLE) reject("view is VK_NULL_HANDLE");
@@ -724,6 +723,18 @@ struct ShadowSystem::Impl {
                         const passes::ResolveTarget& target,
                         passes::ResolveQueue queue = passes::ResolveQueue::Graphics);
 
+    // `call`'s resolve of a view into the caller's target, recorded for `queue`.
+    void record_into_target(const char* call, VkCommandBuffer cmd, const ScreenInputs& screen,
+                            const VisibilityTarget& target, uint32_t view_index, passes::ResolveQueue queue) {
+        library::FrameSlot& slot = current_slot(call);
+        library::SunView& view = view_at(call, view_index);
+        check_visibility_call(call, slot, view.slots.at(frame), cmd, screen);
+        check_visibility_target(call, target, screen, visibility_slot_count());
+        // Penumbra's own image is not needed while the caller brings one.
+        if (view.visibility) retired.retire(std::move(view.visibility), frame);
+        record_resolve(cmd, view_index, screen, {target.image, target.view, target.layers}, queue);
+    }
+
     void ensure_visibility_image(library::SunView& view, uint32_t width, uint32_t height, uint32_t slot_count) {
         const uint32_t layers = visibility_layers(slot_count);
         const std::unique_ptr<gpu::Image>& image = view.visibility;
@@ -739,9 +750,8 @@ ShadowSystem::ShadowSystem(const ShadowSystemDesc& desc) : impl_(std::make_uniqu
 ShadowSystem::~ShadowSystem() {
     // Frames the caller submitted and did not wait for may still use the maps, buffers and
     // pipelines destroyed below: wait for the queues they run on (DeviceDesc::queue and
-    // compute_queue). It
-    // returns at once when the caller already waited; a lost device has nothing to wait for,
-    // so its result is ignored (a destructor does not throw).
+    // compute_queue). It returns at once when the caller already waited; a lost device has
+    // nothing to wait for, so its result is ignored (a destructor does not throw).
     if (!impl_) return;
     impl_->device->vkQueueWaitIdle(impl_->device.queue());
     if (impl_->device.compute_queue()) impl_->device->vkQueueWaitIdle(impl_->device.compute_queue());
@@ -911,7 +921,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
     Impl& impl = *impl_;
     library::FrameSlot& slot = impl.current_slot("record_visibility");
     library::SunView& resolved = impl.view_at("record_visibility", view);
-    check_visibility_call(slot, resolved.slots.at(impl.frame), cmd, screen);
+    check_visibility_call("record_visibility", slot, resolved.slots.at(impl.frame), cmd, screen);
     impl.ensure_visibility_image(resolved, screen.width, screen.height, impl.visibility_slot_count());
     const gpu::Image& own = *resolved.visibility;
     impl.record_resolve(cmd, view, screen, {own.get(), own.view, own.desc.layers});
@@ -919,14 +929,7 @@ void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& sc
 
 void ShadowSystem::record_visibility(VkCommandBuffer cmd, const ScreenInputs& screen, const VisibilityTarget& target,
                                      uint32_t view) {
-    Impl& impl = *impl_;
-    library::FrameSlot& slot = impl.current_slot("record_visibility");
-    library::SunView& resolved = impl.view_at("record_visibility", view);
-    check_visibility_call(slot, resolved.slots.at(impl.frame), cmd, screen);
-    check_visibility_target(target, screen, impl.visibility_slot_count());
-    // Penumbra's own image is not needed while the caller brings one.
-    if (resolved.visibility) impl.retired.retire(std::move(resolved.visibility), impl.frame);
-    impl.record_resolve(cmd, view, screen, {target.image, target.view, target.layers});
+    impl_->record_into_target("record_visibility", cmd, screen, target, view, passes::ResolveQueue::Graphics);
 }
 
 void ShadowSystem::record_visibility_async(VkCommandBuffer compute_cmd, const ScreenInputs& screen,
@@ -937,13 +940,8 @@ void ShadowSystem::record_visibility_async(VkCommandBuffer compute_cmd, const Sc
             "ShadowSystem::record_visibility_async: the ShadowSystem was made without "
             "DeviceDesc::compute_queue_family (async compute); use record_visibility()");
     }
-    library::FrameSlot& slot = impl.current_slot("record_visibility_async");
-    library::SunView& resolved = impl.view_at("record_visibility_async", view);
-    check_visibility_call(slot, resolved.slots.at(impl.frame), compute_cmd, screen);
-    check_visibility_target(target, screen, impl.visibility_slot_count());
-    if (resolved.visibility) impl.retired.retire(std::move(resolved.visibility), impl.frame);
-    impl.record_resolve(compute_cmd, view, screen, {target.image, target.view, target.layers},
-                        passes::ResolveQueue::Compute);
+    impl.record_into_target("record_visibility_async", compute_cmd, screen, target, view,
+                            passes::ResolveQueue::Compute);
 }
 
 void ShadowSystem::Impl::record_resolve(VkCommandBuffer cmd, uint32_t view_index, const ScreenInputs& screen,

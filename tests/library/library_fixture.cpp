@@ -224,8 +224,17 @@ ShadowSystemDesc LibraryTest::system_desc(const Settings& settings, uint32_t fra
 }
 
 void LibraryTest::submit(const std::function<void(VkCommandBuffer)>& record) const {
+    const VkCommandBuffer cmd =
+        submit_on(device_.queue, pool_, VK_NULL_HANDLE, VK_PIPELINE_STAGE_2_NONE, VK_NULL_HANDLE, record);
+    TEST_VK(vkQueueWaitIdle(device_.queue));
+    vkFreeCommandBuffers(device_.device, pool_, 1, &cmd);
+}
+
+VkCommandBuffer LibraryTest::submit_on(VkQueue queue, VkCommandPool pool, VkSemaphore wait,
+                                       VkPipelineStageFlags2 wait_stage, VkSemaphore signal,
+                                       const std::function<void(VkCommandBuffer)>& record) const {
     VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocate_info.commandPool = pool_;
+    allocate_info.commandPool = pool;
     allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     allocate_info.commandBufferCount = 1;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -237,17 +246,34 @@ void LibraryTest::submit(const std::function<void(VkCommandBuffer)>& record) con
     TEST_VK(vkEndCommandBuffer(cmd));
     VkCommandBufferSubmitInfo command{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     command.commandBuffer = cmd;
+    VkSemaphoreSubmitInfo wait_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    wait_info.semaphore = wait;
+    wait_info.stageMask = wait_stage;
+    VkSemaphoreSubmitInfo signal_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    signal_info.semaphore = signal;
+    signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     VkSubmitInfo2 submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit_info.waitSemaphoreInfoCount = wait ? 1u : 0u;
+    submit_info.pWaitSemaphoreInfos = &wait_info;
     submit_info.commandBufferInfoCount = 1;
     submit_info.pCommandBufferInfos = &command;
-    TEST_VK(vkQueueSubmit2(device_.queue, 1, &submit_info, VK_NULL_HANDLE));
-    TEST_VK(vkQueueWaitIdle(device_.queue));
-    vkFreeCommandBuffers(device_.device, pool_, 1, &cmd);
+    submit_info.signalSemaphoreInfoCount = signal ? 1u : 0u;
+    submit_info.pSignalSemaphoreInfos = &signal_info;
+    TEST_VK(vkQueueSubmit2(queue, 1, &submit_info, VK_NULL_HANDLE));
+    return cmd;
 }
 
-ViewDesc LibraryTest::top_down_view() {
-    return look_at_view({0.0f, kCameraHeight, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, glm::radians(60.0f), 0.1f,
-                        100.0f, kScreen, kScreen);
+ViewDesc LibraryTest::top_down_view() { return top_down_view_at(0.0f, 0.0f); }
+
+ViewDesc LibraryTest::top_down_view_at(float x, float z) {
+    return look_at_view({x, kCameraHeight, z}, {x, 0.0f, z}, {0.0f, 0.0f, -1.0f}, glm::radians(60.0f), 0.1f, 100.0f,
+                        kScreen, kScreen);
+}
+
+size_t differing_pixels(const VisibilityImage2D& a, const VisibilityImage2D& b) {
+    size_t differ = 0;
+    for (size_t i = 0; i < a.values.size(); ++i) differ += a.values[i] != b.values[i] ? 1 : 0;
+    return differ;
 }
 
 glm::vec3 LibraryTest::ground_point(uint32_t x, uint32_t y) {

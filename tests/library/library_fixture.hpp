@@ -100,6 +100,9 @@ struct VisibilityImage2D {
     float at(uint32_t x, uint32_t y) const { return values[size_t{y} * width + x]; }
 };
 
+// The pixels where two visibility images of the same view differ.
+size_t differing_pixels(const VisibilityImage2D& a, const VisibilityImage2D& b);
+
 struct FootprintCheck {
     size_t judged = 0;    // pixels away from the analytic shadow's edge
     size_t wrong = 0;     // judged pixels whose visibility is not exactly the analytic answer
@@ -126,9 +129,16 @@ protected:
 
     // Records with `record` into a new primary command buffer, submits it and waits.
     void submit(const std::function<void(VkCommandBuffer)>& record) const;
+    // Records with `record` into a new primary command buffer of `pool` and submits it on
+    // `queue`, waiting for `wait` (at `wait_stage`) and signalling `signal` (either may be
+    // VK_NULL_HANDLE); returns the buffer, for the caller to free once it has completed.
+    VkCommandBuffer submit_on(VkQueue queue, VkCommandPool pool, VkSemaphore wait, VkPipelineStageFlags2 wait_stage,
+                              VkSemaphore signal, const std::function<void(VkCommandBuffer)>& record) const;
 
     // The camera straight down on the ground from kCameraHeight (row 0 towards -Z).
     static ViewDesc top_down_view();
+    // The same camera moved sideways, over the ground point (x, 0, z).
+    static ViewDesc top_down_view_at(float x, float z);
     // The ground point a pixel of top_down_view() sees.
     static glm::vec3 ground_point(uint32_t x, uint32_t y);
 

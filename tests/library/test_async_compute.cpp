@@ -5,7 +5,6 @@
 // the validation layer's synchronization checks clean. Needs a device with a compute-only
 // queue family (a discrete GPU; lavapipe has one family, so there it is skipped); the
 // errors of a bad compute family and of the call without one are checked everywhere.
-#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,38 +61,10 @@ protected:
         LibraryTest::TearDown();
     }
 
-    // Records with `record` into a new command buffer of `pool` and submits it on `queue`,
-    // waiting for `wait` (at `wait_stage`) and signalling `signal` (either may be null).
+    // LibraryTest::submit_on(), the buffer freed by wait_and_free().
     void submit_on(VkQueue queue, VkCommandPool pool, VkSemaphore wait, VkPipelineStageFlags2 wait_stage,
                    VkSemaphore signal, const std::function<void(VkCommandBuffer)>& record) {
-        VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        allocate_info.commandPool = pool;
-        allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        allocate_info.commandBufferCount = 1;
-        VkCommandBuffer cmd = VK_NULL_HANDLE;
-        TEST_VK(vkAllocateCommandBuffers(device_.device, &allocate_info, &cmd));
-        recorded_.push_back({pool, cmd});
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        TEST_VK(vkBeginCommandBuffer(cmd, &begin));
-        record(cmd);
-        TEST_VK(vkEndCommandBuffer(cmd));
-        VkCommandBufferSubmitInfo command{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-        command.commandBuffer = cmd;
-        VkSemaphoreSubmitInfo wait_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-        wait_info.semaphore = wait;
-        wait_info.stageMask = wait_stage;
-        VkSemaphoreSubmitInfo signal_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-        signal_info.semaphore = signal;
-        signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        VkSubmitInfo2 submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-        submit_info.waitSemaphoreInfoCount = wait ? 1u : 0u;
-        submit_info.pWaitSemaphoreInfos = &wait_info;
-        submit_info.commandBufferInfoCount = 1;
-        submit_info.pCommandBufferInfos = &command;
-        submit_info.signalSemaphoreInfoCount = signal ? 1u : 0u;
-        submit_info.pSignalSemaphoreInfos = &signal_info;
-        TEST_VK(vkQueueSubmit2(queue, 1, &submit_info, VK_NULL_HANDLE));
+        recorded_.push_back({pool, LibraryTest::submit_on(queue, pool, wait, wait_stage, signal, record)});
     }
 
     void wait_and_free() {
@@ -182,16 +153,12 @@ TEST_F(AsyncComputeTest, TheResolveOnAComputeQueueEqualsTheGraphicsQueues) {
             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
             VK_IMAGE_ASPECT_COLOR_BIT, 1);
         for (int f = 0; f < 3; ++f) {
-            ViewDesc view = top_down_view();
-            const glm::vec3 sideways(-0.4f * static_cast<float>(f), 0.0f, 0.0f);
-            view.view = to_mat4(to_glm(view.view) * glm::translate(glm::mat4(1.0f), sideways));
+            ViewDesc view = top_down_view_at(0.4f * static_cast<float>(f), 0.0f);
             view.sampling_frame = 0;
             const VisibilityImage2D expected = render_visibility_from(graphics_only, view);
             const VisibilityImage2D actual = render_async(async, view, target);
-            size_t differ = 0;
-            for (size_t i = 0; i < expected.values.size(); ++i) differ += expected.values[i] != actual.values[i];
-            EXPECT_EQ(differ, 0u) << (technique == ShadowTechnique::Virtual ? "virtual" : "cascades") << ", frame "
-                                  << f;
+            EXPECT_EQ(differing_pixels(expected, actual), 0u)
+                << (technique == ShadowTechnique::Virtual ? "virtual" : "cascades") << ", frame " << f;
             if (f == 0) expect_box_shadow_of_the_sun(actual);  // the top-down view itself
         }
     }

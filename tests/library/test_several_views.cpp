@@ -14,20 +14,7 @@
 namespace penumbra::library_tests {
 namespace {
 
-ViewDesc top_down_at(float x, float z) {
-    ViewDesc view =
-        look_at_view({x, 10.0f, z}, {x, 0.0f, z}, {0.0f, 0.0f, -1.0f}, glm::radians(60.0f), 0.1f, 100.0f, 160, 160);
-    view.sampling_frame = 0;
-    return view;
-}
-
 glm::mat4 view_projection_of(const ViewDesc& view) { return to_glm(reverse_z_projection(view)) * to_glm(view.view); }
-
-size_t differing_pixels(const VisibilityImage2D& a, const VisibilityImage2D& b) {
-    size_t differ = 0;
-    for (size_t i = 0; i < a.values.size(); ++i) differ += a.values[i] != b.values[i] ? 1 : 0;
-    return differ;
-}
 
 size_t shadowed_pixels(const VisibilityImage2D& image) {
     return static_cast<size_t>(
@@ -36,6 +23,13 @@ size_t shadowed_pixels(const VisibilityImage2D& image) {
 
 class SeveralViewsTest : public LibraryTest, public ::testing::WithParamInterface<ShadowTechnique> {
 protected:
+    // The top-down camera over (x, 0, z), with a still sampling pattern.
+    static ViewDesc top_down_at(float x, float z) {
+        ViewDesc view = top_down_view_at(x, z);
+        view.sampling_frame = 0;
+        return view;
+    }
+
     Settings technique_settings() const {
         Settings settings = test_settings();
         settings.shadow.technique = GetParam();

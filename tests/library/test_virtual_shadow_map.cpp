@@ -16,17 +16,6 @@
 namespace penumbra::library_tests {
 namespace {
 
-ViewDesc top_down_at(float x, float z) {
-    return look_at_view({x, 10.0f, z}, {x, 0.0f, z}, {0.0f, 0.0f, -1.0f}, glm::radians(60.0f), 0.1f, 100.0f, 160, 160);
-}
-
-// The pixels where two visibility images of the same view differ.
-size_t differing_pixels(const VisibilityImage2D& a, const VisibilityImage2D& b) {
-    size_t differ = 0;
-    for (size_t i = 0; i < a.values.size(); ++i) differ += a.values[i] != b.values[i] ? 1 : 0;
-    return differ;
-}
-
 void add_sun(ShadowSystem& shadows) {
     const LightDesc sun{LightType::Directional, {kSunDirection.x, kSunDirection.y, kSunDirection.z}};
     shadows.set_lights({&sun, 1});
@@ -143,7 +132,7 @@ TEST_F(VirtualShadowMapTest, CachedPagesEqualPagesDrawnEveryFrame) {
                 scenes[s].statics.push_back(shadows.add_instance({scenes[s].box_id, translation({4.0f, 1.0f, -3.5f})}));
             if (f == 9) shadows.remove_instance(scenes[s].statics[2]);
         }
-        const ViewDesc view = top_down_at(0.31f * t, -0.17f * t);
+        const ViewDesc view = top_down_view_at(0.31f * t, -0.17f * t);
         const VisibilityImage2D expected = render_visibility_from(uncached, view);
         const VisibilityImage2D actual = render_visibility_from(cached, view);
         ASSERT_EQ(expected.values.size(), actual.values.size());
@@ -151,7 +140,7 @@ TEST_F(VirtualShadowMapTest, CachedPagesEqualPagesDrawnEveryFrame) {
     }
     // After the frames in flight, the GPU's counts: the cache drew a fraction of the pages.
     for (int f = 0; f < 4; ++f) {
-        const ViewDesc view = top_down_at(3.72f, -2.04f);
+        const ViewDesc view = top_down_view_at(3.72f, -2.04f);
         for (ShadowSystem* system : systems) {
             const FrameInfo& info = system->prepare(view);
             ASSERT_TRUE(info.virtual_map.has_value());
@@ -331,7 +320,7 @@ TEST_F(VirtualShadowMapTest, ClustersCastTheShadowsOfWholeMeshesFromFewerTriangl
     }
     uint64_t triangles[3] = {};
     for (int f = 0; f < 4; ++f) {
-        const ViewDesc view = top_down_at(0.9f * static_cast<float>(f), -0.6f * static_cast<float>(f));
+        const ViewDesc view = top_down_view_at(0.9f * static_cast<float>(f), -0.6f * static_cast<float>(f));
         VisibilityImage2D images[3];
         for (int s = 0; s < 3; ++s) {
             images[s] = render_visibility_from(systems[s], view);

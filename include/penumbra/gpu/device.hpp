@@ -7,9 +7,11 @@
 // VulkanFunctions of this device; see gpu/dispatch.hpp).
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "penumbra/gpu/dispatch.hpp"
 #include "penumbra/memory.hpp"
@@ -77,6 +79,8 @@ public:
     VkQueue compute_queue() const { return handles_.compute_queue; }
     // Whether images and buffers are shared by the two families (a compute family is set).
     bool shares_with_compute() const { return handles_.compute_queue_family != VK_QUEUE_FAMILY_IGNORED; }
+    // The two families they are then shared by (VkBufferCreateInfo::pQueueFamilyIndices).
+    const std::array<uint32_t, 2>& sharing_families() const { return sharing_families_; }
     const DeviceInfo& info() const { return info_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     bool depth_clamp_supported() const { return features_.depth_clamp; }
@@ -114,6 +118,7 @@ protected:
 
 private:
     DeviceHandles handles_;
+    std::array<uint32_t, 2> sharing_families_{};  // queue_family, compute_queue_family
     EnabledFeatures features_;
     DeviceInfo info_;
     VkPhysicalDeviceProperties properties_{};
@@ -125,6 +130,9 @@ private:
     // (a Device, like a ShadowSystem, is used from one thread at a time).
     mutable std::string object_purpose_ = "penumbra";
 };
+
+// The queue families of a physical device, in index order.
+std::vector<VkQueueFamilyProperties> queue_families(const VulkanFunctions& vk, VkPhysicalDevice device);
 
 // Describes a physical device (name, type, driver, API version, usability).
 DeviceInfo describe_physical_device(const VulkanFunctions& vk, VkPhysicalDevice device, uint32_t index);
