@@ -16,6 +16,10 @@
 //     family (record_visibility_async(): the depth and the target change queue families
 //     with release/acquire barriers, the queues are ordered by semaphores), and on the
 //     graphics queue otherwise (lavapipe has one family).
+//   - Two frames in flight, each with its own application images, command buffers,
+//     semaphores and fence, and (ShadowSystemDesc::maps_per_frame_in_flight) its own set of
+//     Penumbra's maps: frame F + 1's shadow passes on the graphics queue do not wait for
+//     frame F's resolve on the compute queue, which still samples frame F's maps.
 //   - With --validate the instance has VK_EXT_debug_utils: Penumbra names its objects and
 //     labels its passes, as RenderDoc or Nsight would show them.
 //
@@ -47,6 +51,7 @@ constexpr uint32_t kWidth = 640;
 constexpr uint32_t kHeight = 360;
 constexpr int kFrames = 4;
 constexpr int kFilterChangeFrame = 2;
+constexpr uint32_t kFramesInFlight = 2;
 // The sub-pixel jitter of each frame (pixels); the last frame, the one written, at the centre.
 constexpr std::array<std::array<float, 2>, kFrames> kJitter{
     {{0.25f, -0.25f}, {-0.25f, 0.25f}, {0.375f, 0.125f}, {0.0f, 0.0f}}};
@@ -176,38 +181,58 @@ void transfer(VkCommandBuffer cmd, Half half, VkImage image, VkImageAspectFlags 
     vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-// Records into a new command buffer of `pool` and submits it on `queue`, waiting for `wait`
-// (at `wait_stage`) and signalling `signal` (either VK_NULL_HANDLE). The buffer is freed
-// once the device is idle (the frame loop waits for it).
-class Submissions {
+// The submissions of the frames in flight: each frame slot has two semaphores (graphics ->
+// compute -> graphics), a fence its last submission signals, and the command buffers it
+// recorded, freed when the slot is next begun (its fence has signalled by then).
+class FrameSubmissions {
 public:
-    explicit Submissions(const example::Device& device) : device_(device) {
-        for (VkSemaphore& semaphore : semaphores_) {
-            const VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-            EXAMPLE_CHECK(vkCreateSemaphore(device.device, &info, nullptr, &semaphore));
+    explicit FrameSubmissions(const example::Device& device) : device_(device) {
+        for (Slot& slot : slots_) {
+            for (VkSemaphore& semaphore : slot.semaphores) {
+                const VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+                EXAMPLE_CHECK(vkCreateSemaphore(device.device, &info, nullptr, &semaphore));
+            }
+            VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+            info.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+            EXAMPLE_CHECK(vkCreateFence(device.device, &info, nullptr, &slot.fence));
         }
     }
-    ~Submissions() {
+    ~FrameSubmissions() {
         wait_idle();
-        for (VkSemaphore semaphore : semaphores_) vkDestroySemaphore(device_.device, semaphore, nullptr);
+        for (Slot& slot : slots_) {
+            for (VkSemaphore semaphore : slot.semaphores) vkDestroySemaphore(device_.device, semaphore, nullptr);
+            vkDestroyFence(device_.device, slot.fence, nullptr);
+        }
     }
-    Submissions(const Submissions&) = delete;
-    Submissions& operator=(const Submissions&) = delete;
+    FrameSubmissions(const FrameSubmissions&) = delete;
+    FrameSubmissions& operator=(const FrameSubmissions&) = delete;
 
-    VkSemaphore semaphore(int index) const { return semaphores_[index]; }
+    // Waits for the frame that last used `slot` (kFramesInFlight frames ago) and frees its
+    // command buffers: what it used may be written again.
+    void begin(uint32_t slot) {
+        Slot& begun = slots_[slot];
+        EXAMPLE_CHECK(vkWaitForFences(device_.device, 1, &begun.fence, VK_TRUE, UINT64_MAX));
+        EXAMPLE_CHECK(vkResetFences(device_.device, 1, &begun.fence));
+        free_recorded(begun);
+    }
 
-    void submit(VkQueue queue, VkCommandPool pool, VkSemaphore wait, VkPipelineStageFlags2 wait_stage,
-                VkSemaphore signal, const std::function<void(VkCommandBuffer)>& record) {
+    VkSemaphore semaphore(uint32_t slot, int index) const { return slots_[slot].semaphores[index]; }
+
+    // Records into a new command buffer of `pool` and submits it on `queue`, waiting for
+    // `wait` (at `wait_stage`) and signalling `signal` (either VK_NULL_HANDLE); the frame's
+    // last submission signals the slot's fence (`last`).
+    void submit(uint32_t slot, VkQueue queue, VkCommandPool pool, VkSemaphore wait, VkPipelineStageFlags2 wait_stage,
+                VkSemaphore signal, bool last, const std::function<void(VkCommandBuffer)>& record) {
         VkCommandBufferAllocateInfo allocate{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
         allocate.commandPool = pool;
         allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         allocate.commandBufferCount = 1;
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         EXAMPLE_CHECK(vkAllocateCommandBuffers(device_.device, &allocate, &cmd));
-        recorded_.push_back({pool, cmd});
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        EXAMPLE_CHECK(vkBeginCommandBuffer(cmd, &begin));
+        slots_[slot].recorded.push_back({pool, cmd});
+        VkCommandBufferBeginInfo begin_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin_info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        EXAMPLE_CHECK(vkBeginCommandBuffer(cmd, &begin_info));
         record(cmd);
         EXAMPLE_CHECK(vkEndCommandBuffer(cmd));
         VkCommandBufferSubmitInfo command{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
@@ -225,19 +250,28 @@ public:
         info.pCommandBufferInfos = &command;
         info.signalSemaphoreInfoCount = signal ? 1 : 0;
         info.pSignalSemaphoreInfos = &signal_info;
-        EXAMPLE_CHECK(vkQueueSubmit2(queue, 1, &info, VK_NULL_HANDLE));
+        EXAMPLE_CHECK(vkQueueSubmit2(queue, 1, &info, last ? slots_[slot].fence : VK_NULL_HANDLE));
     }
 
     void wait_idle() {
         vkDeviceWaitIdle(device_.device);
-        for (const auto& [pool, cmd] : recorded_) vkFreeCommandBuffers(device_.device, pool, 1, &cmd);
-        recorded_.clear();
+        for (Slot& slot : slots_) free_recorded(slot);
     }
 
 private:
+    struct Slot {
+        std::array<VkSemaphore, 2> semaphores{};
+        VkFence fence = VK_NULL_HANDLE;
+        std::vector<std::pair<VkCommandPool, VkCommandBuffer>> recorded;
+    };
+
+    void free_recorded(Slot& slot) {
+        for (const auto& [pool, cmd] : slot.recorded) vkFreeCommandBuffers(device_.device, pool, 1, &cmd);
+        slot.recorded.clear();
+    }
+
     const example::Device& device_;
-    std::array<VkSemaphore, 2> semaphores_{};
-    std::vector<std::pair<VkCommandPool, VkCommandBuffer>> recorded_;
+    std::array<Slot, kFramesInFlight> slots_{};
 };
 
 // The application's visibility image for view 1 (VisibilityTarget): RGBA8, one layer, a
@@ -266,6 +300,27 @@ struct VisibilityTargetImage {
     }
 };
 
+// The application's images and readbacks of one frame in flight.
+struct FrameImages {
+    example::Image color0;  // view 0's forward-shaded visibility
+    example::Image depth0;
+    example::Image depth1;  // view 1's depth, resolved by Penumbra
+    VisibilityTargetImage target1;
+    example::Buffer readback0;
+    example::Buffer readback1;
+
+    explicit FrameImages(const example::Device& device)
+        : color0(device, VK_FORMAT_R16_UNORM, kWidth, kHeight,
+                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT),
+          depth0(device, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                 VK_IMAGE_ASPECT_DEPTH_BIT),
+          depth1(device, VK_FORMAT_D32_SFLOAT, kWidth, kHeight,
+                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT),
+          target1(device),
+          readback0(device, size_t{kWidth} * kHeight * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT),
+          readback1(device, size_t{kWidth} * kHeight * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT) {}
+};
+
 class EngineFrames {
 public:
     explicit EngineFrames(const example::Device& device)
@@ -273,15 +328,7 @@ public:
           scene_(device),
           shadows_(system_desc(device)),
           depth_pipeline_(device),
-          color0_(device, VK_FORMAT_R16_UNORM, kWidth, kHeight,
-                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT),
-          depth0_(device, VK_FORMAT_D32_SFLOAT, kWidth, kHeight, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                  VK_IMAGE_ASPECT_DEPTH_BIT),
-          depth1_(device, VK_FORMAT_D32_SFLOAT, kWidth, kHeight,
-                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT),
-          target1_(device),
-          readback0_(device, size_t{kWidth} * kHeight * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT),
-          readback1_(device, size_t{kWidth} * kHeight * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT),
+          images_{FrameImages(device), FrameImages(device)},
           submissions_(device) {
         // The application's own buffers, given once for both views.
         const penumbra::MeshId box = shadows_.add_mesh(scene_.box_mesh());
@@ -299,67 +346,76 @@ public:
                             : "the graphics queue (the device has no compute-only queue family)");
     }
 
+    // Frame `frame` in slot frame % kFramesInFlight, once the slot's previous frame is done;
+    // the frame before it may still run (its resolve on the compute queue sampling its own
+    // set of Penumbra's maps) while this one's shadow passes draw theirs.
     void run_frame(int frame) {
-        if (frame == kFilterChangeFrame) change_filter();
+        const uint32_t slot = static_cast<uint32_t>(frame) % kFramesInFlight;
+        submissions_.begin(slot);  // the frame kFramesInFlight earlier is complete
+        if (retired_pipeline_ && frame >= retired_at_ + static_cast<int>(kFramesInFlight)) retired_pipeline_.reset();
+        if (frame == kFilterChangeFrame) change_filter(frame);
+        FrameImages& images = images_[slot];
         const std::array<penumbra::ViewDesc, 2> views = frame_views(frame);
         const penumbra::FrameInfo& info = shadows_.prepare(views);
-        const penumbra::ScreenInputs screen = view1_screen(view_projection_of(views[1]));
+        const penumbra::ScreenInputs screen = view1_screen(images, view_projection_of(views[1]));
         const uint32_t graphics = device_.queue_family;
         const uint32_t compute = device_.compute_family;
-        submissions_.submit(device_.queue, device_.pool, VK_NULL_HANDLE, VK_PIPELINE_STAGE_2_NONE,
-                            async() ? submissions_.semaphore(0) : VK_NULL_HANDLE, [&](VkCommandBuffer cmd) {
-                                shadows_.record_shadow_maps(cmd);
-                                record_forward_view0(cmd, info.views[0].descriptor_set, view_projection_of(views[0]));
-                                record_depth_view1(cmd, view_projection_of(views[1]));
-                                if (async()) {
-                                    // The depth's writes go to the compute family, in the resolve's layout.
-                                    transfer(cmd, Half::Release, depth1_.image, VK_IMAGE_ASPECT_DEPTH_BIT,
-                                             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, graphics, compute,
-                                             VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-                                    return;
-                                }
-                                make_depth1_readable(cmd);
-                                shadows_.record_visibility(cmd, screen, target1_.target(), 1);
-                                record_copy_view1(cmd, /*acquired_for_copy=*/false);
-                            });
-        if (async()) {
-            submissions_.submit(
-                device_.compute_queue, device_.compute_pool, submissions_.semaphore(0),
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, submissions_.semaphore(1), [&](VkCommandBuffer cmd) {
-                    transfer(cmd, Half::Acquire, depth1_.image, VK_IMAGE_ASPECT_DEPTH_BIT,
+        submissions_.submit(
+            slot, device_.queue, device_.pool, VK_NULL_HANDLE, VK_PIPELINE_STAGE_2_NONE,
+            async() ? submissions_.semaphore(slot, 0) : VK_NULL_HANDLE, !async(), [&](VkCommandBuffer cmd) {
+                shadows_.record_shadow_maps(cmd);
+                record_forward_view0(cmd, images, info.views[0].descriptor_set, view_projection_of(views[0]));
+                record_depth_view1(cmd, images, view_projection_of(views[1]));
+                if (async()) {
+                    // The depth's writes go to the compute family, in the resolve's layout.
+                    transfer(cmd, Half::Release, images.depth1.image, VK_IMAGE_ASPECT_DEPTH_BIT,
                              VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                             graphics, compute, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-                    shadows_.record_visibility_async(cmd, screen, target1_.target(), 1);
-                    // The visibility goes back to the graphics family, for the copy there.
-                    transfer(cmd, Half::Release, target1_.image.image, VK_IMAGE_ASPECT_COLOR_BIT,
-                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, compute,
-                             graphics, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
-                });
-            submissions_.submit(device_.queue, device_.pool, submissions_.semaphore(1), VK_PIPELINE_STAGE_2_COPY_BIT,
-                                VK_NULL_HANDLE, [&](VkCommandBuffer cmd) {
-                                    transfer(cmd, Half::Acquire, target1_.image.image, VK_IMAGE_ASPECT_COLOR_BIT,
-                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, compute, graphics,
-                                             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-                                    record_copy_view1(cmd, /*acquired_for_copy=*/true);
-                                });
-        }
-        submissions_.wait_idle();
+                             graphics, compute, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+                    return;
+                }
+                make_depth1_readable(cmd, images);
+                shadows_.record_visibility(cmd, screen, images.target1.target(), 1);
+                record_copy_view1(cmd, images, /*acquired_for_copy=*/false);
+            });
+        if (!async()) return;
+        submissions_.submit(
+            slot, device_.compute_queue, device_.compute_pool, submissions_.semaphore(slot, 0),
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, submissions_.semaphore(slot, 1), false, [&](VkCommandBuffer cmd) {
+                transfer(cmd, Half::Acquire, images.depth1.image, VK_IMAGE_ASPECT_DEPTH_BIT,
+                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, graphics,
+                         compute, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                shadows_.record_visibility_async(cmd, screen, images.target1.target(), 1);
+                // The visibility goes back to the graphics family, for the copy there.
+                transfer(cmd, Half::Release, images.target1.image.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, compute,
+                         graphics, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
+            });
+        submissions_.submit(slot, device_.queue, device_.pool, submissions_.semaphore(slot, 1),
+                            VK_PIPELINE_STAGE_2_COPY_BIT, VK_NULL_HANDLE, true, [&](VkCommandBuffer cmd) {
+                                transfer(cmd, Half::Acquire, images.target1.image.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                         compute, graphics, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                         VK_ACCESS_2_TRANSFER_READ_BIT);
+                                record_copy_view1(cmd, images, /*acquired_for_copy=*/true);
+                            });
     }
 
-    // The last frame's sun visibility of each view, 16 bits (65535 lit).
-    std::vector<uint16_t> view0() const {
+    // Waits for every frame in flight (before the images are read).
+    void finish() { submissions_.wait_idle(); }
+
+    // Frame `frame`'s sun visibility of each view, 16 bits (65535 lit), after finish().
+    std::vector<uint16_t> view0(int frame) const {
         std::vector<uint16_t> pixels(size_t{kWidth} * kHeight);
-        std::memcpy(pixels.data(), readback0_.mapped, pixels.size() * sizeof(uint16_t));
+        std::memcpy(pixels.data(), images_[static_cast<uint32_t>(frame) % kFramesInFlight].readback0.mapped,
+                    pixels.size() * sizeof(uint16_t));
         return pixels;
     }
-    std::vector<uint16_t> view1() const {
+    std::vector<uint16_t> view1(int frame) const {
         // Slot 0 (the sun) is the red channel of the target's layer 0.
         std::vector<uint16_t> pixels(size_t{kWidth} * kHeight);
-        const auto* rgba = static_cast<const uint8_t*>(readback1_.mapped);
+        const auto* rgba =
+            static_cast<const uint8_t*>(images_[static_cast<uint32_t>(frame) % kFramesInFlight].readback1.mapped);
         for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<uint16_t>(rgba[4 * i] * 257u);
         return pixels;
     }
@@ -376,20 +432,26 @@ public:
 private:
     static penumbra::ShadowSystemDesc system_desc(const example::Device& device) {
         penumbra::ShadowSystemDesc desc;
-        desc.device = device.penumbra_desc();  // with the compute family, when there is one
-        desc.frames_in_flight = 2;             // each frame here waits, which satisfies any count
+        desc.device = device.penumbra_desc();     // with the compute family, when there is one
+        desc.frames_in_flight = kFramesInFlight;  // prepare() of frame F: frame F - 2 is complete
+        // Frame F draws its own maps while frame F - 1's resolve may still sample its set.
+        desc.maps_per_frame_in_flight = true;
         return desc;
     }
 
     bool async() const { return device_.compute_family != VK_QUEUE_FAMILY_IGNORED; }
 
     // PCF to PCSS between frames: the scene stays in the system; the application's own
-    // pipeline follows the new specialization constants.
-    void change_filter() {
+    // pipeline follows the new specialization constants (the old one is kept until the
+    // frames in flight that use it are done).
+    void change_filter(int frame) {
         penumbra::Settings settings = shadows_.settings();
         settings.shadow.filter.mode = penumbra::ShadowFilter::Pcss;
         const penumbra::SettingsChange change = shadows_.update_settings(settings);
-        if (change.shader_specialization_changed) forward_pipeline_ = std::make_unique<Pipeline>(device_, shadows_);
+        if (change.shader_specialization_changed) {
+            retired_pipeline_ = std::exchange(forward_pipeline_, std::make_unique<Pipeline>(device_, shadows_));
+            retired_at_ = frame;
+        }
         std::printf("penumbra_engine: filter pcf -> pcss (a %s change; the scene kept; the forward pipeline %s)\n",
                     change.effect == penumbra::SettingEffect::Live       ? "live"
                     : change.effect == penumbra::SettingEffect::Pipeline ? "pipeline"
@@ -407,34 +469,35 @@ private:
     }
 
     // View 0: forward shading with the HLSL pixel shader and the view's own descriptor set.
-    void record_forward_view0(VkCommandBuffer cmd, VkDescriptorSet set, const penumbra::Mat4& view_projection) {
-        example::begin_scene_pass(cmd, &color0_, depth0_, kWidth, kHeight, 1.0f, 0.0f);
+    void record_forward_view0(VkCommandBuffer cmd, FrameImages& images, VkDescriptorSet set,
+                              const penumbra::Mat4& view_projection) {
+        example::begin_scene_pass(cmd, &images.color0, images.depth0, kWidth, kHeight, 1.0f, 0.0f);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forward_pipeline_->pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, forward_pipeline_->layout, 0, 1, &set, 0,
                                 nullptr);
         draw_scene(cmd, forward_pipeline_->layout, view_projection);
         vkCmdEndRendering(cmd);
-        example::copy_to_buffer(cmd, color0_, kWidth, kHeight, readback0_);
+        example::copy_to_buffer(cmd, images.color0, kWidth, kHeight, images.readback0);
     }
 
     // View 1: depth only (reverse Z, cleared to 0), for the resolve.
-    void record_depth_view1(VkCommandBuffer cmd, const penumbra::Mat4& view_projection) {
-        example::begin_scene_pass(cmd, nullptr, depth1_, kWidth, kHeight, 0.0f, 0.0f);
+    void record_depth_view1(VkCommandBuffer cmd, FrameImages& images, const penumbra::Mat4& view_projection) {
+        example::begin_scene_pass(cmd, nullptr, images.depth1, kWidth, kHeight, 0.0f, 0.0f);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.pipeline);
         draw_scene(cmd, depth_pipeline_.layout, view_projection);
         vkCmdEndRendering(cmd);
     }
 
-    void make_depth1_readable(VkCommandBuffer cmd) {
-        example::barrier(cmd, depth1_.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+    static void make_depth1_readable(VkCommandBuffer cmd, FrameImages& images) {
+        example::barrier(cmd, images.depth1.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
 
-    penumbra::ScreenInputs view1_screen(const penumbra::Mat4& view_projection) const {
+    static penumbra::ScreenInputs view1_screen(const FrameImages& images, const penumbra::Mat4& view_projection) {
         penumbra::ScreenInputs screen;
-        screen.depth = depth1_.view;
+        screen.depth = images.depth1.view;
         screen.width = kWidth;
         screen.height = kHeight;
         screen.view_projection = view_projection;
@@ -445,8 +508,8 @@ private:
     // The target after the resolve (SHADER_READ_ONLY, writes visible to compute reads; or
     // already TRANSFER_SRC, acquired from the compute queue for the copy) into readback1_, and
     // back to SHADER_READ_ONLY for the next frame's resolve.
-    void record_copy_view1(VkCommandBuffer cmd, bool acquired_for_copy) {
-        const VkImage image = target1_.image.image;
+    static void record_copy_view1(VkCommandBuffer cmd, FrameImages& images, bool acquired_for_copy) {
+        const VkImage image = images.target1.image.image;
         if (!acquired_for_copy) {
             example::barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -456,7 +519,7 @@ private:
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {kWidth, kHeight, 1};
-        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback1_.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, images.readback1.buffer, 1, &region);
         example::barrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
@@ -467,14 +530,11 @@ private:
     example::SceneBuffers scene_;
     penumbra::ShadowSystem shadows_;
     std::unique_ptr<Pipeline> forward_pipeline_;
+    std::unique_ptr<Pipeline> retired_pipeline_;  // replaced at frame retired_at_, maybe still in use
+    int retired_at_ = 0;
     Pipeline depth_pipeline_;
-    example::Image color0_;
-    example::Image depth0_;
-    example::Image depth1_;
-    VisibilityTargetImage target1_;
-    example::Buffer readback0_;
-    example::Buffer readback1_;
-    Submissions submissions_;
+    std::array<FrameImages, kFramesInFlight> images_;
+    FrameSubmissions submissions_;
 };
 
 int run(const std::string& view0_path, const std::string& view1_path, bool validate) {
@@ -484,9 +544,10 @@ int run(const std::string& view0_path, const std::string& view1_path, bool valid
         const example::Device device(validate, /*async_compute=*/true);
         EngineFrames frames(device);
         for (int frame = 0; frame < kFrames; ++frame) frames.run_frame(frame);
+        frames.finish();
         frames.print_times(kFrames);
-        view0 = frames.view0();
-        view1 = frames.view1();
+        view0 = frames.view0(kFrames - 1);
+        view1 = frames.view1(kFrames - 1);
     }
     if (example::validation_message_count() > 0) {
         std::fprintf(stderr, "penumbra_engine: the validation layer reported %u message(s)\n",

@@ -436,6 +436,14 @@ struct ShadowSystemDesc {
     // Timestamp queries around every pass, for gpu_times(). False records none: gpu_times()
     // is always nullopt, and prepare() cannot tell a frame still in flight (see prepare()).
     bool timestamps = true;
+    // One set of shadow maps per frame in flight instead of one: each view's cascades (or
+    // virtual shadow map) and the spot/point lights' maps, each set with its own cache. Frame
+    // F draws set F % frames_in_flight, which no frame still in flight samples, so frame F's
+    // shadow passes do not depend on frame F - 1's sampling: they may be submitted before it,
+    // or on another queue with no semaphore from it (see docs/library.md "Maps per frame in
+    // flight"). Costs frames_in_flight times the maps' memory; a set's cache serves it every
+    // frames_in_flight frames (static changes are drawn into each set in turn).
+    bool maps_per_frame_in_flight = false;
 };
 
 // The constants of penumbra/shadow.glsl's specialization, for the caller's pipelines.

@@ -354,9 +354,15 @@ void Geometry::note_static_change(const Instance& instance) {
     if (static_caster) static_changes_.push_back(instance.world_bounds);
 }
 
-void Geometry::forget_static_changes(size_t count) {
-    static_changes_.erase(static_changes_.begin(), static_changes_.begin() + static_cast<std::ptrdiff_t>(std::min(
-                                                                                 count, static_changes_.size())));
+std::span<const core::Aabb> Geometry::static_changes_since(uint64_t position) const {
+    const uint64_t first = std::clamp(position, forgotten_static_changes_, static_change_end());
+    return std::span<const core::Aabb>(static_changes_).subspan(first - forgotten_static_changes_);
+}
+
+void Geometry::forget_static_changes_before(uint64_t position) {
+    const uint64_t count = std::min(position, static_change_end()) - std::min(position, forgotten_static_changes_);
+    static_changes_.erase(static_changes_.begin(), static_changes_.begin() + static_cast<std::ptrdiff_t>(count));
+    forgotten_static_changes_ += count;
 }
 
 void Geometry::set_instance_transform(InstanceId id, const Mat4& world) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -42,11 +43,13 @@ public:
     // frame would otherwise change the depth mapping, and with it every cached texel.
     const core::Aabb& depth_range_bounds() const { return static_bounds_.empty() ? world_bounds_ : static_bounds_; }
     // World bounds, old and new, of every static caster (casting, not kInstanceDynamic)
-    // added, moved, changed or removed since they were last forgotten: the texels of the
-    // cached cascades they cover are stale.
-    const std::vector<core::Aabb>& static_changes() const { return static_changes_; }
-    // Forgets the first `count` (those a recorded frame has redrawn).
-    void forget_static_changes(size_t count);
+    // added, moved, changed or removed, as a log: a cached map that has drawn the changes
+    // up to position P finds the texels it holds stale in static_changes_since(P).
+    // static_change_end() is the position after the newest change.
+    uint64_t static_change_end() const { return forgotten_static_changes_ + static_changes_.size(); }
+    std::span<const core::Aabb> static_changes_since(uint64_t position) const;
+    // Forgets the changes before `position` (every cached map has drawn them).
+    void forget_static_changes_before(uint64_t position);
     uint64_t triangles(uint32_t draw) const { return scene_.meshes[scene_.draws[draw].mesh].index_count / 3; }
 
     // Records the copies of meshes uploaded since the last call and makes them visible to
@@ -105,7 +108,8 @@ private:
     core::Aabb world_bounds_;
     core::Aabb static_bounds_;
     std::vector<core::Aabb> static_changes_;
-    uint64_t changes_ = 0;  // mutations so far (CasterScene::version)
+    uint64_t forgotten_static_changes_ = 0;  // the log position of static_changes_[0]
+    uint64_t changes_ = 0;                   // mutations so far (CasterScene::version)
 };
 
 }  // namespace penumbra::library

@@ -252,6 +252,8 @@ struct ShadowSystem::Impl {
     gpu::Device device;
     Settings settings;
     uint32_t frames_in_flight;
+    // Sets of maps: one, or one per frame in flight (ShadowSystemDesc::maps_per_frame_in_flight).
+    uint32_t map_set_count;
     bool timestamps;  // ShadowSystemDesc::timestamps
     // The async compute family's timestamps tick as the graphics family's: the resolve on it
     // is timed too.
@@ -260,8 +262,14 @@ struct ShadowSystem::Impl {
     library::FrameSetLayouts layouts;
     gpu::UniqueDescriptorSetLayout alpha_mask_layout;
     // The local lights' maps the settings size (SettingEffect::Resource replaces them, and
-    // each view's sun maps, the scene stays).
-    std::unique_ptr<library::LocalMaps> local;
+    // each view's sun maps, the scene stays), with what they hold between frames: one set,
+    // or one per frame in flight as the views' sun maps (library::SunMaps).
+    struct LocalMapSet {
+        std::unique_ptr<library::LocalMaps> maps;
+        library::LocalShadowCache cache;
+        uint64_t static_changes_seen = 0;  // as SunMaps::static_changes_seen
+    };
+    std::vector<LocalMapSet> local_sets;
     std::optional<Settings> pending_settings;  // update_settings(): applied by the next prepare()
     passes::VisibilityResolvePass resolve;
     library::FrameSlots slots;
@@ -273,10 +281,9 @@ struct ShadowSystem::Impl {
     std::vector<core::Light> lights;
     uint64_t frame = 0;  // prepare() calls so far; the current frame's number
     FrameInfo info;
-    size_t planned_static_changes = 0;  // Geometry::static_changes() the views' plans covered
+    uint64_t planned_static_changes = 0;  // Geometry::static_change_end() when the frame was planned
     LocalShadowPlan plan;
     std::vector<passes::LocalShadowLayer> local_layers;
-    library::LocalShadowCache local_cache;
     // The layered strategy: which layers each shadowed light had in the recent frames (one
     // entry per frame in flight and one more), to attribute the GPU's counts of a frame.
     struct LocalLayerRange {
@@ -333,6 +340,7 @@ struct ShadowSystem::Impl {
         : device(make_device(desc.device)),
           settings(checked_settings(desc.settings)),
           frames_in_flight(checked_frames_in_flight(desc.frames_in_flight)),
+          map_set_count(desc.maps_per_frame_in_flight ? frames_in_flight : 1),
           timestamps(desc.timestamps),
           compute_timestamps(compute_timestamps_match(device)),
           retired(frames_in_flight),
@@ -340,7 +348,7 @@ struct ShadowSystem::Impl {
           layouts(gpu::named(device, "set layouts", [&] { return library::create_frame_set_layouts(device); })),
           alpha_mask_layout(
               gpu::named(device, "alpha masks", [&] { return passes::create_alpha_mask_set_layout(device); })),
-          local(make_local()),
+          local_sets(make_local_sets()),
           resolve(gpu::named(
               device, "visibility resolve",
               [&] { return passes::VisibilityResolvePass(device, layouts.sampling, settings.shadow.filter); })),
@@ -359,11 +367,15 @@ struct ShadowSystem::Impl {
                                                           cascade_map_settings(settings.shadow), frames_in_flight);
         });
     }
-    std::unique_ptr<library::LocalMaps> make_local() {
-        return gpu::named(device, "local light maps", [&] {
-            return std::make_unique<library::LocalMaps>(device, layouts.caster, alpha_mask_layout, settings.shadow,
-                                                        retired, frames_in_flight);
-        });
+    std::vector<LocalMapSet> make_local_sets() {
+        std::vector<LocalMapSet> sets(map_set_count);
+        for (LocalMapSet& set : sets) {
+            set.maps = gpu::named(device, "local light maps", [&] {
+                return std::make_unique<library::LocalMaps>(device, layouts.caster, alpha_mask_layout, settings.shadow,
+                                                            retired, frames_in_flight);
+            });
+        }
+        return sets;
     }
     std::unique_ptr<library::VirtualShadowMap> make_virtual_map(size_t index) {
         if (!is_virtual(settings)) return nullptr;
@@ -372,13 +384,15 @@ struct ShadowSystem::Impl {
                                                                settings.shadow, frames_in_flight);
         });
     }
-    // A view's sun maps for the current settings, with pipelines for every vertex format the
-    // scene has.
+    // A view's sun maps for the current settings (they hold nothing yet: every caster is
+    // drawn again, and the static changes so far are in that).
     void make_sun_maps(library::SunView& view, size_t index) {
-        view.cascades = make_cascades(index);
-        view.virtual_map = make_virtual_map(index);
-        view.cascade_placeholder_drawn = false;
-        view.cascade_cache.invalidate();
+        view.map_sets = std::vector<library::SunMaps>(map_set_count);
+        for (library::SunMaps& maps : view.map_sets) {
+            maps.cascades = make_cascades(index);
+            maps.virtual_map = make_virtual_map(index);
+            maps.static_changes_seen = geometry.static_change_end();
+        }
     }
     std::unique_ptr<library::SunView> make_view(size_t index) {
         auto view = std::make_unique<library::SunView>(gpu::named(device, "view slots" + view_suffix(index), [&] {
@@ -404,13 +418,15 @@ struct ShadowSystem::Impl {
 
     // The caster pipelines of the maps for one vertex format combination of the scene.
     void prepare_sun_pipelines(library::SunView& view, const passes::VertexFormats& formats) {
-        view.cascades->prepare_pipelines(formats);
-        if (view.virtual_map) view.virtual_map->prepare_pipelines(formats);
+        for (library::SunMaps& maps : view.map_sets) {
+            maps.cascades->prepare_pipelines(formats);
+            if (maps.virtual_map) maps.virtual_map->prepare_pipelines(formats);
+        }
     }
     void prepare_pipelines(const passes::VertexFormats& formats) {
         const gpu::ObjectNames names(device, "caster pipelines");
         for (const std::unique_ptr<library::SunView>& view : views) prepare_sun_pipelines(*view, formats);
-        local->prepare_pipelines(formats);
+        for (LocalMapSet& set : local_sets) set.maps->prepare_pipelines(formats);
     }
 
     // Settings that update_settings() took, from the start of a frame (before anything of it
@@ -432,22 +448,23 @@ struct ShadowSystem::Impl {
     void replace_maps() {
         for (size_t index = 0; index < views.size(); ++index) {
             library::SunView& view = *views[index];
-            retired.retire(std::move(view.cascades), frame);
-            retired.retire(std::move(view.virtual_map), frame);
-            make_sun_maps(view, index);  // they hold nothing yet: every caster is drawn again
+            retired.retire(std::move(view.map_sets), frame);
+            make_sun_maps(view, index);
         }
-        retired.retire(std::exchange(local, make_local()), frame);
-        local_cache.invalidate();
+        retired.retire(std::exchange(local_sets, make_local_sets()), frame);
+        for (LocalMapSet& set : local_sets) set.static_changes_seen = geometry.static_change_end();
         geometry.for_each_vertex_format([this](const passes::VertexFormats& formats) { prepare_pipelines(formats); });
     }
 
     // A setting that changes the depths the caches hold.
     void invalidate_caches() {
         for (const std::unique_ptr<library::SunView>& view : views) {
-            view->cascade_cache.invalidate();
-            if (view->virtual_map) view->virtual_map->invalidate();
+            for (library::SunMaps& maps : view->map_sets) {
+                maps.cascade_cache.invalidate();
+                if (maps.virtual_map) maps.virtual_map->invalidate();
+            }
         }
-        local_cache.invalidate();
+        for (LocalMapSet& set : local_sets) set.cache.invalidate();
     }
 
     ~Impl() {
@@ -461,6 +478,18 @@ struct ShadowSystem::Impl {
             if (light.type == LightType::Directional) return &light;
         }
         return nullptr;
+    }
+
+    LocalMapSet& local_set() { return local_sets[frame % local_sets.size()]; }
+
+    // Forgets the static changes every map set has drawn.
+    void forget_drawn_static_changes() {
+        uint64_t drawn = planned_static_changes;
+        for (const LocalMapSet& set : local_sets) drawn = std::min(drawn, set.static_changes_seen);
+        for (const std::unique_ptr<library::SunView>& view : views) {
+            for (const library::SunMaps& maps : view->map_sets) drawn = std::min(drawn, maps.static_changes_seen);
+        }
+        geometry.forget_static_changes_before(drawn);
     }
 
     library::SunView& view_at(const char* call, uint32_t index) const {
@@ -508,12 +537,14 @@ struct ShadowSystem::Impl {
         inputs.sun_angular_diameter_degrees = sun_light ? sun_light->angular_diameter_degrees : 0.0f;
         inputs.casts = casts;
         inputs.scene = &scene;
-        inputs.static_changes = geometry.static_changes();
+        library::SunMaps& maps = view.maps(frame);
+        inputs.static_changes = geometry.static_changes_since(maps.static_changes_seen);
         inputs.depth_range_bounds = geometry.depth_range_bounds();
-        view.virtual_map->prepare(inputs, settings.shadow);
+        maps.virtual_map->prepare(inputs, settings.shadow);
         info.cpu_fit_ms += milliseconds_since(start);
         set_sun_frame_info(view, set, direction);
-        view.info.virtual_map = view.virtual_map->info(frame > frames_in_flight ? frame - frames_in_flight : 0);
+        // The last frame known complete drew this set too: its counts are this set's.
+        view.info.virtual_map = maps.virtual_map->info(frame > frames_in_flight ? frame - frames_in_flight : 0);
         shader::PenumbraShadowUniforms uniforms = library::build_shadow_uniforms(
             camera, set, sun_light, casts, settings.shadow, passes::caster_depth_bias(device, settings.shadow.bias),
             sampling_frame_of(desc));
@@ -539,15 +570,17 @@ struct ShadowSystem::Impl {
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         const bool casts = sun_light && sun_light->cast_shadows;
-        if (!casts) view.cascade_cache.invalidate();
+        library::SunMaps& maps = view.maps(frame);
+        if (!casts) maps.cascade_cache.invalidate();
         // The layered strategy culls on the GPU (record_shadow_maps): no lists here.
         const bool cpu_culls = casts && settings.shadow.strategy != ShadowStrategy::Layered;
         if (!cpu_culls && casts) {
             passes::check_gpu_culling_room(device, scene.draws.size(), static_cast<uint32_t>(set.cascades.size()));
         }
         view.cascade_draws =
-            cpu_culls ? view.cascade_cache.plan(set, scene, settings.shadow.cull_casters, view.cascades->cached(),
-                                                geometry.static_changes(), settings.shadow.cascades.resolution)
+            cpu_culls ? maps.cascade_cache.plan(set, scene, settings.shadow.cull_casters, maps.cascades->cached(),
+                                                geometry.static_changes_since(maps.static_changes_seen),
+                                                settings.shadow.cascades.resolution)
                       : std::vector<passes::CascadeDraws>(set.cascades.size());
         view.sun_casts = casts;
         view.planned_cascades = set;
@@ -605,7 +638,7 @@ struct ShadowSystem::Impl {
         const uint64_t complete = frame - frames_in_flight;
         for (const std::unique_ptr<library::SunView>& view : views) {
             // With the virtual shadow map the cascades' placeholder has no GPU culling.
-            const passes::GpuCasterCulling* culling = view->cascades->gpu_culling();
+            const passes::GpuCasterCulling* culling = view->maps(frame).cascades->gpu_culling();
             const auto counted = culling ? culling->culled(complete) : std::nullopt;
             if (!counted) continue;
             for (size_t c = 0; c < view->info.cascades.size() && c < counted->size(); ++c) {
@@ -614,7 +647,7 @@ struct ShadowSystem::Impl {
             }
         }
         const LocalLayerHistory& then = local_history[complete % local_history.size()];
-        const auto counted = local->gpu_culling()->culled(complete);
+        const auto counted = local_set().maps->gpu_culling()->culled(complete);
         if (then.frame != complete || !counted) return;
         for (LocalShadowInfo& out : info.local_shadows) {
             for (const LocalLayerRange& range : then.ranges) {
@@ -639,10 +672,12 @@ struct ShadowSystem::Impl {
         if (settings.shadow.strategy == ShadowStrategy::Layered) {
             passes::check_gpu_culling_room(device, scene.draws.size(), plan.layer_count);
         }
-        local->fit(plan, frame);
+        LocalMapSet& local = local_set();
+        local.maps->fit(plan, frame);
         const std::vector<bool> kept =
             settings.shadow.cache_static_casters
-                ? local_cache.kept_layers(lights, plan, scene, geometry.static_changes(), local->generation())
+                ? local.cache.kept_layers(lights, plan, scene, geometry.static_changes_since(local.static_changes_seen),
+                                          local.maps->generation())
                 : std::vector<bool>{};
         local_layers = library::cull_local_casters(lights, plan, scene, settings.shadow.cull_casters, kept,
                                                    settings.shadow.strategy == ShadowStrategy::Layered);
@@ -696,21 +731,24 @@ struct ShadowSystem::Impl {
     void record_sun(VkCommandBuffer cmd, library::SunView& view, const passes::CasterScene& scene,
                     gpu::GpuTimer* timer) {
         const VkDescriptorSet caster_set = view.slots.at(frame).caster_set;
-        if (view.virtual_map) {
-            if (!view.cascade_placeholder_drawn) {
-                view.cascades->record(cmd, caster_set, scene, view.cascade_draws, cascade_map_settings(settings.shadow),
+        library::SunMaps& maps = view.maps(frame);
+        // The maps hold the static changes the frame was planned with once the commands run.
+        maps.static_changes_seen = planned_static_changes;
+        if (maps.virtual_map) {
+            if (!maps.cascade_placeholder_drawn) {
+                maps.cascades->record(cmd, caster_set, scene, view.cascade_draws, cascade_map_settings(settings.shadow),
                                       view.culling, false, frame, nullptr);
-                view.cascade_placeholder_drawn = true;
+                maps.cascade_placeholder_drawn = true;
             }
-            view.virtual_map->record_pages(cmd, caster_set, scene, frame, settings.shadow.bias, view.culling, timer);
+            maps.virtual_map->record_pages(cmd, caster_set, scene, frame, settings.shadow.bias, view.culling, timer);
             return;
         }
         slots.record_placeholder_layout(cmd);
-        view.cascades->record(cmd, caster_set, scene, view.cascade_draws, settings.shadow, view.culling, view.sun_casts,
+        maps.cascades->record(cmd, caster_set, scene, view.cascade_draws, settings.shadow, view.culling, view.sun_casts,
                               frame, timer);
         // The cache holds this frame's static casters once the commands run.
-        if (view.cascades->cached()) {
-            view.cascade_cache.commit(view.planned_cascades, view.cascade_draws, settings.shadow.cascades.resolution);
+        if (maps.cascades->cached()) {
+            maps.cascade_cache.commit(view.planned_cascades, view.cascade_draws, settings.shadow.cascades.resolution);
         }
     }
 
@@ -827,13 +865,13 @@ const FrameInfo& ShadowSystem::prepare(std::span<const ViewDesc> views) {
     const passes::CasterScene& scene = impl.geometry.build_scene();
     impl.info.cpu_fit_ms = milliseconds_since(start);
     impl.info.cpu_cull_ms = 0.0;
-    impl.planned_static_changes = impl.geometry.static_changes().size();
+    impl.planned_static_changes = impl.geometry.static_change_end();
     for (size_t v = 0; v < views.size(); ++v) {
         library::SunView& view = *impl.views[v];
         library::ViewSlot& view_slot = view.slots.at(impl.frame);
         view_slot.pages_marked = false;
         view_slot.visibility_recorded = false;
-        if (view.virtual_map) {
+        if (view.maps(impl.frame).virtual_map) {
             impl.prepare_virtual_sun(view, cameras[v].camera, views[v], scene);
         } else {
             impl.prepare_sun(view, cameras[v].camera, views[v], scene);
@@ -843,13 +881,15 @@ const FrameInfo& ShadowSystem::prepare(std::span<const ViewDesc> views) {
     impl.report_gpu_counts();
     for (const std::unique_ptr<library::SunView>& view : impl.views) {
         std::optional<library::SampledVirtual> virtual_bindings;
-        if (view->virtual_map) {
-            const library::VirtualShadowMap& map = *view->virtual_map;
+        const library::SunMaps& maps = view->maps(impl.frame);
+        if (maps.virtual_map) {
+            const library::VirtualShadowMap& map = *maps.virtual_map;
             virtual_bindings = library::SampledVirtual{map.clipmap_buffer(impl.frame), map.page_table(),
                                                        map.page_table_bytes(), map.pool().view};
         }
         const VkDescriptorSet set = view->slots.at(impl.frame).sampling_set;
-        impl.slots.write_sampling_set(set, view->cascades->sampled(), impl.local->sampled(), virtual_bindings);
+        impl.slots.write_sampling_set(set, maps.cascades->sampled(), impl.local_set().maps->sampled(),
+                                      virtual_bindings);
         view->info.descriptor_set = set;
     }
     impl.gather_view_info();
@@ -872,7 +912,8 @@ void ShadowSystem::record_page_marking(VkCommandBuffer cmd, const ScreenInputs& 
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_page_marking: cmd is VK_NULL_HANDLE");
     check_screen("record_page_marking", screen);
-    if (!marked.virtual_map) {  // the cascades have no pages to mark
+    library::VirtualShadowMap* virtual_map = marked.maps(impl.frame).virtual_map.get();
+    if (!virtual_map) {  // the cascades have no pages to mark
         view_slot.pages_marked = true;
         return;
     }
@@ -880,7 +921,7 @@ void ShadowSystem::record_page_marking(VkCommandBuffer cmd, const ScreenInputs& 
     if (timer && !slot.timer_started) timer->begin_frame(cmd);
     slot.timer_started = true;
     const ViewScopes scopes(timer, view);
-    marked.virtual_map->record_marking(cmd, impl.frame, screen, timer);
+    virtual_map->record_marking(cmd, impl.frame, screen, timer);
     view_slot.pages_marked = true;
 }
 
@@ -892,7 +933,7 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
     }
     if (cmd == VK_NULL_HANDLE) throw InputError("ShadowSystem::record_shadow_maps: cmd is VK_NULL_HANDLE");
     for (size_t v = 0; v < impl.views.size(); ++v) {
-        if (impl.views[v]->virtual_map && !impl.views[v]->slots.at(impl.frame).pages_marked) {
+        if (impl.views[v]->maps(impl.frame).virtual_map && !impl.views[v]->slots.at(impl.frame).pages_marked) {
             throw UsageError("ShadowSystem::record_shadow_maps: the virtual shadow map needs record_page_marking() " +
                              std::string(impl.views.size() > 1 ? "of view " + std::to_string(v) + " " : "") +
                              "earlier in this frame (the pages the frame's pixels sample)");
@@ -908,12 +949,12 @@ void ShadowSystem::record_shadow_maps(VkCommandBuffer cmd) {
         const ViewScopes scopes(timer, v);
         impl.record_sun(cmd, *impl.views[v], scene, timer);
     }
-    // Every view's plan covered these changes: they are drawn.
-    impl.geometry.forget_static_changes(impl.planned_static_changes);
-    impl.local->record(cmd, impl.views.front()->slots.at(impl.frame).caster_set, scene, impl.local_layers, impl.plan,
+    Impl::LocalMapSet& local = impl.local_set();
+    local.maps->record(cmd, impl.views.front()->slots.at(impl.frame).caster_set, scene, impl.local_layers, impl.plan,
                        impl.settings.shadow, impl.frame, timer);
-    if (impl.settings.shadow.cache_static_casters)
-        impl.local_cache.commit(impl.lights, impl.plan, impl.local->generation());
+    if (impl.settings.shadow.cache_static_casters) local.cache.commit(impl.lights, impl.plan, local.maps->generation());
+    local.static_changes_seen = impl.planned_static_changes;
+    impl.forget_drawn_static_changes();
     slot.shadow_maps_recorded = true;
 }
 
@@ -1014,9 +1055,11 @@ VkSpecializationInfo ShaderSpecialization::info() const {
 }
 
 ShadowMaps ShadowSystem::shadow_maps(uint32_t view) const {
-    const library::SunView& maps = impl_->view_at("shadow_maps", view);
+    // The set of the last prepare() (each frame's own with maps_per_frame_in_flight).
+    const Impl& impl = *impl_;
+    const library::SunMaps& maps = impl.view_at("shadow_maps", view).maps(impl.frame);
     const library::SampledMaps cascades = maps.cascades->sampled();
-    const library::SampledMaps local = impl_->local->sampled();
+    const library::SampledMaps local = impl.local_sets[impl.frame % impl.local_sets.size()].maps->sampled();
     MapImage virtual_pool;
     if (maps.virtual_map) {
         const gpu::Image& pool = maps.virtual_map->pool();
@@ -1047,23 +1090,27 @@ std::optional<GpuTimes> ShadowSystem::gpu_times(uint64_t frame) const {
 MemoryStats ShadowSystem::memory() const {
     const Impl& impl = *impl_;
     MemoryStats stats;
-    stats.local_maps = impl.local->memory_bytes();
-    stats.buffers = impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
-    stats.memory_blocks = static_cast<uint32_t>(impl.device.own_memory_blocks());
     const auto add_culling = [&stats](const passes::GpuCasterCulling* culling) {
         if (culling) stats.buffers += culling->buffer_bytes();
     };
+    for (const Impl::LocalMapSet& set : impl.local_sets) {
+        stats.local_maps += set.maps->memory_bytes();
+        add_culling(set.maps->gpu_culling());
+    }
+    stats.buffers += impl.slots.buffer_bytes() + impl.geometry.buffer_bytes();
+    stats.memory_blocks = static_cast<uint32_t>(impl.device.own_memory_blocks());
     for (const std::unique_ptr<library::SunView>& view : impl.views) {
-        stats.cascade_maps += view->cascades->memory_bytes();
         stats.visibility += view->visibility ? view->visibility->memory_size : 0u;
         stats.buffers += view->slots.buffer_bytes();
-        if (view->virtual_map) {
-            stats.virtual_pool += view->virtual_map->pool_bytes();
-            stats.buffers += view->virtual_map->buffer_bytes();
+        for (const library::SunMaps& maps : view->map_sets) {
+            stats.cascade_maps += maps.cascades->memory_bytes();
+            if (maps.virtual_map) {
+                stats.virtual_pool += maps.virtual_map->pool_bytes();
+                stats.buffers += maps.virtual_map->buffer_bytes();
+            }
+            add_culling(maps.cascades->gpu_culling());
         }
-        add_culling(view->cascades->gpu_culling());
     }
-    add_culling(impl.local->gpu_culling());
     return stats;
 }
 
