@@ -108,8 +108,13 @@ void write_command(CullInstance instance, uint level, uint pages, uint base) {
     atomicAdd(counts[statistics + 1u], pages * (instance.index_count / 3u));
 }
 
-// The workgroup's pass over one level: count the pages, take room for their draws (or
-// invalidate them when there is none), write the draws and the command.
+// How many of `pages` draws from `base` on the buffer holds.
+uint room_for(uint base, uint pages) {
+    return base >= cull.draw_capacity ? 0u : min(pages, cull.draw_capacity - base);
+}
+
+// The workgroup's pass over one level: count the pages, take room for their draws (and
+// invalidate the pages there is none for), write the draws and the command.
 void cull_level(Candidates c, uint instance_index, CullInstance instance) {
     const uint thread = gl_LocalInvocationIndex;
     for (uint i = thread; i < c.count; i += kGroupSize) {
@@ -121,21 +126,25 @@ void cull_level(Candidates c, uint instance_index, CullInstance instance) {
     if (thread == 0u) {
         const uint base = atomicAdd(counters.page_draws, pages);
         first_draw[c.level] = base;
-        if (base + pages > cull.draw_capacity) atomicAdd(counters.dropped_page_draws, pages);
+        if (base + pages > cull.draw_capacity) atomicAdd(counters.dropped_page_draws, pages - room_for(base, pages));
     }
     barrier();
+    // The pages that find room are drawn, the others are dropped one by one: they stay stale
+    // and are drawn again next frame, while every page this instance did reach still counts
+    // (a buffer that a group of pages overflows still makes progress every frame).
     const uint base = first_draw[c.level];
-    const bool fits = base + pages <= cull.draw_capacity;
+    const uint room = room_for(base, pages);
     for (uint i = thread; i < c.count; i += kGroupSize) {
         const uint entry = candidate(c, i);
         if (entry == PENUMBRA_PAGE_NO_OWNER) continue;
-        if (fits) {
-            page_draws[base + atomicAdd(written[c.level], 1u)] = VirtualPageDraw(instance_index, entry);
+        const uint place = atomicAdd(written[c.level], 1u);
+        if (place < room) {
+            page_draws[base + place] = VirtualPageDraw(instance_index, entry);
         } else {
             atomicAnd(page_table[entry], ~PENUMBRA_PAGE_VALID);
         }
     }
-    if (fits && thread == 0u) write_command(instance, c.level, pages, base);
+    if (room > 0u && thread == 0u) write_command(instance, c.level, room, base);
 }
 
 void main() {

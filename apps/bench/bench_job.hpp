@@ -115,6 +115,7 @@ struct VirtualReport {
     CountSummary pages_evicted;
     CountSummary page_draws;
     CountSummary page_draw_triangles;
+    CountSummary dropped_page_draws;  // beyond Settings::shadow.virtual_maps.page_draws
     uint64_t invalidated_all_frames = 0;
 };
 

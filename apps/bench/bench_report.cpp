@@ -172,6 +172,7 @@ Json virtual_map_json(const std::optional<VirtualReport>& report) {
                 {"pages_evicted", counts_json(report->pages_evicted)},
                 {"page_draws", counts_json(report->page_draws)},
                 {"page_draw_triangles", counts_json(report->page_draw_triangles)},
+                {"dropped_page_draws", counts_json(report->dropped_page_draws)},
                 {"invalidated_all_frames", report->invalidated_all_frames}};
 }
 

@@ -181,11 +181,15 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
         samples.virtual_map = v;
         samples.virtual_invalidated_all += v.invalidated_all ? 1 : 0;
         if (v.counted_frame > 0) {
-            const std::pair<const char*, uint64_t> counts[] = {
-                {"pages_requested", v.pages_requested}, {"pages_rendered", v.pages_rendered},
-                {"pages_cached", v.pages_cached},       {"pages_unserved", v.pages_unserved},
-                {"pages_resident", v.pages_resident},   {"pages_evicted", v.pages_evicted},
-                {"page_draws", v.page_draws},           {"page_draw_triangles", v.page_draw_triangles}};
+            const std::pair<const char*, uint64_t> counts[] = {{"pages_requested", v.pages_requested},
+                                                               {"pages_rendered", v.pages_rendered},
+                                                               {"pages_cached", v.pages_cached},
+                                                               {"pages_unserved", v.pages_unserved},
+                                                               {"pages_resident", v.pages_resident},
+                                                               {"pages_evicted", v.pages_evicted},
+                                                               {"page_draws", v.page_draws},
+                                                               {"page_draw_triangles", v.page_draw_triangles},
+                                                               {"dropped_page_draws", v.dropped_page_draws}};
             for (const auto& [name, value] : counts) samples.virtual_counts[name].push_back(value);
         }
     }
@@ -443,6 +447,7 @@ void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchRes
         report.pages_evicted = counts("pages_evicted");
         report.page_draws = counts("page_draws");
         report.page_draw_triangles = counts("page_draw_triangles");
+        report.dropped_page_draws = counts("dropped_page_draws");
         report.invalidated_all_frames = samples.virtual_invalidated_all;
         result.virtual_map = report;
     }

@@ -107,6 +107,10 @@ struct VirtualShadowSettings {
     // 2^lod_bias: negative is sharper and takes more pages.
     float lod_bias = 0.0f;
     uint32_t pool_mib = 256;  // the physical pages' memory, 16..1024 MiB (pool_mib * 16 pages)
+    // Caster draws into pages one frame holds (8 bytes each), 1..2^24: with the cache, a
+    // frame that needs more draws the rest in later frames (FrameInfo's dropped_page_draws;
+    // their pixels read a coarser level meanwhile).
+    uint32_t page_draws = 1u << 22;
 };
 
 struct ShadowSettings {
@@ -275,6 +279,12 @@ inline constexpr SettingDeclaration kSettingDeclarations[] = {
         {.name = "virtual_pool_mib",
          .minimum = 16,
          .maximum = 1024,
+         .effect = SettingEffect::Resource,
+         .applies_when = setting_conditions::virtual_maps}),
+    declare<&Settings::shadow, &ShadowSettings::virtual_maps, &VirtualShadowSettings::page_draws>(
+        {.name = "virtual_page_draws",
+         .minimum = 1,
+         .maximum = 1 << 24,
          .effect = SettingEffect::Resource,
          .applies_when = setting_conditions::virtual_maps}),
     // The sun's cascades (docs/techniques.md).

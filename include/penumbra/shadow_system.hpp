@@ -257,9 +257,11 @@ struct VirtualShadowInfo {
     uint32_t pages_unserved = 0;       // requested, but the pool was full: a coarser level served their pixels
     uint32_t pages_resident = 0;       // physical pages holding a page after that frame's allocation
     uint32_t pages_evicted = 0;        // unrequested pages given to others, least recently requested first
-    uint32_t page_draws = 0;           // caster instances drawn into pages
+    uint32_t page_draws = 0;           // caster instances into pages the frame asked for (drawn or dropped)
     uint64_t page_draw_triangles = 0;  // the triangles of those draws (each drawn once per page)
-    uint32_t dropped_page_draws = 0;   // beyond Penumbra's draw buffer: their pages were drawn again the next frame
+    // Page draws beyond Settings::shadow.virtual_maps.page_draws: their pages are drawn again
+    // in the next frames, and their pixels read a coarser level until then.
+    uint32_t dropped_page_draws = 0;
 };
 
 // One view's sun shadow in a frame (see ShadowSystem::prepare() with several views).

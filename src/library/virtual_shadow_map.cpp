@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/shadow_filters.hpp"
 #include "library/conversions.hpp"
 #include "passes/shader_interface.hpp"
+#include "penumbra/errors.hpp"
 
 namespace penumbra::library {
 namespace {
@@ -18,8 +20,23 @@ passes::VirtualPagesDesc pages_desc(const VirtualShadowSettings& settings, uint3
     desc.level_count = static_cast<uint32_t>(settings.levels);
     desc.pages_per_side = settings.resolution / kVirtualPageTexels;
     desc.pool_pages = settings.pool_mib * kPagesPerMib;
+    desc.max_page_draws = settings.page_draws;
     desc.frames_in_flight = frames_in_flight;
     return desc;
+}
+
+// The page draws' buffer must fit one storage buffer of the device.
+passes::VirtualPagesDesc checked_pages_desc(const gpu::Device& device, const VirtualShadowSettings& settings,
+                                            uint32_t frames_in_flight) {
+    const uint64_t bytes = uint64_t{settings.page_draws} * sizeof(shader::VirtualPageDraw);
+    const uint64_t range = device.properties().limits.maxStorageBufferRange;
+    if (bytes > range) {
+        throw DeviceError("Settings::shadow.virtual_maps.page_draws: " + std::to_string(settings.page_draws) +
+                          " page draws take " + std::to_string(bytes) +
+                          " bytes, more than one storage buffer of this device holds (maxStorageBufferRange " +
+                          std::to_string(range) + ")");
+    }
+    return pages_desc(settings, frames_in_flight);
 }
 
 bool same_depth_mapping(const VirtualClipmap& a, const VirtualClipmap& b) {
@@ -70,7 +87,7 @@ VirtualShadowMap::VirtualShadowMap(const gpu::Device& device, VkDescriptorSetLay
                                    uint32_t frames_in_flight)
     : device_(device),
       config_(virtual_clipmap_config(settings.virtual_maps)),
-      pages_(device, pages_desc(settings.virtual_maps, frames_in_flight)),
+      pages_(device, checked_pages_desc(device, settings.virtual_maps, frames_in_flight)),
       pass_(device, caster_frame_layout, alpha_mask_layout, pages_, frames_in_flight) {}
 
 std::vector<shader::VirtualInvalidation> VirtualShadowMap::invalidations(const VirtualFrameInputs& inputs) const {

@@ -190,6 +190,61 @@ TEST_F(VirtualShadowMapTest, APoolTooSmallServesACoarserLevelAndSaysSo) {
     record_frame_without_resolve(shadows, top_down_view());
 }
 
+// A page-draw buffer with room for 3/8 of a first frame's draws (less than the ground's
+// pages in its finest level, which the culling once kept or dropped whole, so that no page
+// ever completed): that frame drops draws and says so, and the next frames draw the dropped
+// pages again until nothing is dropped and the image is the one a buffer with room for every
+// draw gives. One frame in flight: FrameInfo counts the frame before.
+TEST_F(VirtualShadowMapTest, ADrawBufferTooSmallCatchesUpOverFrames) {
+    Settings settings = virtual_settings();
+    settings.shadow.virtual_maps.lod_bias = -1.0f;  // finer pages: more draws
+    settings.shadow.cache_static_casters = true;    // uncached, every frame draws (and drops) them all
+    ShadowSystem roomy(system_desc(settings, 1));
+    const MeshArrays box = box_mesh(), ground = ground_mesh();
+    add_scene(roomy, box, ground);
+    add_sun(roomy);
+    const VisibilityImage2D expected = render_visibility(roomy);
+    const FrameInfo& first = roomy.prepare(top_down_view());
+    ASSERT_TRUE(first.virtual_map.has_value());
+    const uint32_t needed = first.virtual_map->page_draws;
+    ASSERT_GT(needed, 20u) << "the first frame draws every page it needs";
+    EXPECT_EQ(first.virtual_map->dropped_page_draws, 0u);
+    record_frame_without_resolve(roomy, top_down_view());
+
+    const uint32_t room = needed * 3 / 8;
+    settings.shadow.virtual_maps.page_draws = room;
+    ShadowSystem tight(system_desc(settings, 1));
+    add_scene(tight, box, ground);
+    add_sun(tight);
+    VisibilityImage2D image = render_visibility(tight);
+    uint32_t dropped = 0;
+    int frames = 1;
+    for (; frames < 30; ++frames) {
+        const FrameInfo& info = tight.prepare(top_down_view());
+        ASSERT_TRUE(info.virtual_map.has_value());
+        if (frames == 1) {
+            EXPECT_GT(info.virtual_map->dropped_page_draws, 0u);
+            EXPECT_EQ(info.virtual_map->page_draws, needed) << "the draws asked for";
+            EXPECT_EQ(info.virtual_map->page_draws - info.virtual_map->dropped_page_draws, room) << "the buffer full";
+        }
+        dropped = info.virtual_map->dropped_page_draws;
+        submit([&](VkCommandBuffer cmd) {
+            const ScreenInputs screen =
+                record_ground_depth(cmd, top_down_view(), nullptr, NormalEncoding::SignedFloat, nullptr);
+            tight.record_page_marking(cmd, screen);
+            tight.record_shadow_maps(cmd);
+            tight.record_visibility(cmd, screen);
+        });
+        image = read_visibility(tight, 0);
+        if (dropped == 0) break;
+    }
+    EXPECT_EQ(dropped, 0u) << "still dropping after " << frames << " frames";
+    EXPECT_GT(frames, 1);
+    // The frame after the last one that dropped draws everything it needs.
+    image = render_visibility(tight);
+    EXPECT_EQ(differing_pixels(image, expected), 0u);
+}
+
 TEST_F(VirtualShadowMapTest, ReportsItsLevelsAndMemory) {
     Settings settings = virtual_settings();
     settings.shadow.virtual_maps.pool_mib = 32;

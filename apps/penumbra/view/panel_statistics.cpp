@@ -118,6 +118,10 @@ void virtual_map_section(const VirtualShadowInfo& map) {
     ImGui::Text("caster instances drawn into pages: %u (%llu triangles)%s", map.page_draws,
                 static_cast<unsigned long long>(map.page_draw_triangles),
                 map.invalidated_all ? " (every page stale this frame)" : "");
+    if (map.dropped_page_draws > 0) {
+        ImGui::Text("%u page draws dropped (over virtual_page_draws): drawn in the next frames",
+                    map.dropped_page_draws);
+    }
     if (map.counted_frame == 0) ImGui::TextDisabled("the GPU's counts arrive after the frames in flight");
     std::string sizes;
     for (size_t l = 0; l < map.texel_world_size.size(); ++l) {
