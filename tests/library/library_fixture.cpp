@@ -1,5 +1,6 @@
 #include "library_fixture.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -185,6 +186,17 @@ BoxesAndMover add_ground_and_box_mesh(ShadowSystem& shadows) {
     return scene;
 }
 
+BoxesAndMover add_box_row_and_mover(ShadowSystem& shadows) {
+    BoxesAndMover scene = add_ground_and_box_mesh(shadows);
+    for (int i = 0; i < 5; ++i) {
+        const glm::vec3 at(-4.0f + 3.0f * static_cast<float>(i), 1.0f + 0.5f * static_cast<float>(i % 2), -2.0f);
+        scene.statics.push_back(shadows.add_instance({scene.box_id, translation(at)}));
+    }
+    scene.mover =
+        shadows.add_instance({scene.box_id, translation({0.0f, 2.0f, 2.0f}), kInstanceCastsShadows | kInstanceDynamic});
+    return scene;
+}
+
 void LibraryTest::SetUp() {
     VulkanContextOptions options;
     options.validation = true;
@@ -230,9 +242,8 @@ void LibraryTest::submit(const std::function<void(VkCommandBuffer)>& record) con
     vkFreeCommandBuffers(device_.device, pool_, 1, &cmd);
 }
 
-VkCommandBuffer LibraryTest::submit_on(VkQueue queue, VkCommandPool pool, VkSemaphore wait,
-                                       VkPipelineStageFlags2 wait_stage, VkSemaphore signal,
-                                       const std::function<void(VkCommandBuffer)>& record) const {
+VkCommandBuffer LibraryTest::record_commands(VkCommandPool pool,
+                                             const std::function<void(VkCommandBuffer)>& record) const {
     VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     allocate_info.commandPool = pool;
     allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -244,6 +255,13 @@ VkCommandBuffer LibraryTest::submit_on(VkQueue queue, VkCommandPool pool, VkSema
     TEST_VK(vkBeginCommandBuffer(cmd, &begin));
     record(cmd);
     TEST_VK(vkEndCommandBuffer(cmd));
+    return cmd;
+}
+
+VkCommandBuffer LibraryTest::submit_on(VkQueue queue, VkCommandPool pool, VkSemaphore wait,
+                                       VkPipelineStageFlags2 wait_stage, VkSemaphore signal,
+                                       const std::function<void(VkCommandBuffer)>& record) const {
+    const VkCommandBuffer cmd = record_commands(pool, record);
     VkCommandBufferSubmitInfo command{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     command.commandBuffer = cmd;
     VkSemaphoreSubmitInfo wait_info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
@@ -275,6 +293,13 @@ size_t differing_pixels(const VisibilityImage2D& a, const VisibilityImage2D& b) 
     for (size_t i = 0; i < a.values.size(); ++i) differ += a.values[i] != b.values[i] ? 1 : 0;
     return differ;
 }
+
+size_t shadowed_pixels(const VisibilityImage2D& image) {
+    return static_cast<size_t>(
+        std::count_if(image.values.begin(), image.values.end(), [](float v) { return v < 0.5f; }));
+}
+
+glm::mat4 view_projection_of(const ViewDesc& view) { return to_glm(reverse_z_projection(view)) * to_glm(view.view); }
 
 glm::vec3 LibraryTest::ground_point(uint32_t x, uint32_t y) {
     // Right is +X and the top of the image is -Z (up vector -Z); 60 degrees each way.

@@ -102,6 +102,10 @@ struct VisibilityImage2D {
 
 // The pixels where two visibility images of the same view differ.
 size_t differing_pixels(const VisibilityImage2D& a, const VisibilityImage2D& b);
+// The pixels in shadow (visibility below 0.5).
+size_t shadowed_pixels(const VisibilityImage2D& image);
+// A view's reverse-Z view-projection, as its ScreenInputs take it.
+glm::mat4 view_projection_of(const ViewDesc& view);
 
 struct FootprintCheck {
     size_t judged = 0;    // pixels away from the analytic shadow's edge
@@ -129,6 +133,9 @@ protected:
 
     // Records with `record` into a new primary command buffer, submits it and waits.
     void submit(const std::function<void(VkCommandBuffer)>& record) const;
+    // Records with `record` into a new primary command buffer of `pool`, for the caller to
+    // submit and free.
+    VkCommandBuffer record_commands(VkCommandPool pool, const std::function<void(VkCommandBuffer)>& record) const;
     // Records with `record` into a new primary command buffer of `pool` and submits it on
     // `queue`, waiting for `wait` (at `wait_stage`) and signalling `signal` (either may be
     // VK_NULL_HANDLE); returns the buffer, for the caller to free once it has completed.
@@ -204,5 +211,8 @@ struct BoxesAndMover {
 
 // Adds the ground (mesh and instance) and the box mesh; the caller places the boxes.
 BoxesAndMover add_ground_and_box_mesh(ShadowSystem& shadows);
+// The ground, five static boxes in a row across it (z = -2, alternating heights) and a
+// dynamic box at (0, 2, 2); no light.
+BoxesAndMover add_box_row_and_mover(ShadowSystem& shadows);
 
 }  // namespace penumbra::library_tests

@@ -15,13 +15,6 @@
 namespace penumbra::library_tests {
 namespace {
 
-glm::mat4 view_projection_of(const ViewDesc& view) { return to_glm(reverse_z_projection(view)) * to_glm(view.view); }
-
-size_t shadowed_pixels(const VisibilityImage2D& image) {
-    return static_cast<size_t>(
-        std::count_if(image.values.begin(), image.values.end(), [](float v) { return v < 0.5f; }));
-}
-
 class MapsPerFrameTest : public LibraryTest, public ::testing::WithParamInterface<ShadowTechnique> {
 protected:
     static ViewDesc still_view_at(float x, float z) {
@@ -42,13 +35,7 @@ protected:
 
     // Static boxes across the ground, a dynamic box, the sun and two spot lights.
     static BoxesAndMover add_boxes(ShadowSystem& shadows) {
-        BoxesAndMover scene = add_ground_and_box_mesh(shadows);
-        for (int i = 0; i < 5; ++i) {
-            const glm::vec3 at(-4.0f + 3.0f * static_cast<float>(i), 1.0f + 0.5f * static_cast<float>(i % 2), -2.0f);
-            scene.statics.push_back(shadows.add_instance({scene.box_id, translation(at)}));
-        }
-        scene.mover = shadows.add_instance(
-            {scene.box_id, translation({0.0f, 2.0f, 2.0f}), kInstanceCastsShadows | kInstanceDynamic});
+        BoxesAndMover scene = add_box_row_and_mover(shadows);
         // The second spot light reaches static boxes only: its layer is kept between frames.
         LightDesc still_spot{LightType::Spot, {0.0f, -1.0f, 0.0f}, {7.0f, 6.0f, -1.5f}};
         still_spot.inner_angle_degrees = 15.0f;
@@ -68,22 +55,6 @@ protected:
         shadows.set_instance_transform(scene.mover, translation({2.5f * std::sin(0.9f * t), 2.0f, 2.0f}));
         if (f == 3) shadows.set_instance_transform(scene.statics[3], translation({5.0f, 1.2f, -1.0f}));
         if (f == 6) shadows.set_instance_transform(scene.statics[4], translation({6.5f, 1.0f, -0.5f}));
-    }
-
-    // Records `record` into a new primary command buffer (submitted by the caller).
-    VkCommandBuffer recorded(const std::function<void(VkCommandBuffer)>& record) const {
-        VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        allocate_info.commandPool = pool_;
-        allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        allocate_info.commandBufferCount = 1;
-        VkCommandBuffer cmd = VK_NULL_HANDLE;
-        TEST_VK(vkAllocateCommandBuffers(device_.device, &allocate_info, &cmd));
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        TEST_VK(vkBeginCommandBuffer(cmd, &begin));
-        record(cmd);
-        TEST_VK(vkEndCommandBuffer(cmd));
-        return cmd;
     }
 
     // Submits `cmds` in this order in one batch, waits and frees them.
@@ -109,16 +80,16 @@ protected:
                                                          const std::function<void()>& between) {
         const ScreenInputs screen = depth_screen(view_projection_of(view));
         shadows.prepare(view);
-        const VkCommandBuffer maps_n = recorded([&](VkCommandBuffer cmd) {
+        const VkCommandBuffer maps_n = record_commands(pool_, [&](VkCommandBuffer cmd) {
             record_ground_depth(cmd, view, nullptr, NormalEncoding::SignedFloat, nullptr);
             shadows.record_page_marking(cmd, screen);
             shadows.record_shadow_maps(cmd);
         });
         const VkCommandBuffer resolve_n =
-            recorded([&](VkCommandBuffer cmd) { shadows.record_visibility(cmd, screen); });
+            record_commands(pool_, [&](VkCommandBuffer cmd) { shadows.record_visibility(cmd, screen); });
         between();
         shadows.prepare(view);
-        const VkCommandBuffer maps_next = recorded([&](VkCommandBuffer cmd) {
+        const VkCommandBuffer maps_next = record_commands(pool_, [&](VkCommandBuffer cmd) {
             shadows.record_page_marking(cmd, screen);
             shadows.record_shadow_maps(cmd);
         });

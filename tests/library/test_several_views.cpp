@@ -14,13 +14,6 @@
 namespace penumbra::library_tests {
 namespace {
 
-glm::mat4 view_projection_of(const ViewDesc& view) { return to_glm(reverse_z_projection(view)) * to_glm(view.view); }
-
-size_t shadowed_pixels(const VisibilityImage2D& image) {
-    return static_cast<size_t>(
-        std::count_if(image.values.begin(), image.values.end(), [](float v) { return v < 0.5f; }));
-}
-
 class SeveralViewsTest : public LibraryTest, public ::testing::WithParamInterface<ShadowTechnique> {
 protected:
     // The top-down camera over (x, 0, z), with a still sampling pattern.
@@ -40,13 +33,7 @@ protected:
 
     // Static boxes across the ground, a dynamic box, and the sun.
     static BoxesAndMover add_boxes(ShadowSystem& shadows) {
-        BoxesAndMover scene = add_ground_and_box_mesh(shadows);
-        for (int i = 0; i < 5; ++i) {
-            const glm::vec3 at(-4.0f + 3.0f * static_cast<float>(i), 1.0f + 0.5f * static_cast<float>(i % 2), -2.0f);
-            scene.statics.push_back(shadows.add_instance({scene.box_id, translation(at)}));
-        }
-        scene.mover = shadows.add_instance(
-            {scene.box_id, translation({0.0f, 2.0f, 2.0f}), kInstanceCastsShadows | kInstanceDynamic});
+        BoxesAndMover scene = add_box_row_and_mover(shadows);
         const LightDesc sun{LightType::Directional, {kSunDirection.x, kSunDirection.y, kSunDirection.z}};
         shadows.set_lights({&sun, 1});
         return scene;
