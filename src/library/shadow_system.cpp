@@ -348,7 +348,7 @@ struct ShadowSystem::Impl {
           layouts(gpu::named(device, "set layouts", [&] { return library::create_frame_set_layouts(device); })),
           alpha_mask_layout(
               gpu::named(device, "alpha masks", [&] { return passes::create_alpha_mask_set_layout(device); })),
-          local_sets(make_local_sets()),
+          local_sets(make_local_sets(0)),  // no scene yet: no static change
           resolve(gpu::named(
               device, "visibility resolve",
               [&] { return passes::VisibilityResolvePass(device, layouts.sampling, settings.shadow.filter); })),
@@ -367,9 +367,12 @@ struct ShadowSystem::Impl {
                                                           cascade_map_settings(settings.shadow), frames_in_flight);
         });
     }
-    std::vector<LocalMapSet> make_local_sets() {
+    // New local maps for the current settings; they hold nothing yet, so the static changes
+    // up to `changes_seen` (Geometry::static_change_end()) are in what they draw first.
+    std::vector<LocalMapSet> make_local_sets(uint64_t changes_seen) {
         std::vector<LocalMapSet> sets(map_set_count);
         for (LocalMapSet& set : sets) {
+            set.static_changes_seen = changes_seen;
             set.maps = gpu::named(device, "local light maps", [&] {
                 return std::make_unique<library::LocalMaps>(device, layouts.caster, alpha_mask_layout, settings.shadow,
                                                             retired, frames_in_flight);
@@ -451,8 +454,7 @@ struct ShadowSystem::Impl {
             retired.retire(std::move(view.map_sets), frame);
             make_sun_maps(view, index);
         }
-        retired.retire(std::exchange(local_sets, make_local_sets()), frame);
-        for (LocalMapSet& set : local_sets) set.static_changes_seen = geometry.static_change_end();
+        retired.retire(std::exchange(local_sets, make_local_sets(geometry.static_change_end())), frame);
         geometry.for_each_vertex_format([this](const passes::VertexFormats& formats) { prepare_pipelines(formats); });
     }
 
@@ -480,7 +482,9 @@ struct ShadowSystem::Impl {
         return nullptr;
     }
 
+    // The local maps frame `frame` draws and samples.
     LocalMapSet& local_set() { return local_sets[frame % local_sets.size()]; }
+    const LocalMapSet& local_set() const { return local_sets[frame % local_sets.size()]; }
 
     // Forgets the static changes every map set has drawn.
     void forget_drawn_static_changes() {
@@ -1059,7 +1063,7 @@ ShadowMaps ShadowSystem::shadow_maps(uint32_t view) const {
     const Impl& impl = *impl_;
     const library::SunMaps& maps = impl.view_at("shadow_maps", view).maps(impl.frame);
     const library::SampledMaps cascades = maps.cascades->sampled();
-    const library::SampledMaps local = impl.local_sets[impl.frame % impl.local_sets.size()].maps->sampled();
+    const library::SampledMaps local = impl.local_set().maps->sampled();
     MapImage virtual_pool;
     if (maps.virtual_map) {
         const gpu::Image& pool = maps.virtual_map->pool();
