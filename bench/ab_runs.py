@@ -6,7 +6,7 @@ a markdown table of the per-frame GPU medians that the comparisons read (shadow_
 the sun's whole shadow work; lighting; visibility; frame) and the cached cascades' texel
 counts, plus every run's JSON.
 
-Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|goals|virtual|all --out DIR
+Usage: ab_runs.py --binary NAME=PATH [--binary ...] --plan cache|cache-each|local|movers|moments|filters|strategies|cached-strategies|goals|virtual|all --out DIR
 (cache-each: the cache runs for every binary given, e.g. two layouts of the cascades)
 """
 import argparse
@@ -97,6 +97,20 @@ def strategy_runs(binary):
     return runs
 
 
+def cached_strategy_runs(binary):
+    """The static caster cache with CPU culling (per-cascade) and GPU culling (layered), and
+    the layered strategy uncached, on the 1 M and 10 M forests at 1080p, orbiting (strips
+    exposed every frame) and walking."""
+    runs = []
+    for scene_label, scene in (("1 M", FOREST), ("10 M", FOREST_10M)):
+        for path in ("orbit", "walk"):
+            for strategy in ("per-cascade+cache", "layered+cache", "layered"):
+                options = ["--shadow-strategy", strategy.split("+")[0]] + (["--shadow-cache"] if "+cache" in strategy else [])
+                runs.append((f"{scene_label}, 1080p, {path}, {strategy}", binary, scene,
+                             BASE + options + ["--camera-path", path, "--frames", "60", "--warmup", "10"]))
+    return runs
+
+
 def goal_runs(binary):
     """Issue 14's frame goals: PCF R=2 at 4K forward, deferred, and deferred with cached
     cascades (orbit); 8 spots + 8 points culled on the CPU and on the GPU."""
@@ -163,7 +177,7 @@ def cpu_median(report, name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", action="append", required=True, help="NAME=PATH of a penumbra(-run) binary")
-    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "goals",
+    parser.add_argument("--plan", choices=["cache", "cache-each", "local", "movers", "moments", "filters", "strategies", "cached-strategies", "goals",
                                            "virtual", "terrain", "all"],
                         default="all")
     parser.add_argument("--cache-binary", help="NAME of the binary for the cache runs (default: the first)")
@@ -187,6 +201,8 @@ def main():
         runs += filter_runs(names)
     if args.plan in ("strategies", "all"):
         runs += strategy_runs(args.cache_binary or names[0])
+    if args.plan in ("cached-strategies", "all"):
+        runs += cached_strategy_runs(args.cache_binary or names[0])
     if args.plan in ("goals", "all"):
         runs += goal_runs(args.cache_binary or names[0])
     if args.plan in ("virtual", "all"):

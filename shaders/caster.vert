@@ -8,8 +8,9 @@
 //   PENUMBRA_GPU_DRIVEN:  the layered strategy: draws the commands shaders/caster_cull.comp
 //                         wrote; the draw (transform) and its layer come from
 //                         CullRecord[gl_InstanceIndex]. For cascades one pass renders them
-//                         all and the vertex goes to its layer (gl_Layer: Vulkan 1.2's
-//                         shaderOutputLayer); a local layer is still one pass per layer
+//                         all and the vertex goes to its cascade's layer (gl_Layer: Vulkan
+//                         1.2's shaderOutputLayer) with its tile's offset (the record's layer
+//                         is the cascade's tile); a local layer is still one pass per layer
 //   PENUMBRA_VIRTUAL:     the sun's virtual shadow map: draws the commands
 //                         shaders/virtual_cull.comp wrote, one instance per page
 //                         (VirtualPageDraw[gl_InstanceIndex]), into that page of the pool:
@@ -78,8 +79,13 @@ layout(std430, set = PENUMBRA_SET_CASTER_DRAWS, binding = PENUMBRA_BINDING_CULL_
 // firstInstance of each command is its own index (caster_cull.comp).
 CullRecord draw_record() { return records[gl_InstanceIndex]; }
 mat4 draw_model() { return instances[draw_record().instance].model; }
+#ifdef PENUMBRA_LOCAL_LAYER
 uint draw_layer() { return draw_record().layer; }
-uint draw_tile() { return 0u; }  // layered cascades are not toroidal
+#else
+// The culled layer is a cascade's tile (PENUMBRA_CULL_CASCADE_TILES): 4 cascade + tile.
+uint draw_layer() { return draw_record().layer / 4u; }
+uint draw_tile() { return draw_record().layer % 4u; }
+#endif
 #else
 mat4 draw_model() { return caster.model; }
 uint draw_layer() { return caster.layer + PENUMBRA_VIEW_INDEX; }

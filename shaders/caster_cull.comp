@@ -7,10 +7,12 @@
 //
 // The tests are the CPU culling's, in the same operations and order, so that both select
 // the same casters:
-// - cascades (core/shadow_cache.cpp caster_footprint, the non-empty case): the box bounded
-//   in clip space by Arvo's method (scene.hpp transform_aabb), culled only beyond the far
-//   side (depth < 0, reverse-Z) and outside the window's [-1, 1] rectangle; a box whose
-//   projection is not finite may reach every texel;
+// - cascade tiles (core/shadow_cache.cpp caster_footprint, and library/cascade_cache.cpp's
+//   pieces): the box bounded in clip space by Arvo's method (scene.hpp transform_aabb),
+//   culled only beyond the far side (depth < 0, reverse-Z) and outside the window's [-1, 1]
+//   rectangle; a box whose projection is not finite may reach every texel; then its
+//   footprint in texels (rounded out, one texel of margin) against the tile's rectangles
+//   (CullTile: what a cached cascade draws again, or the tile's whole piece);
 // - spot and point layers (core/local_lights.cpp caster_may_shadow_frustum and, for cube
 //   faces, caster_may_shadow_sphere): the box's positive vertex against the frustum's five
 //   Gribb-Hartmann planes, and its closest point within the light's range.
@@ -43,11 +45,21 @@ layout(std430, set = PENUMBRA_SET_CULL_DRAWS, binding = PENUMBRA_BINDING_CULL_CO
     uint counts[];
 };
 
+layout(std430, set = PENUMBRA_SET_CULL_DRAWS, binding = PENUMBRA_BINDING_CULL_TILES) readonly buffer CullTiles {
+    CullTile tiles[PENUMBRA_MAX_CULL_TILES];
+    ivec4 rects[];
+};
+
 layout(push_constant) uniform PushBlock { CullPushConstants cull; };
 
 bool finite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
-bool may_shadow_cascade(mat4 view_projection, vec3 box_min, vec3 box_max) {
+bool empty_rect(ivec4 rect) { return rect.z <= rect.x || rect.w <= rect.y; }
+bool rects_meet(ivec4 a, ivec4 b) { return !empty_rect(ivec4(max(a.xy, b.xy), min(a.zw, b.zw))); }
+
+// The window texels [xy, zw) a caster inside the box can set in the cascade (empty: none).
+ivec4 cascade_footprint(mat4 view_projection, vec3 box_min, vec3 box_max) {
+    const ivec4 window = ivec4(0, 0, int(cull.resolution), int(cull.resolution));
     precise vec3 low = view_projection[3].xyz;
     precise vec3 high = view_projection[3].xyz;
     for (int column = 0; column < 3; ++column) {
@@ -58,9 +70,28 @@ bool may_shadow_cascade(mat4 view_projection, vec3 box_min, vec3 box_max) {
             high[row] += max(a, b);
         }
     }
-    if (!finite(low) || !finite(high)) return true;
-    if (high.z < 0.0) return false;
-    return !(low.x > 1.0 || high.x < -1.0 || low.y > 1.0 || high.y < -1.0);
+    if (!finite(low) || !finite(high)) return window;
+    if (high.z < 0.0) return ivec4(0);
+    if (low.x > 1.0 || high.x < -1.0 || low.y > 1.0 || high.y < -1.0) return ivec4(0);
+    const float size = float(cull.resolution);
+    precise vec2 texel_low = (low.xy * 0.5 + 0.5) * size;
+    precise vec2 texel_high = (high.xy * 0.5 + 0.5) * size;
+    // One texel of margin: rasterisation covers texels whose centres the triangles reach.
+    const vec2 limit = vec2(size + 2.0);
+    const ivec2 first = ivec2(clamp(floor(texel_low) - 1.0, vec2(-2.0), limit));
+    const ivec2 last = ivec2(clamp(ceil(texel_high) + 1.0, vec2(-2.0), limit));
+    return ivec4(max(first, window.xy), min(last, window.zw));
+}
+
+// Whether a caster whose footprint is `footprint` is drawn into tile `layer`: a dynamic one
+// wherever its piece is, a static one where the tile is drawn again.
+bool reaches_tile(uint layer, ivec4 footprint, bool dynamic) {
+    const CullTile tile = tiles[layer];
+    if (dynamic) return rects_meet(footprint, tile.piece);
+    for (uint r = tile.rects.x; r < tile.rects.x + tile.rects.y; ++r) {
+        if (rects_meet(footprint, rects[r])) return true;
+    }
+    return false;
 }
 
 // glm's dot: (x + y) + z.
@@ -114,12 +145,22 @@ void main() {
     const vec3 box_max = instance.bounds_max.xyz;
     // An empty box casts nothing (without culling every draw goes into every layer).
     if (cull.cull != 0 && any(greaterThan(box_min, box_max))) return;
-    if (cull.mode == PENUMBRA_CULL_CASCADES) {
-        for (uint layer = 0; layer < cull.layer_count; ++layer) {
-            if (!layer_enabled(layer)) continue;
-            if (cull.cull != 0 && !may_shadow_cascade(shadow.cascades[layer].view_projection, box_min, box_max))
+    if (cull.mode == PENUMBRA_CULL_CASCADE_TILES) {
+        const bool dynamic = instance.bucket >= cull.first_dynamic_bucket;
+        for (uint cascade = 0; 4u * cascade < cull.layer_count; ++cascade) {
+            const uint first = 4u * cascade;
+            if (!(layer_enabled(first) || layer_enabled(first + 1u) || layer_enabled(first + 2u) ||
+                  layer_enabled(first + 3u)))
                 continue;
-            emit(index, instance.bucket, layer, instance);
+            // Without culling a caster may reach every texel.
+            const ivec4 footprint =
+                cull.cull != 0 ? cascade_footprint(shadow.cascades[cascade].view_projection, box_min, box_max)
+                               : ivec4(0, 0, int(cull.resolution), int(cull.resolution));
+            if (empty_rect(footprint)) continue;
+            for (uint layer = first; layer < first + 4u; ++layer) {
+                if (layer_enabled(layer) && reaches_tile(layer, footprint, dynamic))
+                    emit(index, instance.bucket, layer, instance);
+            }
         }
         return;
     }

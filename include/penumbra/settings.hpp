@@ -125,8 +125,8 @@ struct ShadowSettings {
     CasterCulling caster_culling = CasterCulling::None;
     // Keep each cascade's static casters' depths from frame to frame and draw again only the
     // texels the cascade's move exposes and those of static casters that changed; dynamic
-    // instances (kInstanceDynamic) are drawn over them every frame (per-cascade strategy
-    // only). Spot and point lights keep a layer while its light, near plane and size stay
+    // instances (kInstanceDynamic) are drawn over them every frame (per-cascade and layered
+    // strategies; multiview ignores it). Spot and point lights keep a layer while its light, near plane and size stay
     // and no caster within its reach moved or is dynamic.
     bool cache_static_casters = false;
 };

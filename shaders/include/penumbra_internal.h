@@ -24,6 +24,9 @@
 // PENUMBRA_BINDING_CULL_COUNTS: per layer and bucket, how many commands the dispatch wrote;
 // then per layer, its draws and triangles (statistics for the host).
 #define PENUMBRA_BINDING_CULL_COUNTS 4
+// PENUMBRA_BINDING_CULL_TILES: the cascades' culling (PENUMBRA_CULL_CASCADE_TILES): per
+// culled layer a CullTile, then the rectangles the tiles list (CullTiles).
+#define PENUMBRA_BINDING_CULL_TILES 5
 // The moments blur pass and the local moments pass: set 0 holds the image they read.
 #define PENUMBRA_BINDING_BLUR_SOURCE 0
 
@@ -57,14 +60,32 @@ struct CullInstance {
     PENUMBRA_INT vertex_offset;
 };
 
-// What one culled command draws: a CullInstance into a cascade (the layer it writes).
+// What one culled command draws: a CullInstance into a culled layer (a cascade's tile, or a
+// spot or point light's layer).
 struct CullRecord {
     PENUMBRA_UINT instance;
     PENUMBRA_UINT layer;
 };
 
-#define PENUMBRA_CULL_CASCADES 0      // layers are the sun's cascades (PenumbraShadowUniforms)
+// Layer 4 c + t is tile t of cascade c (PenumbraShadowUniforms; CasterPushConstants::tile's
+// bits): a toroidal cascade's window wraps around its layer's edges, and each of its up to
+// four pieces is drawn with its own offset under its own scissor.
+#define PENUMBRA_CULL_CASCADE_TILES 0
 #define PENUMBRA_CULL_LOCAL_LAYERS 1  // layers are spot/point light layers (PenumbraLocalShadows)
+
+// The cascades' culled layers (tiles) and what their casters must reach, in window texels
+// ([xy, zw): texels from the cascade's texel 0). A static caster is culled into a tile when
+// its footprint meets one of the tile's rectangles (the whole piece, or with a cache only
+// the texels drawn again this frame); a dynamic one when it meets the tile's piece (dynamic
+// casters are drawn over the cached static ones every frame).
+#define PENUMBRA_MAX_CULL_TILES (4 * PENUMBRA_MAX_CASCADES)
+// Rectangles all tiles list at most: a cascade redraws at most 16 rectangles
+// (core/shadow_cache.hpp kMaxRedrawRects), each in up to four pieces.
+#define PENUMBRA_MAX_CULL_RECTS (64 * PENUMBRA_MAX_CASCADES)
+struct CullTile {
+    ivec4 piece;  // the tile's part of the window; empty (z <= x) when the window does not reach it
+    uvec4 rects;  // x: the first of its rectangles in CullTiles::rects, y: how many
+};
 
 // The commands of layer L, bucket B start at L * instance_count + the bucket's first
 // command, and its count is counts[L * bucket_count + B].
@@ -74,9 +95,10 @@ struct CullPushConstants {
     PENUMBRA_UINT cull;  // 0: every draw into every culled layer (Settings::shadow.cull_casters off)
     PENUMBRA_UINT mode;  // PENUMBRA_CULL_*
     PENUMBRA_UINT bucket_count;
+    // Buckets from this one on hold dynamic casters (CasterDraw::dynamic; they sort last).
+    PENUMBRA_UINT first_dynamic_bucket;
+    PENUMBRA_UINT resolution;  // PENUMBRA_CULL_CASCADE_TILES: the cascades' texels per side
     PENUMBRA_UINT padding0;
-    PENUMBRA_UINT padding1;
-    PENUMBRA_UINT padding2;
     // Bit L % 32 of word L / 32: layer L is culled and drawn (0: kept from an earlier frame,
     // or nothing can reach it).
     uvec4 layer_mask[2];

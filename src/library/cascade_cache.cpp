@@ -17,6 +17,11 @@ struct Footprint {
 
 // The footprints of the draws of `scene` that pass `keep`, projected once per cascade and
 // then tested against every piece and rectangle.
+Footprint footprint_of(const Cascade& cascade, const passes::CasterScene& scene, bool cull, uint32_t resolution,
+                       uint32_t draw) {
+    return {draw, cull ? caster_footprint(cascade, scene.draws[draw].world_bounds, resolution) : whole_map(resolution)};
+}
+
 template <typename Keep>
 std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
                                   uint32_t resolution, Keep keep) {
@@ -24,9 +29,19 @@ std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterSc
     result.reserve(scene.draws.size());
     for (uint32_t d = 0; d < scene.draws.size(); ++d) {
         if (!keep(scene.draws[d])) continue;
-        const TexelRect window =
-            cull ? caster_footprint(cascade, scene.draws[d].world_bounds, resolution) : whole_map(resolution);
-        if (!window.empty()) result.push_back({d, window});
+        const Footprint footprint = footprint_of(cascade, scene, cull, resolution, d);
+        if (!footprint.window.empty()) result.push_back(footprint);
+    }
+    return result;
+}
+
+// The dynamic draws' footprints (CasterScene::dynamic_draws: no pass over every draw).
+std::vector<Footprint> dynamic_footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
+                                          uint32_t resolution) {
+    std::vector<Footprint> result;
+    for (const uint32_t d : scene.dynamic_draws) {
+        const Footprint footprint = footprint_of(cascade, scene, cull, resolution, d);
+        if (!footprint.window.empty()) result.push_back(footprint);
     }
     return result;
 }
@@ -75,7 +90,6 @@ std::vector<CascadeDraws::Region> regions_of(const TexelRect& window_rect, const
 }
 
 bool is_static(const passes::CasterDraw& draw) { return !draw.dynamic; }
-bool is_dynamic(const passes::CasterDraw& draw) { return draw.dynamic; }
 
 // The window texels whose depth may differ from the last frame's in a reused cascade (for
 // the moments): what is redrawn, what the dynamic casters reach now and reached last frame
@@ -113,19 +127,27 @@ std::vector<TexelRect> layer_texels(const std::vector<TexelRect>& window_rects, 
     return rects;
 }
 
+// The static casters' footprints, when the CPU lists them (else the GPU culls them).
+std::vector<Footprint> static_footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
+                                         uint32_t resolution, bool list_casters) {
+    if (!list_casters) return {};
+    return footprints(cascade, scene, cull, resolution, is_static);
+}
+
 // `before`: the cascade the map's layer was last drawn for, with where the dynamic casters
 // reached then (its window texels).
 CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, const passes::CasterScene& scene,
-                          bool cull, const Cascade* before, const std::vector<TexelRect>& dynamic_window_before,
-                          bool cache_complete, uint32_t resolution) {
+                          bool cull, bool list_casters, const Cascade* before,
+                          const std::vector<TexelRect>& dynamic_window_before, bool cache_complete,
+                          uint32_t resolution) {
     const TexelRect window = whole_map(resolution);
     CascadeDraws draws;
     draws.layer_origin = cascade.layer_origin;
-    const std::vector<Footprint> dynamic = footprints(cascade, scene, cull, resolution, is_dynamic);
+    const std::vector<Footprint> dynamic = dynamic_footprints(cascade, scene, cull, resolution);
     if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &draws.dynamic_window);
     if (!update.reuse) {
         draws.regions =
-            regions_of(window, cascade, footprints(cascade, scene, cull, resolution, is_static), resolution);
+            regions_of(window, cascade, static_footprints(cascade, scene, cull, resolution, list_casters), resolution);
         // The cache must hold the static texels the dynamic casters are about to cover.
         if (!draws.dynamic_window.empty()) draws.store = {window};
         return draws;
@@ -136,8 +158,9 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     draws.restore = layer_texels(dynamic_window_before, before->layer_origin, resolution);
     draws.changed = changed_texels(update, draws.dynamic_window, dynamic_window_before, resolution);
     // Static footprints only when something is redrawn (a still camera projects none).
-    const std::vector<Footprint> statics =
-        update.redraw.empty() ? std::vector<Footprint>{} : footprints(cascade, scene, cull, resolution, is_static);
+    const std::vector<Footprint> statics = update.redraw.empty()
+                                               ? std::vector<Footprint>{}
+                                               : static_footprints(cascade, scene, cull, resolution, list_casters);
     for (const TexelRect& rect : update.redraw) {
         std::vector<CascadeDraws::Region> regions = regions_of(rect, cascade, statics, resolution);
         draws.regions.insert(draws.regions.end(), regions.begin(), regions.end());
@@ -155,16 +178,17 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
 void CascadeCache::invalidate() { layers_.clear(); }
 
 std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes::CasterScene& scene, bool cull,
-                                             bool cached, std::span<const core::Aabb> changes,
-                                             uint32_t resolution) const {
+                                             bool cached, std::span<const core::Aabb> changes, uint32_t resolution,
+                                             bool list_casters) const {
     std::vector<CascadeDraws> draws(set.cascades.size());
     for (size_t c = 0; c < set.cascades.size(); ++c) {
         const Cascade& cascade = set.cascades[c];
         if (!cached) {
             const auto any = [](const passes::CasterDraw&) { return true; };
             draws[c].layer_origin = cascade.layer_origin;
-            draws[c].regions = regions_of(whole_map(resolution), cascade,
-                                          footprints(cascade, scene, cull, resolution, any), resolution);
+            const std::vector<Footprint> casters =
+                list_casters ? footprints(cascade, scene, cull, resolution, any) : std::vector<Footprint>{};
+            draws[c].regions = regions_of(whole_map(resolution), cascade, casters, resolution);
             continue;
         }
         const std::optional<Layer>& previous = c < layers_.size() ? layers_[c] : std::nullopt;
@@ -172,7 +196,7 @@ std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes
         const CascadeUpdate update = plan_cascade_update(kept, cascade, resolution, changes);
         const std::vector<TexelRect> none;
         draws[c] =
-            cached_draws(update, cascade, scene, cull, previous ? &previous->cascade : nullptr,
+            cached_draws(update, cascade, scene, cull, list_casters, previous ? &previous->cascade : nullptr,
                          previous ? previous->dynamic_window : none, previous && previous->cache_complete, resolution);
     }
     return draws;

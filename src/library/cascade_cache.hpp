@@ -35,8 +35,12 @@ public:
     // usable cache), the dynamic ones every frame, and the copies between the map and the
     // cache that keep the cache's static texels where the dynamic casters draw. `changes`
     // are the world bounds of static casters changed since the last commit().
+    // `list_casters` false (the layered strategy, whose GPU culls the casters into the
+    // regions): the regions' lists of static casters stay empty, and no pass visits every
+    // caster; the dynamic casters are still listed (their reach is copied to and from the cache).
     std::vector<passes::CascadeDraws> plan(const CascadeSet& set, const passes::CasterScene& scene, bool cull,
-                                           bool cached, std::span<const core::Aabb> changes, uint32_t resolution) const;
+                                           bool cached, std::span<const core::Aabb> changes, uint32_t resolution,
+                                           bool list_casters = true) const;
 
     // The frame that plan() made was recorded: the map now holds `set`'s static casters.
     void commit(const CascadeSet& set, const std::vector<passes::CascadeDraws>& draws, uint32_t resolution);

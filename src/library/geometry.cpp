@@ -406,6 +406,7 @@ void Geometry::remove_instance(InstanceId id) {
 const passes::CasterScene& Geometry::build_scene() {
     scene_.meshes.clear();
     scene_.draws.clear();
+    scene_.dynamic_draws.clear();
     world_bounds_ = core::Aabb{};
     static_bounds_ = core::Aabb{};
     for (auto& [id, mesh] : meshes_) {
@@ -425,6 +426,7 @@ const passes::CasterScene& Geometry::build_scene() {
         draw.double_sided = (instance.flags & kInstanceDoubleSided) != 0;
         draw.mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0f;
         draw.dynamic = (instance.flags & kInstanceDynamic) != 0;
+        if (draw.dynamic) scene_.dynamic_draws.push_back(static_cast<uint32_t>(scene_.draws.size()));
         scene_.draws.push_back(draw);
     }
     scene_.version = changes_;

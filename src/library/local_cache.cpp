@@ -22,9 +22,7 @@ std::vector<bool> LocalShadowCache::kept_layers(std::span<const core::Light> lig
     std::vector<bool> kept(plan.layer_count, false);
     if (map_generation != generation_ || layers_.empty()) return kept;
     std::vector<core::Aabb> dynamic;
-    for (const passes::CasterDraw& draw : scene.draws) {
-        if (draw.dynamic) dynamic.push_back(draw.world_bounds);
-    }
+    for (const uint32_t draw : scene.dynamic_draws) dynamic.push_back(scene.draws[draw].world_bounds);
     const std::vector<std::optional<LocalLayerKey>> keys = local_layer_keys(lights, plan);
     for (size_t layer = 0; layer < keys.size(); ++layer) {
         if (!keys[layer]) continue;

@@ -570,22 +570,23 @@ struct ShadowSystem::Impl {
         const glm::vec3 direction = sun_light ? glm::normalize(sun_light->direction) : glm::vec3(0.0f, -1.0f, 0.0f);
         CascadeSet set = compute_cascades(camera, direction, settings.shadow.cascades, geometry.depth_range_bounds());
         place_in_layers(set, settings.shadow.cascades.resolution,
-                        settings.shadow.strategy == ShadowStrategy::PerCascade);
+                        settings.shadow.strategy != ShadowStrategy::Multiview);
         info.cpu_fit_ms += milliseconds_since(start);
         start = Clock::now();
         const bool casts = sun_light && sun_light->cast_shadows;
         library::SunMaps& maps = view.maps(frame);
         if (!casts) maps.cascade_cache.invalidate();
-        // The layered strategy culls on the GPU (record_shadow_maps): no lists here.
-        const bool cpu_culls = casts && settings.shadow.strategy != ShadowStrategy::Layered;
-        if (!cpu_culls && casts) {
-            passes::check_gpu_culling_room(device, scene.draws.size(), static_cast<uint32_t>(set.cascades.size()));
+        // The layered strategy culls on the GPU (record_shadow_maps) into each cascade's four
+        // tiles: the plan lists no static caster.
+        const bool gpu_culls = settings.shadow.strategy == ShadowStrategy::Layered;
+        if (gpu_culls && casts) {
+            passes::check_gpu_culling_room(device, scene.draws.size(), 4 * static_cast<uint32_t>(set.cascades.size()));
         }
         view.cascade_draws =
-            cpu_culls ? maps.cascade_cache.plan(set, scene, settings.shadow.cull_casters, maps.cascades->cached(),
-                                                geometry.static_changes_since(maps.static_changes_seen),
-                                                settings.shadow.cascades.resolution)
-                      : std::vector<passes::CascadeDraws>(set.cascades.size());
+            casts ? maps.cascade_cache.plan(set, scene, settings.shadow.cull_casters, maps.cascades->cached(),
+                                            geometry.static_changes_since(maps.static_changes_seen),
+                                            settings.shadow.cascades.resolution, !gpu_culls)
+                  : std::vector<passes::CascadeDraws>(set.cascades.size());
         view.sun_casts = casts;
         view.planned_cascades = set;
         info.cpu_cull_ms += milliseconds_since(start);
@@ -645,9 +646,15 @@ struct ShadowSystem::Impl {
             const passes::GpuCasterCulling* culling = view->maps(frame).cascades->gpu_culling();
             const auto counted = culling ? culling->culled(complete) : std::nullopt;
             if (!counted) continue;
-            for (size_t c = 0; c < view->info.cascades.size() && c < counted->size(); ++c) {
-                view->info.cascades[c].draws = (*counted)[c].draws;
-                view->info.cascades[c].triangles = (*counted)[c].triangles;
+            // Four culled layers per cascade: its tiles.
+            for (size_t c = 0; c < view->info.cascades.size(); ++c) {
+                CascadeInfo& out = view->info.cascades[c];
+                out.draws = 0;
+                out.triangles = 0;
+                for (size_t layer = 4 * c; layer < 4 * c + 4 && layer < counted->size(); ++layer) {
+                    out.draws += (*counted)[layer].draws;
+                    out.triangles += (*counted)[layer].triangles;
+                }
             }
         }
         const LocalLayerHistory& then = local_history[complete % local_history.size()];

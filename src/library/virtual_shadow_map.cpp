@@ -96,9 +96,7 @@ std::vector<shader::VirtualInvalidation> VirtualShadowMap::invalidations(const V
     // in them (static casters included), which keeps cached and uncached frames equal.
     std::vector<core::Aabb> boxes(inputs.static_changes.begin(), inputs.static_changes.end());
     boxes.insert(boxes.end(), dynamic_bounds_.begin(), dynamic_bounds_.end());
-    for (const passes::CasterDraw& draw : inputs.scene->draws) {
-        if (draw.dynamic) boxes.push_back(draw.world_bounds);
-    }
+    for (const uint32_t draw : inputs.scene->dynamic_draws) boxes.push_back(inputs.scene->draws[draw].world_bounds);
     std::vector<shader::VirtualInvalidation> rects;
     const size_t per_level_limit = pages_.desc().max_invalidations / std::max<size_t>(clipmap_.levels.size(), 1);
     for (int level = 0; level < static_cast<int>(clipmap_.levels.size()); ++level) {
@@ -161,9 +159,8 @@ void VirtualShadowMap::prepare(const VirtualFrameInputs& inputs, const ShadowSet
     casts_ = inputs.casts;
     previous_ = clipmap_;
     dynamic_bounds_.clear();
-    for (const passes::CasterDraw& draw : inputs.scene->draws) {
-        if (draw.dynamic) dynamic_bounds_.push_back(draw.world_bounds);
-    }
+    for (const uint32_t draw : inputs.scene->dynamic_draws)
+        dynamic_bounds_.push_back(inputs.scene->draws[draw].world_bounds);
 }
 
 void VirtualShadowMap::record_marking(VkCommandBuffer cmd, uint64_t frame, const ScreenInputs& screen,

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <span>
 #include <string>
 
 #include "passes/shader_interface.hpp"
@@ -19,10 +20,14 @@ namespace penumbra::passes {
 namespace {
 
 constexpr uint32_t kWorkgroupSize = 64;  // caster_cull.comp's local_size_x
-// The draws set's storage buffers: instances, bucket firsts, records, commands, counts.
+// The draws set's storage buffers: instances, bucket firsts, records, commands, counts, tiles.
 constexpr uint32_t kCullBindings[] = {PENUMBRA_BINDING_CULL_INSTANCES, PENUMBRA_BINDING_CULL_BUCKETS,
-                                      PENUMBRA_BINDING_CULL_RECORDS, PENUMBRA_BINDING_CULL_COMMANDS,
-                                      PENUMBRA_BINDING_CULL_COUNTS};
+                                      PENUMBRA_BINDING_CULL_RECORDS,   PENUMBRA_BINDING_CULL_COMMANDS,
+                                      PENUMBRA_BINDING_CULL_COUNTS,    PENUMBRA_BINDING_CULL_TILES};
+// CullTiles: the tiles, then the rectangles.
+constexpr VkDeviceSize kTileBytes = sizeof(shader::CullTile) * PENUMBRA_MAX_CULL_TILES;
+constexpr VkDeviceSize kTilesBufferBytes = kTileBytes + sizeof(glm::ivec4) * PENUMBRA_MAX_CULL_RECTS;
+static_assert(kTilesBufferBytes <= 65536, "written with vkCmdUpdateBuffer");
 // The most commands (every casting instance in every layer) the culled draws take room for:
 // 1.9 GB of commands and records, and within the shader's 32-bit command indices; less
 // where the device's storage buffers are smaller (maxStorageBufferRange: 128 MiB on lavapipe).
@@ -40,9 +45,11 @@ uint64_t max_draws(const gpu::Device& device) {
     return device.properties().limits.maxStorageBufferRange / sizeof(shader::CullInstance);
 }
 
-// What draws of one bucket share (record_indirect_caster_draws binds it once). Opaque
-// buckets sort first, as the per-draw recording orders them.
+// What draws of one bucket share (record_indirect_caster_draws binds it once). Static
+// buckets sort first (a cached cascade draws them before the dynamic ones), then opaque
+// ones, as the per-draw recording orders them.
 struct BucketKey {
+    bool dynamic = false;
     bool masked = false;
     VertexStream positions;
     VertexStream uvs;  // masked only
@@ -56,9 +63,12 @@ struct BucketKey {
     auto operator<=>(const BucketKey&) const = default;
 };
 
-BucketKey bucket_key(const CasterScene& scene, const CasterDraw& draw) {
+// `split_dynamic`: dynamic draws get buckets of their own (the cascades' cache draws them
+// after the static ones; the virtual shadow map draws both in the same pages at once).
+BucketKey bucket_key(const CasterScene& scene, const CasterDraw& draw, bool split_dynamic) {
     const CasterMesh& mesh = scene.meshes[draw.mesh];
     BucketKey key;
+    key.dynamic = split_dynamic && draw.dynamic;
     key.masked = draw.masked;
     key.positions = mesh.positions;
     if (draw.masked) {
@@ -211,6 +221,9 @@ GpuCasterCulling::GpuCasterCulling(const gpu::Device& device, VkDescriptorSetLay
       layout_(create_cull_layout(device, frame_set_layout, draws_set_layout_)),
       pipeline_(gpu::create_compute_pipeline(device, {VK_SHADER_STAGE_COMPUTE_BIT, shaders::caster_cull_comp(), {}},
                                              layout_)),
+      tiles_(gpu::create_buffer(device, kTilesBufferBytes,
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                gpu::MemoryKind::DeviceLocal)),
       staging_(frames_in_flight_),
       statistics_(frames_in_flight_ + 1) {}
 
@@ -246,12 +259,12 @@ void GpuCasterCulling::ensure_capacity(uint32_t draws, uint32_t commands, uint32
         // The counts, then two statistics per layer.
         create(VkDeviceSize{buffers->count_capacity + 2 * kMaxCulledLayers} * sizeof(uint32_t),
                VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
-    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5};
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::size(kCullBindings)};
     buffers->pool = gpu::create_descriptor_pool(device_, 1, {&size, 1});
     buffers->set = gpu::allocate_descriptor_set(device_, buffers->pool, draws_set_layout_);
     // In the order of kCullBindings.
-    const gpu::Buffer* bound[] = {&buffers->instances, &buffers->buckets, &buffers->records, &buffers->commands,
-                                  &buffers->counts};
+    const gpu::Buffer* bound[] = {&buffers->instances, &buffers->buckets, &buffers->records,
+                                  &buffers->commands,  &buffers->counts,  &tiles_};
     for (size_t i = 0; i < std::size(bound); ++i) {
         gpu::write_storage_buffer(device_, buffers->set, kCullBindings[i], bound[i]->get(), bound[i]->size);
     }
@@ -267,8 +280,8 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     buckets_.clear();
     std::vector<uint32_t> draw_bucket(scene.draws.size());
     for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-        const auto [found, inserted] =
-            bucket_of.try_emplace(bucket_key(scene, scene.draws[d]), static_cast<uint32_t>(bucket_of.size()));
+        const auto [found, inserted] = bucket_of.try_emplace(
+            bucket_key(scene, scene.draws[d], unit_ == CullUnit::Instances), static_cast<uint32_t>(bucket_of.size()));
         if (inserted) {
             buckets_.push_back({d, 0, 0});
             draws_in_bucket.push_back(0);
@@ -288,6 +301,13 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     }
     buckets_ = std::move(ordered);
     for (uint32_t& bucket : draw_bucket) bucket = new_index[bucket];
+    first_dynamic_bucket_ = static_cast<uint32_t>(buckets_.size());
+    for (uint32_t b = 0; b < buckets_.size() && unit_ == CullUnit::Instances; ++b) {
+        if (scene.draws[buckets_[b].draw].dynamic) {
+            first_dynamic_bucket_ = b;
+            break;
+        }
+    }
 
     std::vector<shader::CullInstance> units;
     units.reserve(scene.draws.size());
@@ -323,13 +343,20 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
 }
 
 void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                                   CullLayers layers, const std::vector<bool>& enabled, bool cull, uint64_t frame) {
+                                   CullLayers layers, const std::vector<bool>& enabled, bool cull, uint64_t frame,
+                                   const CascadeTiles* tiles) {
     const auto layer_count = static_cast<uint32_t>(enabled.size());
     if (layer_count > kMaxCulledLayers) {
         throw UsageError("GpuCasterCulling::record_cull: " + std::to_string(layer_count) + " layers, more than " +
                          std::to_string(kMaxCulledLayers));
     }
-    if (!begin_commands(cmd, scene, layer_count)) return;
+    const bool cascades = layers == CullLayers::CascadeTiles;
+    if (cascades && (!tiles || tiles->tiles.size() != layer_count || layer_count > PENUMBRA_MAX_CULL_TILES)) {
+        throw UsageError("GpuCasterCulling::record_cull: the cascades' culling needs a CullTileRects per layer, " +
+                         std::to_string(layer_count) + " layers (at most " + std::to_string(PENUMBRA_MAX_CULL_TILES) +
+                         ")");
+    }
+    if (!begin_commands(cmd, scene, layer_count, cascades ? tiles : nullptr)) return;
     const auto bucket_count = static_cast<uint32_t>(buckets_.size());
     device_->vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     const VkDescriptorSet sets[] = {frame_set, buffers_->set};
@@ -340,6 +367,8 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
     constants.cull = cull ? 1u : 0u;
     constants.mode = static_cast<uint32_t>(layers);
     constants.bucket_count = bucket_count;
+    constants.first_dynamic_bucket = first_dynamic_bucket_;
+    constants.resolution = cascades ? tiles->resolution : 0u;
     for (uint32_t layer = 0; layer < layer_count_; ++layer) {
         if (enabled[layer]) constants.layer_mask[layer / 128][static_cast<int>((layer / 32) % 4)] |= 1u << (layer % 32);
     }
@@ -350,6 +379,34 @@ void GpuCasterCulling::record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_se
 }
 
 bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count) {
+    return begin_commands(cmd, scene, layer_count, nullptr);
+}
+
+// Each tile's piece and the range of its rectangles, then every tile's rectangles in order.
+void GpuCasterCulling::write_tiles(VkCommandBuffer cmd, const CascadeTiles& tiles, uint32_t layer_count) const {
+    std::vector<shader::CullTile> headers(layer_count);
+    std::vector<glm::ivec4> rects;
+    const auto packed = [](const TexelRect& rect) { return glm::ivec4(rect.min, rect.max); };
+    for (uint32_t layer = 0; layer < layer_count; ++layer) {
+        const CullTileRects& tile = tiles.tiles[layer];
+        headers[layer].piece = packed(tile.piece);
+        headers[layer].rects = glm::uvec4(rects.size(), tile.rects.size(), 0u, 0u);
+        for (const TexelRect& rect : tile.rects) rects.push_back(packed(rect));
+    }
+    if (rects.size() > PENUMBRA_MAX_CULL_RECTS) {
+        throw UsageError("GpuCasterCulling::record_cull: " + std::to_string(rects.size()) +
+                         " tile rectangles, more than " + std::to_string(PENUMBRA_MAX_CULL_RECTS));
+    }
+    if (!headers.empty()) {
+        device_->vkCmdUpdateBuffer(cmd, tiles_.get(), 0, headers.size() * sizeof(shader::CullTile), headers.data());
+    }
+    if (!rects.empty()) {
+        device_->vkCmdUpdateBuffer(cmd, tiles_.get(), kTileBytes, rects.size() * sizeof(glm::ivec4), rects.data());
+    }
+}
+
+bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count,
+                                      const CascadeTiles* tiles) {
     if (layer_count > kMaxCulledLayers) {
         throw UsageError("GpuCasterCulling::begin_commands: " + std::to_string(layer_count) + " layers, more than " +
                          std::to_string(kMaxCulledLayers));
@@ -370,6 +427,7 @@ bool GpuCasterCulling::begin_commands(VkCommandBuffer cmd, const CasterScene& sc
     const VkDeviceSize statistics_offset = VkDeviceSize{bucket_count} * layer_count_ * sizeof(uint32_t);
     const VkDeviceSize statistics_bytes = VkDeviceSize{2} * layer_count_ * sizeof(uint32_t);
     device_->vkCmdFillBuffer(cmd, buffers_->counts.get(), 0, statistics_offset + statistics_bytes, 0);
+    if (tiles) write_tiles(cmd, *tiles, layer_count_);
     gpu::memory_barrier(device_, cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -409,13 +467,17 @@ std::optional<std::vector<CulledLayer>> GpuCasterCulling::culled(uint64_t frame)
 }
 
 void GpuCasterCulling::record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
-                                    const CasterFaceCulling& culling, uint32_t layer) const {
+                                    const CasterFaceCulling& culling, uint32_t layer, BucketKind kind) const {
     if (buckets_.empty() || layer >= layer_count_) return;
+    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
+    const uint32_t first = kind == BucketKind::Dynamic ? first_dynamic_bucket_ : 0u;
+    const uint32_t end = kind == BucketKind::Static ? first_dynamic_bucket_ : bucket_count;
+    if (first >= end) return;
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(),
                                      PENUMBRA_SET_CASTER_DRAWS, 1, &buffers_->set, 0, nullptr);
-    const auto bucket_count = static_cast<uint32_t>(buckets_.size());
-    record_indirect_caster_draws(device_, cmd, pipelines, scene, buckets_, buffers_->commands.get(),
-                                 layer * draw_count_, buffers_->counts.get(), layer * bucket_count, culling);
+    record_indirect_caster_draws(device_, cmd, pipelines, scene, std::span(buckets_).subspan(first, end - first),
+                                 buffers_->commands.get(), layer * draw_count_, buffers_->counts.get(),
+                                 layer * bucket_count + first, culling);
 }
 
 void GpuCasterCulling::record_draws_of_every_layer(VkCommandBuffer cmd, const CasterPipelines& pipelines,
@@ -428,7 +490,7 @@ void GpuCasterCulling::record_draws_of_every_layer(VkCommandBuffer cmd, const Ca
 }
 
 uint64_t GpuCasterCulling::buffer_bytes() const {
-    uint64_t bytes = 0;
+    uint64_t bytes = tiles_.size;
     for (const gpu::Buffer& staging : staging_) bytes += staging.size;
     if (!buffers_) return bytes;
     for (const gpu::Buffer* buffer :

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/shadow_cache.hpp"
 #include "passes/casters.hpp"
 #include "passes/shader_interface.hpp"
 #include "penumbra/gpu/device.hpp"
@@ -68,9 +69,29 @@ void check_gpu_culling_room(const gpu::Device& device, size_t draws, uint32_t la
 
 // What a culling dispatch tests the draws against.
 enum class CullLayers : uint32_t {
-    Cascades = PENUMBRA_CULL_CASCADES,        // PenumbraShadowUniforms::cascades
+    // Layer 4 c + t: tile t of cascade c of PenumbraShadowUniforms::cascades (CascadeTiles)
+    CascadeTiles = PENUMBRA_CULL_CASCADE_TILES,
     LocalLayers = PENUMBRA_CULL_LOCAL_LAYERS  // PenumbraLocalShadows' lights and layers
 };
+
+// One tile of a toroidal cascade (core/shadow_cache.hpp layer_pieces) as the culling sees
+// it, in window texels: a static caster goes into it when its footprint (caster_footprint)
+// meets one of `rects`, a dynamic one when it meets `piece`.
+struct CullTileRects {
+    TexelRect piece;               // the tile's part of the window (empty: none)
+    std::vector<TexelRect> rects;  // where the tile's static casters are drawn this frame
+};
+
+// The cascades' tiles a CullLayers::CascadeTiles dispatch culls into: 4 per cascade, at most
+// PENUMBRA_MAX_CULL_RECTS rectangles in all.
+struct CascadeTiles {
+    uint32_t resolution = 0;  // the cascades' texels per side
+    std::vector<CullTileRects> tiles;
+};
+
+// Which of a layer's buckets a draw records (the cascades' cache draws the static casters,
+// then the dynamic ones over them).
+enum class BucketKind { All, Static, Dynamic };
 
 class GpuCasterCulling {
 public:
@@ -87,9 +108,11 @@ public:
     // check_gpu_culling_room()), then records the culling of every draw against the layers
     // `enabled` lists (layers [0, enabled.size()); every draw into every enabled layer when
     // `cull` is off), and makes the commands ready for the indirect draws. `frame` tags the
-    // layers' statistics, which are copied to the host (culled()).
+    // layers' statistics, which are copied to the host (culled()). CullLayers::CascadeTiles
+    // needs `tiles` (one per layer).
     void record_cull(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene, CullLayers layers,
-                     const std::vector<bool>& enabled, bool cull, uint64_t frame = 0);
+                     const std::vector<bool>& enabled, bool cull, uint64_t frame = 0,
+                     const CascadeTiles* tiles = nullptr);
 
     // For another culling dispatch that writes the same commands (the virtual shadow map's
     // pages, layer = clipmap level): uploads `scene` as record_cull() does and clears the
@@ -112,7 +135,7 @@ public:
     // bucket. `pipelines` were made with PENUMBRA_GPU_DRIVEN vertex shaders and a layout whose
     // set PENUMBRA_SET_CASTER_DRAWS is draws_set_layout().
     void record_draws(VkCommandBuffer cmd, const CasterPipelines& pipelines, const CasterScene& scene,
-                      const CasterFaceCulling& culling, uint32_t layer) const;
+                      const CasterFaceCulling& culling, uint32_t layer, BucketKind kind = BucketKind::All) const;
     // The same for a culling that keeps a bucket's commands of every layer together (from
     // the bucket's first command times the layer count on) with one count per bucket: one
     // indirect draw per bucket draws every layer's (the virtual shadow map's levels, whose
@@ -145,6 +168,8 @@ private:
     };
 
     void upload(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count);
+    bool begin_commands(VkCommandBuffer cmd, const CasterScene& scene, uint32_t layer_count, const CascadeTiles* tiles);
+    void write_tiles(VkCommandBuffer cmd, const CascadeTiles& tiles, uint32_t layer_count) const;
     void ensure_capacity(uint32_t draws, uint32_t commands, uint32_t counts);
 
     const gpu::Device& device_;
@@ -154,6 +179,8 @@ private:
     gpu::UniquePipelineLayout layout_;
     gpu::UniquePipeline pipeline_;
     std::unique_ptr<Buffers> buffers_;
+    // CullTiles (PENUMBRA_BINDING_CULL_TILES): written by each cascade culling before it runs.
+    gpu::Buffer tiles_;
     // Replaced buffers, with the number of record_cull() calls after which they are unused.
     std::vector<std::pair<uint64_t, std::unique_ptr<Buffers>>> replaced_;
     std::vector<gpu::Buffer> staging_;  // one per frame in flight
@@ -165,8 +192,9 @@ private:
         uint32_t layers = 0;
     };
     std::vector<Statistics> statistics_;
-    uint64_t records_ = 0;  // record_cull() calls so far
-    std::vector<CasterBucket> buckets_;
+    uint64_t records_ = 0;               // record_cull() calls so far
+    std::vector<CasterBucket> buckets_;  // static ones first
+    uint32_t first_dynamic_bucket_ = 0;
     uint32_t draw_count_ = 0;
     size_t uploaded_draws_ = 0;  // the scene's draws when it was uploaded
     uint32_t layer_count_ = 0;

@@ -60,6 +60,9 @@ struct CasterDraw {
 struct CasterScene {
     std::vector<CasterMesh> meshes;
     std::vector<CasterDraw> draws;
+    // The indices of the dynamic draws, in order (library::Geometry lists them with the
+    // draws): what a frame does for the dynamic casters visits only these.
+    std::vector<uint32_t> dynamic_draws;
     // Changes whenever meshes or draws change (GPU culling uploads the draws again).
     uint64_t version = 0;
 };

@@ -90,7 +90,11 @@ static_assert(offsetof(CullInstance, bucket) == 96);
 static_assert(offsetof(CullInstance, vertex_offset) == 108);
 static_assert(sizeof(CullInstance) == 112);
 static_assert(sizeof(CullRecord) == 8);
+static_assert(offsetof(CullPushConstants, first_dynamic_bucket) == 20);
+static_assert(offsetof(CullPushConstants, resolution) == 24);
 static_assert(offsetof(CullPushConstants, layer_mask) == 32);
+static_assert(offsetof(CullTile, rects) == 16);
+static_assert(sizeof(CullTile) == 32);
 static_assert(sizeof(CullPushConstants) == 64);
 static_assert(PENUMBRA_MAX_LOCAL_SHADOW_LAYERS <= 8 * sizeof(CullPushConstants::layer_mask));
 

@@ -64,7 +64,7 @@ ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_se
       cascade_count_(cascade_count),
       strategy_(strategy),
       shadow_map_(create_depth_map(device, resolution, cascade_count,
-                                   cached && strategy == ShadowStrategy::PerCascade
+                                   cached && strategy != ShadowStrategy::Multiview
                                        ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
                                        : VkImageUsageFlags{0})),
       gpu_culling_(create_gpu_culling(device, strategy == ShadowStrategy::Layered, frame_set_layout, frames_in_flight)),
@@ -72,7 +72,7 @@ ShadowPass::ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_se
           create_caster_pipeline_layout(device, frame_set_layout, alpha_mask_set_layout, gpu_culling_.get())),
       pipelines_(device, depth_template(device, pipeline_layout_, strategy, cascade_count)) {
     if (strategy == ShadowStrategy::Multiview) require_multiview(device, cascade_count);
-    if (cached && strategy == ShadowStrategy::PerCascade) {
+    if (cached && strategy != ShadowStrategy::Multiview) {
         cache_ = std::make_unique<gpu::Image>(
             create_depth_map(device, resolution, cascade_count, VK_IMAGE_USAGE_TRANSFER_DST_BIT));
     }
@@ -89,10 +89,8 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
     }
     device_->vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, PENUMBRA_SET_CASTER_FRAME,
                                      1, &frame_set, 0, nullptr);
-    if (strategy_ == ShadowStrategy::Layered) {
-        record_layered(cmd, frame_set, scene, bias, culling, timer, gpu_culling);
-        return;
-    }
+    const bool layered = strategy_ == ShadowStrategy::Layered;
+    if (layered) record_gpu_culling(cmd, frame_set, scene, draws, timer, gpu_culling);
     if (strategy_ == ShadowStrategy::Multiview) {
         gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
                         gpu::ImageState::DepthAttachment);
@@ -108,7 +106,11 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
         copy_cache(cmd, draws, true);
     }
     gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::DepthAttachment);
-    record_static(cmd, scene, draws, bias, culling, timer);
+    if (layered) {
+        record_layered_static(cmd, scene, draws, bias, culling, timer);
+    } else {
+        record_static(cmd, scene, draws, bias, culling, timer);
+    }
     map_state = gpu::ImageState::DepthAttachment;
     if (any([](const CascadeDraws& d) { return !d.store.empty(); })) {
         gpu::TimedScope scope(device_, timer, cmd, "shadow_cache_store");
@@ -119,7 +121,11 @@ void ShadowPass::record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const Ca
     if (any([](const CascadeDraws& d) { return !d.dynamic.empty(); })) {
         gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::DepthAttachment);
         map_state = gpu::ImageState::DepthAttachment;
-        record_dynamic(cmd, scene, draws, bias, culling, timer);
+        if (layered) {
+            record_layered_dynamic(cmd, scene, draws, bias, culling, timer);
+        } else {
+            record_dynamic(cmd, scene, draws, bias, culling, timer);
+        }
     }
     gpu::transition(device_, cmd, shadow_map_, map_state, gpu::ImageState::ShaderSampled);
 }
@@ -142,27 +148,43 @@ void ShadowPass::record_multiview(VkCommandBuffer cmd, const CasterScene& scene,
     device_->vkCmdEndRendering(cmd);
 }
 
-// The GPU culls every caster against every cascade, then one pass draws each bucket's
-// commands into the layers they name (window-aligned layers, as multiview's).
-void ShadowPass::record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                                const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer,
-                                GpuCullOptions options) {
-    {
-        gpu::TimedScope scope(device_, timer, cmd, "shadow_cull");
-        gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::Cascades,
-                                  std::vector<bool>(options.casts ? cascade_count_ : 0u, true), options.cull,
-                                  options.frame);
+namespace {
+
+// What each tile of each cascade draws (4 cascade + tile; core/shadow_cache.hpp
+// layer_pieces): its piece of the window, and the window texels of `draws`' regions in it.
+CascadeTiles cascade_tiles(const std::vector<CascadeDraws>& draws, uint32_t cascade_count, uint32_t resolution) {
+    CascadeTiles tiles{resolution, std::vector<CullTileRects>(size_t{4} * cascade_count)};
+    for (uint32_t c = 0; c < cascade_count && c < draws.size(); ++c) {
+        for (const LayerPiece& piece : layer_pieces(whole_map(resolution), draws[c].layer_origin, resolution))
+            tiles.tiles[4 * c + piece.tile].piece = piece.window;
+        for (const CascadeDraws::Region& region : draws[c].regions)
+            tiles.tiles[4 * c + region.tile].rects.push_back(region.window);
     }
-    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DiscardAfterShaderReads,
-                    gpu::ImageState::DepthAttachment);
-    {
-        gpu::TimedScope scope(device_, timer, cmd, "shadow_layered");
-        begin_rendering(cmd, shadow_map_.view, 0, bias, VK_ATTACHMENT_LOAD_OP_CLEAR, cascade_count_);
-        for (uint32_t cascade = 0; cascade < cascade_count_; ++cascade)
-            gpu_culling_->record_draws(cmd, pipelines_, scene, culling, cascade);
-        device_->vkCmdEndRendering(cmd);
+    return tiles;
+}
+
+}  // namespace
+
+// The layered strategy: the GPU culls every caster against the tiles that draw something
+// this frame (its static casters' rectangles, and with a cache the pieces its dynamic
+// casters are drawn over); the passes then draw each tile's buckets. Nothing is culled when
+// no tile draws.
+void ShadowPass::record_gpu_culling(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
+                                    const std::vector<CascadeDraws>& draws, gpu::GpuTimer* timer,
+                                    GpuCullOptions options) {
+    const CascadeTiles tiles = cascade_tiles(draws, cascade_count_, resolution_);
+    std::vector<bool> enabled(tiles.tiles.size(), false);
+    for (uint32_t c = 0; options.casts && c < cascade_count_ && c < draws.size(); ++c) {
+        const bool dynamic = cache_ && !draws[c].dynamic.empty();
+        for (uint32_t tile = 0; tile < 4; ++tile) {
+            const CullTileRects& rects = tiles.tiles[4 * c + tile];
+            enabled[4 * c + tile] = !rects.rects.empty() || (dynamic && !rects.piece.empty());
+        }
     }
-    gpu::transition(device_, cmd, shadow_map_, gpu::ImageState::DepthAttachment, gpu::ImageState::ShaderSampled);
+    if (std::find(enabled.begin(), enabled.end(), true) == enabled.end()) return;
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_cull");
+    gpu_culling_->record_cull(cmd, frame_set, scene, CullLayers::CascadeTiles, enabled, options.cull, options.frame,
+                              &tiles);
 }
 
 namespace {
@@ -190,6 +212,68 @@ void ShadowPass::record_regions(VkCommandBuffer cmd, const CasterScene& scene,
         device_->vkCmdSetScissor(cmd, 0, 1, &rect);
         record_caster_draws(device_, cmd, pipelines_, scene, region.casters, cascade, culling, region.tile);
     }
+}
+
+// Step 2, layered: one pass over every layer. A frame that keeps no layer clears them all;
+// else each kept layer's stale rectangles and every other layer are cleared first. Each
+// rectangle then draws its tile's culled static casters (every caster without a cache)
+// under its own scissor, so that a large caster (a ground) is rasterised only where texels
+// are drawn again. A tile's casters are those that meet any of its rectangles: one that
+// does not reach a rectangle is clipped there entirely, and the depths a caster writes
+// where two rectangles overlap are the same each time (the nearest wins).
+void ShadowPass::record_layered_static(VkCommandBuffer cmd, const CasterScene& scene,
+                                       const std::vector<CascadeDraws>& draws, const BiasSettings& bias,
+                                       const CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
+    const bool keep = std::any_of(draws.begin(), draws.end(), [](const CascadeDraws& d) { return d.reuse; });
+    const bool draws_something =
+        std::any_of(draws.begin(), draws.end(), [](const CascadeDraws& d) { return !d.regions.empty(); });
+    if (keep && !draws_something &&
+        std::all_of(draws.begin(), draws.end(), [](const CascadeDraws& d) { return d.reuse; })) {
+        return;
+    }
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_layered");
+    begin_rendering(cmd, shadow_map_.view, 0, bias, keep ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR,
+                    cascade_count_);
+    if (keep) {
+        std::vector<VkClearRect> clears;
+        for (uint32_t c = 0; c < cascade_count_; ++c) {
+            const bool kept = c < draws.size() && draws[c].reuse;
+            if (!kept) clears.push_back({to_vk_rect(whole_map(resolution_)), c, 1});
+            for (const CascadeDraws::Region& region : kept ? draws[c].regions : std::vector<CascadeDraws::Region>{})
+                clears.push_back({to_vk_rect(region.rect), c, 1});
+        }
+        const VkClearAttachment attachment{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {.depthStencil = {0.0f, 0}}};
+        if (!clears.empty()) {
+            device_->vkCmdClearAttachments(cmd, 1, &attachment, static_cast<uint32_t>(clears.size()), clears.data());
+        }
+    }
+    const BucketKind kind = cache_ ? BucketKind::Static : BucketKind::All;
+    for (uint32_t c = 0; c < cascade_count_ && c < draws.size(); ++c) {
+        for (const CascadeDraws::Region& region : draws[c].regions) {
+            const VkRect2D scissor = to_vk_rect(region.rect);
+            device_->vkCmdSetScissor(cmd, 0, 1, &scissor);
+            gpu_culling_->record_draws(cmd, pipelines_, scene, culling, 4 * c + region.tile, kind);
+        }
+    }
+    device_->vkCmdEndRendering(cmd);
+}
+
+// Step 4, layered: the dynamic casters over the static ones, each tile of a cascade they
+// reach under the scissor of its piece.
+void ShadowPass::record_layered_dynamic(VkCommandBuffer cmd, const CasterScene& scene,
+                                        const std::vector<CascadeDraws>& draws, const BiasSettings& bias,
+                                        const CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
+    gpu::TimedScope scope(device_, timer, cmd, "shadow_dynamic");
+    begin_rendering(cmd, shadow_map_.view, 0, bias, VK_ATTACHMENT_LOAD_OP_LOAD, cascade_count_);
+    for (uint32_t c = 0; c < cascade_count_ && c < draws.size(); ++c) {
+        if (draws[c].dynamic.empty()) continue;
+        for (const LayerPiece& piece : layer_pieces(whole_map(resolution_), draws[c].layer_origin, resolution_)) {
+            const VkRect2D scissor = to_vk_rect(piece.layer);
+            device_->vkCmdSetScissor(cmd, 0, 1, &scissor);
+            gpu_culling_->record_draws(cmd, pipelines_, scene, culling, 4 * c + piece.tile, BucketKind::Dynamic);
+        }
+    }
+    device_->vkCmdEndRendering(cmd);
 }
 
 // Step 2: per layer, everything from a cleared layer, or the stale rectangles of a kept one.

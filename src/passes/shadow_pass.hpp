@@ -5,11 +5,11 @@
 // cutoff. Per-cascade strategy: one rendering pass per layer with that cascade's culled
 // draws. Multiview strategy: one pass whose view mask covers every cascade; the vertex
 // shader adds gl_ViewIndex to the cascade. Layered strategy: the GPU culls every caster
-// against every cascade (caster_culling.hpp) and one pass over the layered map draws
-// them, each command into its cascade's layer; the CPU neither culls nor records per
+// against every cascade's tiles (caster_culling.hpp) and one pass over the layered map
+// draws them, each command into its cascade's layer; the CPU neither culls nor records per
 // caster.
 //
-// Per-cascade passes place each cascade toroidally in its layer (Cascade::layer_origin):
+// Per-cascade and layered passes place each cascade toroidally in its layer (Cascade::layer_origin):
 // a world texel keeps its layer texel while the cascade moves, so the window wraps around
 // the layer's edges and is drawn as up to four scissored tiles (core/shadow_cache.hpp's
 // layer_pieces). A cached cascade (core/shadow_cache.hpp) therefore keeps its texels in
@@ -79,8 +79,8 @@ public:
     // feature, InputError for more cascades than the device renders views in one pass.
     // The layered strategy throws DeviceError without the GPU-driven features
     // (EnabledFeatures::gpu_driven). `cached`: also keep a cache of the static casters
-    // (per-cascade strategy only). `frames_in_flight`: the layered strategy's culling
-    // keeps replaced buffers that long.
+    // (per-cascade and layered strategies). `frames_in_flight`: the layered strategy's
+    // culling keeps replaced buffers that long.
     ShadowPass(const gpu::Device& device, VkDescriptorSetLayout frame_set_layout,
                VkDescriptorSetLayout alpha_mask_set_layout, uint32_t resolution, uint32_t cascade_count,
                ShadowStrategy strategy, bool cached, uint32_t frames_in_flight = 2);
@@ -97,8 +97,8 @@ public:
     // each cascade's rendering is a scope "shadow_cascade_<c>" (multiview: one,
     // "shadow_multiview"; layered: "shadow_cull" and "shadow_layered"), and the cache's
     // copies and dynamic casters "shadow_cache_restore", "shadow_cache_store" and
-    // "shadow_dynamic". The layered strategy ignores `draws`' lists: the GPU culls, as
-    // `gpu_culling` says.
+    // "shadow_dynamic". The layered strategy ignores `draws`' caster lists: the GPU culls
+    // every caster into the regions' tiles, as `gpu_culling` says.
     void record(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
                 const std::vector<CascadeDraws>& draws, const BiasSettings& bias, const CasterFaceCulling& culling,
                 gpu::GpuTimer* timer = nullptr, GpuCullOptions gpu_culling = {});
@@ -111,9 +111,12 @@ private:
                          VkAttachmentLoadOp load, uint32_t layers = 1) const;
     void record_multiview(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
                           const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
-    void record_layered(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
-                        const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer,
-                        GpuCullOptions options);
+    void record_gpu_culling(VkCommandBuffer cmd, VkDescriptorSet frame_set, const CasterScene& scene,
+                            const std::vector<CascadeDraws>& draws, gpu::GpuTimer* timer, GpuCullOptions options);
+    void record_layered_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                               const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
+    void record_layered_dynamic(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,
+                                const BiasSettings& bias, const CasterFaceCulling& culling, gpu::GpuTimer* timer) const;
     void record_regions(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws::Region>& regions,
                         uint32_t cascade, bool clear, const CasterFaceCulling& culling) const;
     void record_static(VkCommandBuffer cmd, const CasterScene& scene, const std::vector<CascadeDraws>& draws,

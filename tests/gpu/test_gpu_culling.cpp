@@ -1,12 +1,13 @@
 // The layered strategy's GPU culling (shaders/caster_cull.comp) must submit exactly the
-// casters the CPU's culling selects, per layer: per cascade (caster_footprint non-empty)
-// on random cameras and sun directions, and per spot or point light layer (the frustum,
-// and a cube face's range: as cull_local_casters tests) on random lights; with random
-// boxes (small, large, crossing the layers' edges, empty, and beyond the float range),
-// culling on and off, layers left out, and again after the scene changes (the draws are
-// uploaded anew). Run on the device with validation.
+// casters the CPU's culling selects, per layer: per tile of a toroidal cascade (the static
+// casters whose caster_footprint meets one of the tile's rectangles, the dynamic ones whose
+// footprint meets its piece) on random cameras, sun directions and rectangles, and per spot or point light layer (the
+// frustum, and a cube face's range: as cull_local_casters tests) on random lights; with random boxes (small, large,
+// crossing the layers' edges, empty, and beyond the float range), culling on and off, layers left out, and again after
+// the scene changes (the draws are uploaded anew). Run on the device with validation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <string>
@@ -49,6 +50,7 @@ passes::CasterScene random_scene(std::mt19937& random, uint32_t draws, uint64_t 
         draw.masked = d % 5 == 0;
         draw.double_sided = d % 7 == 0;
         draw.mirrored = d % 11 == 0;
+        draw.dynamic = d % 13 == 0;
         const glm::vec3 centre(place(random), place(random) * 0.1f + 5.0f, place(random));
         const glm::vec3 half(size(random), size(random) * 2.0f, size(random));
         draw.world_bounds = {centre - half, centre + half};
@@ -73,19 +75,56 @@ CascadeSet random_cascades(std::mt19937& random, FitMode fit) {
     settings.resolution = kResolution;
     settings.fit = fit;
     settings.max_distance = 100.0f;
-    return compute_cascades(camera, sun, settings,
-                            core::Aabb{glm::vec3(-120.0f, -1.0f, -120.0f), glm::vec3(120.0f, 30.0f, 120.0f)});
+    CascadeSet set = compute_cascades(camera, sun, settings,
+                                      core::Aabb{glm::vec3(-120.0f, -1.0f, -120.0f), glm::vec3(120.0f, 30.0f, 120.0f)});
+    place_in_layers(set, kResolution, true);
+    return set;
 }
 
-// Per cascade, the draws the CPU's culling selects (every draw without culling).
-std::vector<std::vector<uint32_t>> cpu_selection(const Case& test, bool cull) {
-    std::vector<std::vector<uint32_t>> selected(test.cascades.cascades.size());
-    for (size_t c = 0; c < selected.size(); ++c) {
+// Each cascade's four tiles, with what a frame draws in them: the whole window (a cascade
+// drawn anew), random rectangles (a cached cascade's exposed strips and changed casters,
+// split at the layer's wrap lines as the library splits them), or nothing (only dynamic
+// casters are drawn).
+passes::CascadeTiles random_tiles(std::mt19937& random, const CascadeSet& set) {
+    std::uniform_int_distribution<int32_t> texel(0, static_cast<int32_t>(kResolution));
+    std::uniform_int_distribution<int> count(1, 6);
+    passes::CascadeTiles tiles{kResolution, std::vector<passes::CullTileRects>(4 * set.cascades.size())};
+    for (size_t c = 0; c < set.cascades.size(); ++c) {
+        const glm::ivec2 origin = set.cascades[c].layer_origin;
+        for (const LayerPiece& piece : layer_pieces(whole_map(kResolution), origin, kResolution))
+            tiles.tiles[4 * c + piece.tile].piece = piece.window;
+        std::vector<TexelRect> rects;
+        if (c % 3 == 0) rects.push_back(whole_map(kResolution));
+        for (int r = 0, n = c % 3 == 1 ? count(random) : 0; r < n; ++r) {
+            const glm::ivec2 a(texel(random), texel(random));
+            const glm::ivec2 b(texel(random), texel(random));
+            rects.push_back({glm::min(a, b), glm::max(a, b) + 1});
+        }
+        for (const TexelRect& rect : rects) {
+            const TexelRect inside = intersect(rect, whole_map(kResolution));
+            if (inside.empty()) continue;
+            for (const LayerPiece& piece : layer_pieces(inside, origin, kResolution))
+                tiles.tiles[4 * c + piece.tile].rects.push_back(piece.window);
+        }
+    }
+    return tiles;
+}
+
+// Per tile, the draws the CPU's culling selects (a footprint of the whole window without
+// culling).
+std::vector<std::vector<uint32_t>> cpu_selection(const Case& test, const passes::CascadeTiles& tiles, bool cull) {
+    std::vector<std::vector<uint32_t>> selected(tiles.tiles.size());
+    for (size_t layer = 0; layer < selected.size(); ++layer) {
+        const Cascade& cascade = test.cascades.cascades[layer / 4];
+        const passes::CullTileRects& tile = tiles.tiles[layer];
         for (uint32_t d = 0; d < test.scene.draws.size(); ++d) {
-            const bool casts =
-                !cull ||
-                !caster_footprint(test.cascades.cascades[c], test.scene.draws[d].world_bounds, kResolution).empty();
-            if (casts) selected[c].push_back(d);
+            const passes::CasterDraw& draw = test.scene.draws[d];
+            const TexelRect footprint =
+                cull ? caster_footprint(cascade, draw.world_bounds, kResolution) : whole_map(kResolution);
+            const auto meets = [&](const TexelRect& rect) { return !intersect(footprint, rect).empty(); };
+            const bool drawn =
+                draw.dynamic ? meets(tile.piece) : std::any_of(tile.rects.begin(), tile.rects.end(), meets);
+            if (drawn) selected[layer].push_back(d);
         }
     }
     return selected;
@@ -120,16 +159,18 @@ protected:
         return options;
     }
 
-    // Culls `test` on the GPU and returns its selection per cascade.
-    passes::CulledDraws cull_on_gpu(passes::GpuCasterCulling& culling, const Case& test, bool cull) {
+    // Culls `test` into `tiles` on the GPU and returns its selection per tile.
+    passes::CulledDraws cull_on_gpu(passes::GpuCasterCulling& culling, const Case& test,
+                                    const passes::CascadeTiles& tiles, bool cull) {
         shader::PenumbraShadowUniforms uniforms{};
         for (size_t c = 0; c < test.cascades.cascades.size(); ++c) {
             uniforms.cascades[c].view_projection = test.cascades.cascades[c].view_projection;
         }
         std::memcpy(uniforms_.mapped, &uniforms, sizeof(uniforms));
-        const std::vector<bool> enabled(test.cascades.cascades.size(), true);
+        const std::vector<bool> enabled(tiles.tiles.size(), true);
         context_.submit_and_wait([&](VkCommandBuffer cmd) {
-            culling.record_cull(cmd, frame_set_, test.scene, passes::CullLayers::Cascades, enabled, cull);
+            culling.record_cull(cmd, frame_set_, test.scene, passes::CullLayers::CascadeTiles, enabled, cull, 0,
+                                &tiles);
         });
         return culling.read_back(context_.one_time());
     }
@@ -153,7 +194,7 @@ protected:
     gpu::Buffer local_;
 };
 
-TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerCascade) {
+TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerCascadeTile) {
     ASSERT_TRUE(context_.features().gpu_driven) << "the test device lacks the layered strategy's features";
     passes::GpuCasterCulling culling(context_, frame_layout_, 2);
     std::mt19937 random(20261125);
@@ -167,16 +208,17 @@ TEST_F(GpuCulling, SelectsExactlyTheCastersTheCpuSelectsPerCascade) {
             test.scene =
                 random_scene(random, 400u + 150u * static_cast<uint32_t>(trial / 2), static_cast<uint64_t>(trial / 2));
         }
+        const passes::CascadeTiles tiles = random_tiles(random, test.cascades);
         for (const bool cull : {true, false}) {
-            const std::vector<std::vector<uint32_t>> expected = cpu_selection(test, cull);
-            const passes::CulledDraws gpu = cull_on_gpu(culling, test, cull);
+            const std::vector<std::vector<uint32_t>> expected = cpu_selection(test, tiles, cull);
+            const passes::CulledDraws gpu = cull_on_gpu(culling, test, tiles, cull);
             ASSERT_EQ(gpu.draws_per_layer.size(), expected.size());
-            for (size_t c = 0; c < expected.size(); ++c) {
-                EXPECT_EQ(gpu.draws_per_layer[c], expected[c])
-                    << "trial " << trial << " cull " << cull << " cascade " << c;
-                if (!cull) continue;
+            for (size_t layer = 0; layer < expected.size(); ++layer) {
+                EXPECT_EQ(gpu.draws_per_layer[layer], expected[layer])
+                    << "trial " << trial << " cull " << cull << " cascade " << layer / 4 << " tile " << layer % 4;
+                if (!cull || tiles.tiles[layer].rects.empty()) continue;
                 compared += test.scene.draws.size();
-                selected += expected[c].size();
+                selected += expected[layer].size();
             }
         }
         EXPECT_GT(culling.buckets().size(), 4u) << "the draws' flags make several buckets";

@@ -4,7 +4,8 @@
 // static boxes moved, added, removed and made dynamic on the way, and a bias changed.
 // Every cascade's depth map and the ground's visibility are bit-identical to the uncached
 // frames (both draw each world texel at the same layer texel: toroidal cascades), while
-// the cache is reused and draws a fraction of the texels.
+// the cache is reused and draws a fraction of the texels; with the per-cascade passes (the
+// CPU culls) and with the layered strategy (the GPU culls into the texels drawn again).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -45,9 +46,11 @@ enum class CameraPath { Walk, Orbit, Flythrough };
 struct CacheCase {
     ShadowFilter filter;
     CameraPath path;
+    ShadowStrategy strategy = ShadowStrategy::PerCascade;
     friend void PrintTo(const CacheCase& c, std::ostream* os) {
         static constexpr const char* kPathNames[] = {"walk", "orbit", "flythrough"};
-        *os << choice_name(kShadowFilterChoices, c.filter) << ", " << kPathNames[static_cast<int>(c.path)];
+        *os << choice_name(kShadowFilterChoices, c.filter) << ", " << kPathNames[static_cast<int>(c.path)] << ", "
+            << choice_name(kShadowStrategyChoices, c.strategy);
     }
 };
 
@@ -102,6 +105,7 @@ TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters
     settings.shadow.cascades.resolution = 512;
     settings.shadow.filter.mode = param.filter;
     settings.shadow.filter.blur_radius = 5;  // wide: the moments of more texels depend on each depth
+    settings.shadow.strategy = param.strategy;
     ShadowSystem uncached(system_desc(settings));
     ShadowSystem cached(system_desc(with_cache(settings)));
     CacheScene uncached_scene = add_cache_scene(uncached);
@@ -180,19 +184,25 @@ TEST_P(ShadowCacheTest, CachedCascadesAreBitIdenticalToUncachedWithMovingCasters
                 static_cast<unsigned long long>(copied), static_cast<unsigned long long>(reused), kFrames * 4);
 }
 
+// Every filter on every path with the per-cascade passes; the layered strategy (the same
+// planning, its casters culled on the GPU) with every filter on one path each, the paths
+// taken in turn.
 std::vector<CacheCase> every_filter_and_path() {
     std::vector<CacheCase> cases;
+    constexpr CameraPath kPaths[] = {CameraPath::Walk, CameraPath::Orbit, CameraPath::Flythrough};
     for (const auto& filter : kShadowFilterChoices) {
-        for (const CameraPath path : {CameraPath::Walk, CameraPath::Orbit, CameraPath::Flythrough})
-            cases.push_back({filter.value, path});
+        for (const CameraPath path : kPaths) cases.push_back({filter.value, path});
     }
+    for (size_t f = 0; f < std::size(kShadowFilterChoices); ++f)
+        cases.push_back({kShadowFilterChoices[f].value, kPaths[f % 3], ShadowStrategy::Layered});
     return cases;
 }
 
 std::string case_name(const ::testing::TestParamInfo<CacheCase>& info) {
     static constexpr const char* kPathNames[] = {"walk", "orbit", "flythrough"};
+    const bool layered = info.param.strategy == ShadowStrategy::Layered;
     return std::string(choice_name(kShadowFilterChoices, info.param.filter)) + "_" +
-           kPathNames[static_cast<int>(info.param.path)];
+           kPathNames[static_cast<int>(info.param.path)] + (layered ? "_layered" : "");
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFilterAndPath, ShadowCacheTest, ::testing::ValuesIn(every_filter_and_path()), case_name);

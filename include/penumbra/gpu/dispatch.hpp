@@ -111,6 +111,7 @@ namespace penumbra::gpu {
     X(vkCmdDrawIndexedIndirectCount)    \
     X(vkCmdDrawIndirect)                \
     X(vkCmdFillBuffer)                  \
+    X(vkCmdUpdateBuffer)                \
     X(vkCmdDispatch)                    \
     X(vkCmdDispatchIndirect)            \
     X(vkCmdCopyBuffer)                  \
