@@ -625,6 +625,12 @@ struct ShadowSystem::Impl {
             out.redrawn.push_back(region_of(region.window));
         for (const TexelRect& rect : draws.dynamic_window) out.dynamic_regions.push_back(region_of(rect));
         library::for_each_draw(draws, [&](uint32_t draw) { out.triangles += geometry.triangles(draw); });
+        // The layered strategy's counts are the GPU's (report_gpu_counts), not the dynamic
+        // casters the plan lists.
+        if (settings.shadow.strategy == ShadowStrategy::Layered) {
+            out.draws = 0;
+            out.triangles = 0;
+        }
         return out;
     }
 
