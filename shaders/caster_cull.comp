@@ -54,12 +54,15 @@ layout(push_constant) uniform PushBlock { CullPushConstants cull; };
 
 bool finite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
+// Every texel of a cascade's window, [xy, zw).
+ivec4 whole_window() { return ivec4(0, 0, int(cull.resolution), int(cull.resolution)); }
+
 bool empty_rect(ivec4 rect) { return rect.z <= rect.x || rect.w <= rect.y; }
 bool rects_meet(ivec4 a, ivec4 b) { return !empty_rect(ivec4(max(a.xy, b.xy), min(a.zw, b.zw))); }
 
 // The window texels [xy, zw) a caster inside the box can set in the cascade (empty: none).
 ivec4 cascade_footprint(mat4 view_projection, vec3 box_min, vec3 box_max) {
-    const ivec4 window = ivec4(0, 0, int(cull.resolution), int(cull.resolution));
+    const ivec4 window = whole_window();
     precise vec3 low = view_projection[3].xyz;
     precise vec3 high = view_projection[3].xyz;
     for (int column = 0; column < 3; ++column) {
@@ -155,7 +158,7 @@ void main() {
             // Without culling a caster may reach every texel.
             const ivec4 footprint =
                 cull.cull != 0 ? cascade_footprint(shadow.cascades[cascade].view_projection, box_min, box_max)
-                               : ivec4(0, 0, int(cull.resolution), int(cull.resolution));
+                               : whole_window();
             if (empty_rect(footprint)) continue;
             for (uint layer = first; layer < first + 4u; ++layer) {
                 if (layer_enabled(layer) && reaches_tile(layer, footprint, dynamic))

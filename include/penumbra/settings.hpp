@@ -126,8 +126,8 @@ struct ShadowSettings {
     // Keep each cascade's static casters' depths from frame to frame and draw again only the
     // texels the cascade's move exposes and those of static casters that changed; dynamic
     // instances (kInstanceDynamic) are drawn over them every frame (per-cascade and layered
-    // strategies; multiview ignores it). Spot and point lights keep a layer while its light, near plane and size stay
-    // and no caster within its reach moved or is dynamic.
+    // strategies; multiview ignores it). Spot and point lights keep a layer while its light,
+    // near plane and size stay and no caster within its reach moved or is dynamic.
     bool cache_static_casters = false;
 };
 

@@ -213,8 +213,8 @@ struct CascadeInfo {
     // The layer texel of the cascade's texel (0, 0): with per-cascade and layered passes
     // the cascade wraps around its layer from there (toroidal: a world texel keeps its
     // layer texel while the cascade moves; penumbra/glsl/sun.glsl samples accordingly),
-    // with multiview (0, 0): the layer is the cascade. The cascade's texel (x, y) is the layer's
-    // ((x + layer_origin_x) mod resolution, (y + layer_origin_y) mod resolution).
+    // with multiview (0, 0): the layer is the cascade. The cascade's texel (x, y) is the
+    // layer's ((x + layer_origin_x) mod resolution, (y + layer_origin_y) mod resolution).
     uint32_t layer_origin_x = 0;
     uint32_t layer_origin_y = 0;
     // Where this frame drew: the static casters (the whole cascade unless the cache was

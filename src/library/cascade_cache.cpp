@@ -15,16 +15,19 @@ struct Footprint {
     TexelRect window;
 };
 
-// The footprints of the draws of `scene` that pass `keep`, projected once per cascade and
-// then tested against every piece and rectangle.
+// A draw's footprint in the cascade (the whole window without culling).
 Footprint footprint_of(const Cascade& cascade, const passes::CasterScene& scene, bool cull, uint32_t resolution,
                        uint32_t draw) {
     return {draw, cull ? caster_footprint(cascade, scene.draws[draw].world_bounds, resolution) : whole_map(resolution)};
 }
 
+// The footprints of the draws of `scene` that pass `keep`, projected once per cascade and
+// then tested against every piece and rectangle; none when the CPU does not list the
+// casters (`list_casters` false: the GPU culls them).
 template <typename Keep>
-std::vector<Footprint> footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
-                                  uint32_t resolution, Keep keep) {
+std::vector<Footprint> footprints(bool list_casters, const Cascade& cascade, const passes::CasterScene& scene,
+                                  bool cull, uint32_t resolution, Keep keep) {
+    if (!list_casters) return {};
     std::vector<Footprint> result;
     result.reserve(scene.draws.size());
     for (uint32_t d = 0; d < scene.draws.size(); ++d) {
@@ -127,13 +130,6 @@ std::vector<TexelRect> layer_texels(const std::vector<TexelRect>& window_rects, 
     return rects;
 }
 
-// The static casters' footprints, when the CPU lists them (else the GPU culls them).
-std::vector<Footprint> static_footprints(const Cascade& cascade, const passes::CasterScene& scene, bool cull,
-                                         uint32_t resolution, bool list_casters) {
-    if (!list_casters) return {};
-    return footprints(cascade, scene, cull, resolution, is_static);
-}
-
 // `before`: the cascade the map's layer was last drawn for, with where the dynamic casters
 // reached then (its window texels).
 CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, const passes::CasterScene& scene,
@@ -146,8 +142,8 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     const std::vector<Footprint> dynamic = dynamic_footprints(cascade, scene, cull, resolution);
     if (!dynamic.empty()) draws.dynamic = regions_of(window, cascade, dynamic, resolution, &draws.dynamic_window);
     if (!update.reuse) {
-        draws.regions =
-            regions_of(window, cascade, static_footprints(cascade, scene, cull, resolution, list_casters), resolution);
+        draws.regions = regions_of(window, cascade,
+                                   footprints(list_casters, cascade, scene, cull, resolution, is_static), resolution);
         // The cache must hold the static texels the dynamic casters are about to cover.
         if (!draws.dynamic_window.empty()) draws.store = {window};
         return draws;
@@ -160,7 +156,7 @@ CascadeDraws cached_draws(const CascadeUpdate& update, const Cascade& cascade, c
     // Static footprints only when something is redrawn (a still camera projects none).
     const std::vector<Footprint> statics = update.redraw.empty()
                                                ? std::vector<Footprint>{}
-                                               : static_footprints(cascade, scene, cull, resolution, list_casters);
+                                               : footprints(list_casters, cascade, scene, cull, resolution, is_static);
     for (const TexelRect& rect : update.redraw) {
         std::vector<CascadeDraws::Region> regions = regions_of(rect, cascade, statics, resolution);
         draws.regions.insert(draws.regions.end(), regions.begin(), regions.end());
@@ -186,9 +182,8 @@ std::vector<CascadeDraws> CascadeCache::plan(const CascadeSet& set, const passes
         if (!cached) {
             const auto any = [](const passes::CasterDraw&) { return true; };
             draws[c].layer_origin = cascade.layer_origin;
-            const std::vector<Footprint> casters =
-                list_casters ? footprints(cascade, scene, cull, resolution, any) : std::vector<Footprint>{};
-            draws[c].regions = regions_of(whole_map(resolution), cascade, casters, resolution);
+            draws[c].regions = regions_of(whole_map(resolution), cascade,
+                                          footprints(list_casters, cascade, scene, cull, resolution, any), resolution);
             continue;
         }
         const std::optional<Layer>& previous = c < layers_.size() ? layers_[c] : std::nullopt;

@@ -294,20 +294,16 @@ void GpuCasterCulling::upload(VkCommandBuffer cmd, const CasterScene& scene, uin
     std::vector<CasterBucket> ordered;
     std::vector<uint32_t> new_index(buckets_.size());
     uint32_t first_command = 0;
+    first_dynamic_bucket_ = static_cast<uint32_t>(bucket_of.size());
     for (const auto& [key, bucket] : bucket_of) {
+        if (key.dynamic && first_dynamic_bucket_ == bucket_of.size())
+            first_dynamic_bucket_ = static_cast<uint32_t>(ordered.size());
         new_index[bucket] = static_cast<uint32_t>(ordered.size());
         ordered.push_back({buckets_[bucket].draw, first_command, draws_in_bucket[bucket]});
         first_command += draws_in_bucket[bucket];
     }
     buckets_ = std::move(ordered);
     for (uint32_t& bucket : draw_bucket) bucket = new_index[bucket];
-    first_dynamic_bucket_ = static_cast<uint32_t>(buckets_.size());
-    for (uint32_t b = 0; b < buckets_.size() && unit_ == CullUnit::Instances; ++b) {
-        if (scene.draws[buckets_[b].draw].dynamic) {
-            first_dynamic_bucket_ = b;
-            break;
-        }
-    }
 
     std::vector<shader::CullInstance> units;
     units.reserve(scene.draws.size());

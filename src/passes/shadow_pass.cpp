@@ -224,22 +224,21 @@ void ShadowPass::record_regions(VkCommandBuffer cmd, const CasterScene& scene,
 void ShadowPass::record_layered_static(VkCommandBuffer cmd, const CasterScene& scene,
                                        const std::vector<CascadeDraws>& draws, const BiasSettings& bias,
                                        const CasterFaceCulling& culling, gpu::GpuTimer* timer) const {
+    // Every layer kept whole: nothing to clear or draw.
+    const auto untouched = [](const CascadeDraws& d) { return d.reuse && d.regions.empty(); };
+    if (!draws.empty() && std::all_of(draws.begin(), draws.end(), untouched)) return;
     const bool keep = std::any_of(draws.begin(), draws.end(), [](const CascadeDraws& d) { return d.reuse; });
-    const bool draws_something =
-        std::any_of(draws.begin(), draws.end(), [](const CascadeDraws& d) { return !d.regions.empty(); });
-    if (keep && !draws_something &&
-        std::all_of(draws.begin(), draws.end(), [](const CascadeDraws& d) { return d.reuse; })) {
-        return;
-    }
     gpu::TimedScope scope(device_, timer, cmd, "shadow_layered");
     begin_rendering(cmd, shadow_map_.view, 0, bias, keep ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR,
                     cascade_count_);
     if (keep) {
         std::vector<VkClearRect> clears;
         for (uint32_t c = 0; c < cascade_count_; ++c) {
-            const bool kept = c < draws.size() && draws[c].reuse;
-            if (!kept) clears.push_back({to_vk_rect(whole_map(resolution_)), c, 1});
-            for (const CascadeDraws::Region& region : kept ? draws[c].regions : std::vector<CascadeDraws::Region>{})
+            if (c >= draws.size() || !draws[c].reuse) {
+                clears.push_back({to_vk_rect(whole_map(resolution_)), c, 1});
+                continue;
+            }
+            for (const CascadeDraws::Region& region : draws[c].regions)
                 clears.push_back({to_vk_rect(region.rect), c, 1});
         }
         const VkClearAttachment attachment{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {.depthStencil = {0.0f, 0}}};
