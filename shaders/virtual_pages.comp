@@ -24,7 +24,8 @@
 //           another page's texels; the marking requests the next coarser level's pages
 //           too, for this fallback).
 // A page drawn this frame is listed as it is found, in its level's part of the list (the
-// casters' culling scans one level's pages at a time).
+// casters' culling scans one level's pages at a time). How many pages a frame draws at most
+// is the casters' culling's choice (VirtualCounters::render_budget, virtual_cull.comp).
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
@@ -64,8 +65,15 @@ bool is_requested(uint entry) { return requests[entry] == PENUMBRA_VIRTUAL_REQUE
 
 // A page drawn this frame: counted, listed in its level's part of the list (each level has
 // room for the whole pool), flagged for the casters' culling, and valid once the frame's
-// draws ran.
+// draws ran. Beyond the render budget (a small page-draw buffer's last frames overflowed),
+// the page keeps its physical page but stays stale, and its pixels read a coarser level
+// until a later frame draws it: the pages that are drawn get every draw they need.
 uint queue_render(uint entry, uint value) {
+    const uint budget = counters.render_budget;
+    if (budget != 0u && atomicAdd(counters.render_claims, 1u) >= budget) {
+        atomicAdd(counters.deferred, 1u);
+        return value;
+    }
     const uint level = penumbra_virtual_level_of_entry(entry);
     atomicAdd(counters.rendered, 1u);
     render_entries[level * clipmap.pool_pages + atomicAdd(counters.level_clears[level].instance_count, 1u)] = entry;
@@ -238,11 +246,23 @@ void evict_page(uint page) {
     give_page(need_of_rank(counters.free + evicted), page);
 }
 
+// The entry scan thread `index` updates. While a render budget defers pages, the entries
+// turn by whole workgroups, a different number every frame: which pages claim the budget
+// first follows the order the workgroups run in, and the deferred ones must take turns
+// (a page whose own draws overflow the buffer would otherwise hold back every other).
+uint scanned_entry(uint index) {
+    if (counters.render_budget == 0u) return index;
+    const uint groups = pages.first_page_thread / kGroupSize;
+    const uint turned = index + (clipmap.frame * 40503u) % groups * kGroupSize;
+    return turned >= pages.first_page_thread ? turned - pages.first_page_thread : turned;
+}
+
 void main() {
     const uint index = gl_GlobalInvocationID.x;
     if (pages.step == PENUMBRA_VIRTUAL_STEP_SCAN) {
         if (index < pages.first_page_thread) {
-            if (index < entry_count()) update_entry(index);
+            const uint entry = scanned_entry(index);
+            if (entry < entry_count()) update_entry(entry);
         } else if (index - pages.first_page_thread < clipmap.pool_pages) {
             scan_page(index - pages.first_page_thread);
         }

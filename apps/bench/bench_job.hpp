@@ -116,6 +116,7 @@ struct VirtualReport {
     CountSummary page_draws;
     CountSummary page_draw_triangles;
     CountSummary dropped_page_draws;  // beyond Settings::shadow.virtual_maps.page_draws
+    CountSummary pages_deferred;      // left stale for a later frame after dropped draws
     uint64_t invalidated_all_frames = 0;
 };
 

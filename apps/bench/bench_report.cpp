@@ -173,6 +173,7 @@ Json virtual_map_json(const std::optional<VirtualReport>& report) {
                 {"page_draws", counts_json(report->page_draws)},
                 {"page_draw_triangles", counts_json(report->page_draw_triangles)},
                 {"dropped_page_draws", counts_json(report->dropped_page_draws)},
+                {"pages_deferred", counts_json(report->pages_deferred)},
                 {"invalidated_all_frames", report->invalidated_all_frames}};
 }
 

@@ -189,7 +189,8 @@ void record_renderer_frame(const renderer::FrameInfo& frame, double wall_ms, Fra
                                                                {"pages_evicted", v.pages_evicted},
                                                                {"page_draws", v.page_draws},
                                                                {"page_draw_triangles", v.page_draw_triangles},
-                                                               {"dropped_page_draws", v.dropped_page_draws}};
+                                                               {"dropped_page_draws", v.dropped_page_draws},
+                                                               {"pages_deferred", v.pages_deferred}};
             for (const auto& [name, value] : counts) samples.virtual_counts[name].push_back(value);
         }
     }
@@ -448,6 +449,7 @@ void summarize_samples(const FrameSamples& samples, const Scene& scene, BenchRes
         report.page_draws = counts("page_draws");
         report.page_draw_triangles = counts("page_draw_triangles");
         report.dropped_page_draws = counts("dropped_page_draws");
+        report.pages_deferred = counts("pages_deferred");
         report.invalidated_all_frames = samples.virtual_invalidated_all;
         result.virtual_map = report;
     }

@@ -108,8 +108,9 @@ struct VirtualShadowSettings {
     float lod_bias = 0.0f;
     uint32_t pool_mib = 256;  // the physical pages' memory, 16..1024 MiB (pool_mib * 16 pages)
     // Caster draws into pages one frame holds (8 bytes each), 1..2^24: with the cache, a
-    // frame that needs more draws the rest in later frames (FrameInfo's dropped_page_draws;
-    // their pixels read a coarser level meanwhile).
+    // frame that needs more draws the rest in later frames, as many pages a frame as the
+    // buffer holds the draws of (FrameInfo's dropped_page_draws and pages_deferred; their
+    // pixels read a coarser level meanwhile). It must hold at least one page's draws.
     uint32_t page_draws = 1u << 22;
 };
 

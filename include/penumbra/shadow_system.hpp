@@ -262,6 +262,10 @@ struct VirtualShadowInfo {
     // Page draws beyond Settings::shadow.virtual_maps.page_draws: their pages are drawn again
     // in the next frames, and their pixels read a coarser level until then.
     uint32_t dropped_page_draws = 0;
+    // Requested pages left stale for a later frame, since the frames before dropped page
+    // draws: a frame then draws only as many pages as the buffer holds all the draws of
+    // (their pixels read a coarser level meanwhile).
+    uint32_t pages_deferred = 0;
 };
 
 // One view's sun shadow in a frame (see ShadowSystem::prepare() with several views).

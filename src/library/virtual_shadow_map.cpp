@@ -203,6 +203,7 @@ VirtualShadowInfo VirtualShadowMap::info(uint64_t counted_frame) const {
         info.pages_evicted = counters->evicted;
         info.page_draws = counters->page_draws;
         info.dropped_page_draws = counters->dropped_page_draws;
+        info.pages_deferred = counters->deferred;
     }
     if (const auto levels = pass_.culled(counted_frame)) {
         for (const passes::CulledLayer& level : *levels) info.page_draw_triangles += level.triangles;

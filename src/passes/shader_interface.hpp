@@ -152,6 +152,7 @@ static_assert(offsetof(VirtualCounters, assign_groups) == 48);
 static_assert(offsetof(VirtualCounters, cull_groups) == 60);
 static_assert(offsetof(VirtualCounters, scan_groups_done) == 72);
 static_assert(offsetof(VirtualCounters, page_draws) == 76);
+static_assert(offsetof(VirtualCounters, deferred) == 92);
 static_assert(offsetof(VirtualCounters, level_needs) == 96);
 static_assert(offsetof(VirtualCounters, age_histogram) == 96 + 4 * PENUMBRA_MAX_VIRTUAL_LEVELS);
 static_assert(sizeof(VirtualClearDraw) == sizeof(VkDrawIndirectCommand));
@@ -159,8 +160,9 @@ static_assert(offsetof(VirtualClearDraw, instance_count) == offsetof(VkDrawIndir
 static_assert(offsetof(VirtualClearDraw, first_instance) == offsetof(VkDrawIndirectCommand, firstInstance));
 static_assert(offsetof(VirtualCounters, level_clears) ==
               96 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
-static_assert(sizeof(VirtualCounters) ==
+static_assert(offsetof(VirtualCounters, render_budget) ==
               96 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS) + 16 * PENUMBRA_MAX_VIRTUAL_LEVELS);
+static_assert(sizeof(VirtualCounters) == offsetof(VirtualCounters, render_budget) + 16);
 static_assert(sizeof(VirtualPageDraw) == 8);
 static_assert(sizeof(VirtualCullPushConstants) == 16);
 static_assert(offsetof(VirtualMarkPushConstants, width) == 64);

@@ -207,8 +207,9 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
         VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
         VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     // The marking does not touch the counters: the barrier after it makes their clearing
-    // visible to the allocation.
-    device_->vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0u);
+    // visible to the allocation. The render budget stays (0, every page, at first).
+    const VkDeviceSize per_frame = initialised_ ? offsetof(shader::VirtualCounters, render_budget) : VK_WHOLE_SIZE;
+    device_->vkCmdFillBuffer(cmd, counters_.get(), 0, per_frame, 0u);
     if (!initialised_) {
         // No entry holds a page or was ever requested (no frame's stamp is 0), and no page
         // has an owner. Later frames leave the requests alone: each frame has its own stamp.

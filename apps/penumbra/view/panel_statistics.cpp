@@ -122,6 +122,10 @@ void virtual_map_section(const VirtualShadowInfo& map) {
         ImGui::Text("%u page draws dropped (over virtual_page_draws): drawn in the next frames",
                     map.dropped_page_draws);
     }
+    if (map.pages_deferred > 0) {
+        ImGui::Text("%u pages deferred to later frames (the page draws of the frames before overflowed)",
+                    map.pages_deferred);
+    }
     if (map.counted_frame == 0) ImGui::TextDisabled("the GPU's counts arrive after the frames in flight");
     std::string sizes;
     for (size_t l = 0; l < map.texel_world_size.size(); ++l) {
