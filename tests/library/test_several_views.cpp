@@ -1,8 +1,9 @@
 // Several views in one ShadowSystem (prepare() with a list of views): each view's sun
 // shadow is exactly what a system with that view alone renders, frame after frame with the
-// caches on, a dynamic box moving and a static box moved (cascades and the virtual shadow
-// map); views that come and go keep the first view's cache and release their memory; each
-// view's passes are timed under their own names; misuse is named.
+// caches on, a dynamic box moving and a static box moved (cascades drawn per cascade and
+// layered, and the virtual shadow map); views that come and go keep the first view's cache
+// and release their memory; each view's passes are timed under their own names; misuse is
+// named.
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -14,8 +15,18 @@
 namespace penumbra::library_tests {
 namespace {
 
-class SeveralViewsTest : public LibraryTest, public ::testing::WithParamInterface<ShadowTechnique> {
+// The sun's technique, and for the cascades the strategy that draws them (the layered one
+// culls every caster on the GPU per cascade tile with the cache).
+struct SunCase {
+    ShadowTechnique technique;
+    ShadowStrategy strategy;
+    const char* name;
+};
+
+class SeveralViewsTest : public LibraryTest, public ::testing::WithParamInterface<SunCase> {
 protected:
+    static ShadowTechnique technique() { return GetParam().technique; }
+
     // The top-down camera over (x, 0, z), with a still sampling pattern.
     static ViewDesc top_down_at(float x, float z) {
         ViewDesc view = top_down_view_at(x, z);
@@ -25,7 +36,8 @@ protected:
 
     Settings technique_settings() const {
         Settings settings = test_settings();
-        settings.shadow.technique = GetParam();
+        settings.shadow.technique = GetParam().technique;
+        settings.shadow.strategy = GetParam().strategy;
         settings.shadow.virtual_maps.pool_mib = 16;
         settings.shadow.cache_static_casters = true;
         return settings;
@@ -95,8 +107,8 @@ TEST_P(SeveralViewsTest, FrameInfoReportsEveryViewAndTheFirstAtTheTop) {
     EXPECT_NE(info.views[0].descriptor_set, info.views[1].descriptor_set);
     EXPECT_EQ(info.shadow_distance, info.views[0].shadow_distance);
     EXPECT_EQ(info.cascades.size(), info.views[0].cascades.size());
-    EXPECT_EQ(info.virtual_map.has_value(), GetParam() == ShadowTechnique::Virtual);
-    if (GetParam() == ShadowTechnique::Cascades) {
+    EXPECT_EQ(info.virtual_map.has_value(), technique() == ShadowTechnique::Virtual);
+    if (technique() == ShadowTechnique::Cascades) {
         ASSERT_EQ(info.views[1].cascades.size(), info.cascades.size());
         for (size_t c = 0; c < info.cascades.size(); ++c) {
             EXPECT_EQ(info.cascades[c].split_far, info.views[1].cascades[c].split_far) << "the same frustum";
@@ -111,7 +123,7 @@ TEST_P(SeveralViewsTest, FrameInfoReportsEveryViewAndTheFirstAtTheTop) {
     const ShadowMaps second = shadows.shadow_maps(1);
     EXPECT_NE(first.cascades.image, second.cascades.image);
     EXPECT_EQ(first.local.image, second.local.image) << "the local lights' maps are shared";
-    if (GetParam() == ShadowTechnique::Virtual) {
+    if (technique() == ShadowTechnique::Virtual) {
         EXPECT_NE(first.virtual_pool.image, second.virtual_pool.image);
     }
 }
@@ -127,7 +139,7 @@ TEST_P(SeveralViewsTest, ViewsThatComeAndGoKeepTheFirstViewsCacheAndTheirMemory)
     render_views(shadows, pair);
     render_visibility_from(shadows, first);
     const MemoryStats one = shadows.memory();
-    if (GetParam() == ShadowTechnique::Cascades) {
+    if (technique() == ShadowTechnique::Cascades) {
         EXPECT_EQ(two.cascade_maps, 2 * one.cascade_maps);
     } else {
         EXPECT_EQ(two.virtual_pool, 2 * one.virtual_pool);
@@ -139,7 +151,7 @@ TEST_P(SeveralViewsTest, ViewsThatComeAndGoKeepTheFirstViewsCacheAndTheirMemory)
     // starts anew.
     const FrameInfo& info = shadows.prepare(pair);
     ASSERT_EQ(info.views.size(), 2u);
-    if (GetParam() == ShadowTechnique::Cascades) {
+    if (technique() == ShadowTechnique::Cascades) {
         for (const CascadeInfo& cascade : info.views[0].cascades) EXPECT_TRUE(cascade.cache_reused);
         for (const CascadeInfo& cascade : info.views[1].cascades) EXPECT_FALSE(cascade.cache_reused);
     } else {
@@ -159,7 +171,9 @@ TEST_P(SeveralViewsTest, EachViewsPassesAreTimedUnderItsOwnName) {
         return std::any_of(times->passes.begin(), times->passes.end(),
                            [&](const PassTime& pass) { return pass.name == name; });
     };
-    const std::string sun_pass = GetParam() == ShadowTechnique::Cascades ? "shadow_cascade_0" : "shadow_virtual_raster";
+    const std::string sun_pass = technique() == ShadowTechnique::Virtual          ? "shadow_virtual_raster"
+                                 : GetParam().strategy == ShadowStrategy::Layered ? "shadow_layered"
+                                                                                  : "shadow_cascade_0";
     EXPECT_TRUE(has(sun_pass));
     EXPECT_TRUE(has(sun_pass + "_view1"));
     EXPECT_TRUE(has("visibility"));
@@ -191,7 +205,7 @@ TEST_P(SeveralViewsTest, MisuseIsNamed) {
             [&] { shadows.record_page_marking(cmd, screens[0], 2); },
             "ShadowSystem::record_page_marking: view 2 is not a view of the last prepare(), which had 2");
         shadows.record_page_marking(cmd, screens[0], 0);
-        if (GetParam() == ShadowTechnique::Virtual) {
+        if (technique() == ShadowTechnique::Virtual) {
             expect_error<UsageError>([&] { shadows.record_shadow_maps(cmd); }, "record_page_marking() of view 1");
         }
         shadows.record_page_marking(cmd, screens[1], 1);
@@ -207,10 +221,11 @@ TEST_P(SeveralViewsTest, MisuseIsNamed) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Techniques, SeveralViewsTest,
-                         ::testing::Values(ShadowTechnique::Cascades, ShadowTechnique::Virtual),
-                         [](const ::testing::TestParamInfo<ShadowTechnique>& technique) {
-                             return std::string(technique.param == ShadowTechnique::Cascades ? "Cascades" : "Virtual");
-                         });
+                         ::testing::Values(SunCase{ShadowTechnique::Cascades, ShadowStrategy::PerCascade, "Cascades"},
+                                           SunCase{ShadowTechnique::Cascades, ShadowStrategy::Layered,
+                                                   "LayeredCascades"},
+                                           SunCase{ShadowTechnique::Virtual, ShadowStrategy::PerCascade, "Virtual"}),
+                         [](const ::testing::TestParamInfo<SunCase>& sun) { return std::string(sun.param.name); });
 
 }  // namespace
 }  // namespace penumbra::library_tests
