@@ -13,10 +13,9 @@
 // strategy's buffers, but a bucket's commands of every level lie together (from
 // bucket_first_command * level_count on) and count together: one indirect draw per bucket
 // draws every level's. Pages whose draws do not fit the buffer lose their valid texels and
-// are drawn again the next frame; the last workgroup then sets how many pages the next
-// frames draw (render_budget), so that a buffer far below a frame's draws completes some
-// pages every frame instead of starting the same ones again. The allocation sizes this
-// dispatch: no workgroup runs in a frame that draws no page.
+// are drawn again in a later frame (the next frames' allocation budgets the pages it draws,
+// virtual_pages.comp). The allocation sizes this dispatch: no workgroup runs in
+// a frame that draws no page.
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
@@ -27,10 +26,7 @@ layout(std140, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_CLIPMAP) uniform Clip
     PenumbraVirtualClipmap clipmap;
 };
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_PAGE_TABLE) buffer PageTable { uint page_table[]; };
-// Coherent: the last workgroup reads what every workgroup counted.
-layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_COUNTERS) coherent buffer Counters {
-    VirtualCounters counters;
-};
+layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_COUNTERS) buffer Counters { VirtualCounters counters; };
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_RENDER) readonly buffer Render { uint render_entries[]; };
 layout(std430, set = 0, binding = PENUMBRA_BINDING_VIRTUAL_DRAWS) writeonly buffer PageDraws {
     VirtualPageDraw page_draws[];
@@ -152,7 +148,16 @@ void cull_level(Candidates c, uint instance_index, CullInstance instance) {
     if (room > 0u && thread == 0u) write_command(instance, c.level, room, base);
 }
 
-void cull_instance(uint index) {
+void main() {
+    // Workgroups beyond the first dimension's limit continue in the second.
+    const uint index = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    // (A frame that draws no page dispatches no workgroup: the allocation sized it.)
+    if (index >= cull.instance_count) return;
+    if (gl_LocalInvocationIndex < PENUMBRA_MAX_VIRTUAL_LEVELS) {
+        found_pages[gl_LocalInvocationIndex] = 0u;
+        written[gl_LocalInvocationIndex] = 0u;
+    }
+    barrier();
     const CullInstance instance = instances[index];
     const vec3 box_min = instance.bounds_min.xyz;
     const vec3 box_max = instance.bounds_max.xyz;
@@ -182,50 +187,4 @@ void cull_instance(uint index) {
         c.count = c.from_list ? level_pages : area;
         cull_level(c, index, instance);
     }
-}
-
-// How many pages the next frames draw. After a frame whose page draws overflowed: the pages
-// whose draws the buffer would have held, had each needed the frame's average, less a
-// quarter for the pages that need more (at least one page). After a frame that fit: half as
-// many again, until the budget holds the whole pool (0: no limit).
-void set_render_budget() {
-    uint budget = counters.render_budget;
-    if (counters.dropped_page_draws > 0u) {
-        const float fitting = float(counters.rendered) * float(cull.draw_capacity) / float(counters.page_draws);
-        budget = max(1u, uint(0.75 * fitting));
-    } else if (budget != 0u) {
-        budget += budget / 2u + 1u;
-        if (budget >= clipmap.pool_pages) budget = 0u;
-    }
-    counters.render_budget = budget;
-}
-
-// The last workgroup to finish sees every workgroup's counts (made visible before each one
-// counts itself done).
-shared bool last_group;
-void set_render_budget_if_last() {
-    memoryBarrierBuffer();
-    barrier();
-    if (gl_LocalInvocationIndex == 0u) {
-        const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
-        last_group = atomicAdd(counters.cull_groups_done, 1u) == groups - 1u;
-    }
-    barrier();
-    if (last_group && gl_LocalInvocationIndex == 0u) {
-        memoryBarrierBuffer();
-        set_render_budget();
-    }
-}
-
-void main() {
-    // Workgroups beyond the first dimension's limit continue in the second.
-    const uint index = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-    // (A frame that draws no page dispatches no workgroup: the allocation sized it.)
-    if (gl_LocalInvocationIndex < PENUMBRA_MAX_VIRTUAL_LEVELS) {
-        found_pages[gl_LocalInvocationIndex] = 0u;
-        written[gl_LocalInvocationIndex] = 0u;
-    }
-    barrier();
-    if (index < cull.instance_count) cull_instance(index);
-    set_render_budget_if_last();
 }

@@ -25,7 +25,7 @@
 //           too, for this fallback).
 // A page drawn this frame is listed as it is found, in its level's part of the list (the
 // casters' culling scans one level's pages at a time). How many pages a frame draws at most
-// is the casters' culling's choice (VirtualCounters::render_budget, virtual_cull.comp).
+// is the plan's render budget (after frames whose page draws overflowed their buffer).
 #extension GL_GOOGLE_include_directive : require
 #include "penumbra_internal.h"
 
@@ -70,7 +70,7 @@ bool is_requested(uint entry) { return requests[entry] == PENUMBRA_VIRTUAL_REQUE
 // until a later frame draws it: the pages that are drawn get every draw they need.
 uint queue_render(uint entry, uint value) {
     const uint budget = counters.render_budget;
-    if (budget != 0u && atomicAdd(counters.render_claims, 1u) >= budget) {
+    if (atomicAdd(counters.render_claims, 1u) >= budget && budget != 0u) {
         atomicAdd(counters.deferred, 1u);
         return value;
     }
@@ -167,16 +167,47 @@ void choose_threshold(uint deficit) {
     }
 }
 
+// The render budget that the assignment and the next frame's scan keep to, from the last
+// frame's casters' culling (whose counts the per-frame clearing keeps, and which are
+// cleared here for this frame's). After a frame whose page draws overflowed: the pages whose
+// draws the buffer would have held, had each needed that frame's average, less a quarter
+// for the pages that need more (at least one page). After a frame that drew pages and fit:
+// half as many again, until the budget holds the whole pool (0: no limit).
+void plan_render_budget() {
+    uint budget = counters.render_budget;
+    if (counters.dropped_page_draws > 0u) {
+        const float fitting = float(counters.last_rendered) * float(pages.draw_capacity) / float(counters.page_draws);
+        budget = max(1u, uint(0.75 * fitting));
+    } else if (budget != 0u && counters.last_rendered > 0u) {
+        budget += budget / 2u + 1u;
+        if (budget >= clipmap.pool_pages) budget = 0u;
+    }
+    counters.render_budget = budget;
+    counters.page_draws = 0u;
+    counters.dropped_page_draws = 0u;
+}
+
+// The pages this frame draws: the scan's, and the assigned ones the budget leaves room for
+// (their claims follow the scan's).
+uint pages_drawn(uint assigned) {
+    const uint budget = counters.render_budget;
+    if (budget == 0u) return counters.rendered + assigned;
+    const uint claims = counters.render_claims;
+    return counters.rendered + (budget > claims ? min(assigned, budget - claims) : 0u);
+}
+
 // What eviction and assignment will do follows from the counts: eviction takes exactly
 // min(deficit, evictable) pages (choose_threshold), assignment min(needed, free pages), the
 // rest of the needs stay unserved.
 void plan() {
+    plan_render_budget();
     const uint deficit = counters.needed > counters.free ? counters.needed - counters.free : 0u;
     choose_threshold(deficit);
     const uint evicting = min(deficit, counters.evictable);
     const uint assigned = min(counters.needed, counters.free + evicting);
     counters.resident = clipmap.pool_pages - counters.free - evicting + assigned;
     counters.unserved = counters.needed - assigned;
+    counters.last_rendered = pages_drawn(assigned);
     uint most_needs = 0u;
     for (uint level = 0u; level < clipmap.level_count; ++level) {
         most_needs = max(most_needs, counters.level_needs[level]);
@@ -188,8 +219,8 @@ void plan() {
     counters.assign_groups = assigned > 0u
                                  ? VirtualDispatch((columns + kGroupSize - 1u) / kGroupSize, clipmap.level_count + 1u, 1u)
                                  : VirtualDispatch(0u, 1u, 1u);
-    counters.cull_groups = counters.rendered + assigned > 0u ? VirtualDispatch(pages.cull_columns, pages.cull_rows, 1u)
-                                                             : VirtualDispatch(0u, 1u, 1u);
+    counters.cull_groups = counters.last_rendered > 0u ? VirtualDispatch(pages.cull_columns, pages.cull_rows, 1u)
+                                                       : VirtualDispatch(0u, 1u, 1u);
 }
 
 // The scan's last workgroup to finish sees every workgroup's counts (atomics, made visible

@@ -217,13 +217,11 @@ struct VirtualCounters {
     VirtualDispatch assign_groups;
     VirtualDispatch cull_groups;
     PENUMBRA_UINT scan_groups_done;  // workgroups of the scan finished: the last one plans
-    // The casters' culling: VirtualPageDraws written, and the ones beyond the buffer's
-    // room (their pages lose VALID and are drawn again next frame).
-    PENUMBRA_UINT page_draws;
-    PENUMBRA_UINT dropped_page_draws;
-    PENUMBRA_UINT cull_groups_done;  // workgroups of the casters' culling finished: the last one sets render_budget
     PENUMBRA_UINT render_claims;     // pages that asked to be drawn (rendered + deferred)
     PENUMBRA_UINT deferred;          // pages left stale for a later frame by render_budget
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT padding2;
     // Requested entries without a page, per level: coarser levels are served first, since a
     // receiver whose page is unserved falls back to the next coarser level.
     PENUMBRA_UINT level_needs[PENUMBRA_MAX_VIRTUAL_LEVELS];
@@ -231,14 +229,16 @@ struct VirtualCounters {
     // Per level, the clear pass's draw; its instance_count is the level's pages drawn, which
     // the casters' culling scans level by level.
     VirtualClearDraw level_clears[PENUMBRA_MAX_VIRTUAL_LEVELS];
-    // Kept from frame to frame (each frame clears the counters before it): how many pages a
-    // frame may draw, 0 for every page asked. The culling lowers it after a frame whose page
+    // Kept from frame to frame (each frame clears the counters before these). How many pages
+    // a frame may draw, 0 for every page asked: the plan lowers it after a frame whose page
     // draws overflowed their buffer and raises it again after frames that fit, so that the
     // pages drawn in a frame get all their draws and a small buffer still catches up.
     PENUMBRA_UINT render_budget;
-    PENUMBRA_UINT padding0;
-    PENUMBRA_UINT padding1;
-    PENUMBRA_UINT padding2;
+    PENUMBRA_UINT last_rendered;  // pages the previous frame drew (the plan's count)
+    // The casters' culling: VirtualPageDraws written, and the ones beyond the buffer's room
+    // (their pages lose VALID and are drawn again); the next frame's plan reads and clears them.
+    PENUMBRA_UINT page_draws;
+    PENUMBRA_UINT dropped_page_draws;
 };
 
 // One caster instance drawn into one page (gl_InstanceIndex of the virtual caster draws).
@@ -279,6 +279,10 @@ struct VirtualStepPushConstants {
     // workgroups in x and y, one per culled instance.
     PENUMBRA_UINT cull_columns;
     PENUMBRA_UINT cull_rows;
+    PENUMBRA_UINT draw_capacity;  // VirtualPageDraws the casters' culling has room for (the render budget)
+    PENUMBRA_UINT padding0;
+    PENUMBRA_UINT padding1;
+    PENUMBRA_UINT padding2;
 };
 
 #endif

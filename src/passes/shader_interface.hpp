@@ -151,8 +151,7 @@ static_assert(sizeof(VirtualDispatch) == sizeof(VkDispatchIndirectCommand));
 static_assert(offsetof(VirtualCounters, assign_groups) == 48);
 static_assert(offsetof(VirtualCounters, cull_groups) == 60);
 static_assert(offsetof(VirtualCounters, scan_groups_done) == 72);
-static_assert(offsetof(VirtualCounters, page_draws) == 76);
-static_assert(offsetof(VirtualCounters, deferred) == 92);
+static_assert(offsetof(VirtualCounters, deferred) == 80);
 static_assert(offsetof(VirtualCounters, level_needs) == 96);
 static_assert(offsetof(VirtualCounters, age_histogram) == 96 + 4 * PENUMBRA_MAX_VIRTUAL_LEVELS);
 static_assert(sizeof(VirtualClearDraw) == sizeof(VkDrawIndirectCommand));
@@ -162,12 +161,13 @@ static_assert(offsetof(VirtualCounters, level_clears) ==
               96 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS));
 static_assert(offsetof(VirtualCounters, render_budget) ==
               96 + 4 * (PENUMBRA_MAX_VIRTUAL_LEVELS + PENUMBRA_VIRTUAL_AGE_BUCKETS) + 16 * PENUMBRA_MAX_VIRTUAL_LEVELS);
+static_assert(offsetof(VirtualCounters, page_draws) == offsetof(VirtualCounters, render_budget) + 8);
 static_assert(sizeof(VirtualCounters) == offsetof(VirtualCounters, render_budget) + 16);
 static_assert(sizeof(VirtualPageDraw) == 8);
 static_assert(sizeof(VirtualCullPushConstants) == 16);
 static_assert(offsetof(VirtualMarkPushConstants, width) == 64);
 static_assert(offsetof(VirtualMarkPushConstants, background_depth) == 72);
 static_assert(sizeof(VirtualMarkPushConstants) == 80);
-static_assert(sizeof(VirtualStepPushConstants) == 16);
+static_assert(sizeof(VirtualStepPushConstants) == 32);
 
 }  // namespace penumbra::shader

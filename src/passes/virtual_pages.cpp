@@ -207,7 +207,8 @@ void VirtualPages::record_clear(VkCommandBuffer cmd) {
         VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
         VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     // The marking does not touch the counters: the barrier after it makes their clearing
-    // visible to the allocation. The render budget stays (0, every page, at first).
+    // visible to the allocation. The render budget and the last frame's page draws stay (0 at
+    // first: every page drawn).
     const VkDeviceSize per_frame = initialised_ ? offsetof(shader::VirtualCounters, render_budget) : VK_WHOLE_SIZE;
     device_->vkCmdFillBuffer(cmd, counters_.get(), 0, per_frame, 0u);
     if (!initialised_) {
@@ -230,8 +231,12 @@ uint32_t VirtualPages::first_page_thread() const {
 }
 
 void VirtualPages::push_step(VkCommandBuffer cmd, const FrameSlot& slot, uint32_t step) const {
-    const shader::VirtualStepPushConstants constants{step, first_page_thread(), slot.cull_workgroups.x,
-                                                     slot.cull_workgroups.y};
+    shader::VirtualStepPushConstants constants{};
+    constants.step = step;
+    constants.first_page_thread = first_page_thread();
+    constants.cull_columns = slot.cull_workgroups.x;
+    constants.cull_rows = slot.cull_workgroups.y;
+    constants.draw_capacity = desc_.max_page_draws;
     device_->vkCmdPushConstants(cmd, pages_layout_, kCompute, 0, sizeof(constants), &constants);
 }
 
